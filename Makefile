@@ -1,0 +1,39 @@
+# The two commands: `make run` and `make test`. Both install what is missing, then build Release.
+PRESET  ?= release
+BUILD   := build/$(PRESET)
+JOBS    ?= $(shell nproc)
+OUT     ?= out
+
+.PHONY: all deps configure build run test bench format clean
+
+all: build
+
+deps:
+	@scripts/install-deps
+
+configure: deps
+	@cmake --preset $(PRESET) >/dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	@mkdir -p $(OUT)
+	@$(BUILD)/radiosity render cornell --method pathtrace --width 256 --height 256 --spp 64 \
+		-o $(OUT)/cornell_pathtrace.png --stats $(OUT)/cornell_pathtrace.json
+	@$(BUILD)/radiosity render cornell --method pathtrace --width 256 --height 256 --spp 64 \
+		-o $(OUT)/cornell_pathtrace.exr --quiet
+	@echo "images: $(OUT)/cornell_pathtrace.png (tone mapped), $(OUT)/cornell_pathtrace.exr (linear radiance)"
+	@echo "stats:  $(OUT)/cornell_pathtrace.json"
+
+test: build
+	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	@$(BUILD)/radiosity bench all
+
+format:
+	@clang-format -i $$(git ls-files '*.cpp' '*.h')
+
+clean:
+	@rm -rf build $(OUT)

@@ -1,0 +1,26 @@
+#pragma once
+// Error policy (docs/CONTRIBUTING.md): bad user input throws InputError, whose message names the
+// file (and line or JSON path) and what was expected; the CLI prints it on one line and exits 2.
+// Any other exception is a runtime failure (exit 1). Broken invariants are assertions.
+
+#include <stdexcept>
+#include <string>
+
+namespace rad {
+
+class InputError : public std::runtime_error {
+ public:
+  /// `where` is "file", "file:line" or "file: /json/path"; `what` says what was wrong and what
+  /// was expected, e.g. "fov_deg 200 out of range (0, 180)".
+  InputError(const std::string& where, const std::string& what)
+      : std::runtime_error(where.empty() ? what : where + ": " + what) {}
+  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+};
+
+/// Thrown when a progress callback asks a long computation to stop.
+class Cancelled : public std::runtime_error {
+ public:
+  Cancelled() : std::runtime_error("cancelled") {}
+};
+
+}  // namespace rad

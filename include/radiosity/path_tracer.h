@@ -1,0 +1,48 @@
+#pragma once
+// The reference path tracer: unbiased diffuse light transport that every other method is
+// checked against. Next-event estimation on emissive triangles (chosen by power) and on point,
+// spot and IES lights; cosine-weighted bounces; Russian roulette. Deterministic for a given seed
+// whatever the thread count (each pixel tile and each sample point has its own random stream).
+
+#include <radiosity/image.h>
+#include <radiosity/object_radiometry.h>
+#include <radiosity/progress.h>
+#include <radiosity/scene.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace rad {
+
+struct PathTracerSettings {
+  int samplesPerPixel = 64;
+  int maxDepth = 256;  ///< bounce limit; Russian roulette ends paths long before it in practice
+  uint64_t seed = 1;
+};
+
+struct PathTracerStats {
+  uint64_t rays = 0;   ///< closest-hit and shadow rays cast
+  uint64_t paths = 0;  ///< camera paths or irradiance samples traced
+  double seconds = 0.0;
+};
+
+struct PathTracedImage {
+  Image image;  ///< linear radiance
+  PathTracerStats stats;
+};
+
+/// Renders the scene as seen by `camera` (camera.width x camera.height pixels).
+/// Throws rad::Cancelled if `progress` returns false.
+PathTracedImage renderPathTraced(const Scene& scene, const Camera& camera,
+                                 const PathTracerSettings& settings,
+                                 const ProgressCallback& progress = {});
+
+/// Area-weighted mean irradiance and radiosity of every scene object, estimated at
+/// `pointsPerObject` stratified points on its faces with `settings.samplesPerPixel` irradiance
+/// paths each. The ground truth for the per-surface comparisons of the radiosity methods.
+std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, int pointsPerObject,
+                                                       const PathTracerSettings& settings,
+                                                       PathTracerStats* stats = nullptr,
+                                                       const ProgressCallback& progress = {});
+
+}  // namespace rad

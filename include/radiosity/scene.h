@@ -1,0 +1,111 @@
+#pragma once
+// The scene model: triangles that remember the planar faces they came from, named objects,
+// diffuse materials, analytic lights, a camera and the solver settings.
+// Units and conventions: docs/ARCHITECTURE.md ("Units and conventions").
+
+#include <radiosity/ies_profile.h>
+#include <radiosity/types.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rad {
+
+/// A Lambertian material. Faces are one-sided (front = counter-clockwise side) unless twoSided.
+struct Material {
+  std::string name;
+  Color rho{0.5f};       ///< diffuse reflectance per channel, in [0, 1)
+  Color emission{0.0f};  ///< Ke: emitted radiance from the front; radiosity E = pi * Ke
+  bool twoSided = false;
+
+  bool emits() const { return maxComponent(emission) > 0.0f; }
+};
+
+/// A named group of faces: an OBJ `o`/`g`, a glTF node, a built-in scene part.
+struct SceneObject {
+  std::string name;
+};
+
+/// One planar polygon of the input, kept so that the patch mesher can subdivide faces, not
+/// triangles. Its triangles are Scene::triangles[firstTriangle, firstTriangle + triangleCount).
+struct Face {
+  uint32_t object = 0;
+  uint32_t material = 0;
+  uint32_t firstTriangle = 0;
+  uint32_t triangleCount = 0;
+  std::vector<uint32_t> corners;  ///< polygon corners (indices into Scene::positions), CCW
+  Vec3 normal{0.0f};              ///< unit normal of the front side
+  float area = 0.0f;
+};
+
+enum class LightType { Point, Spot, Ies };
+
+/// An analytic light at a point. Intensity is radiant intensity in W/sr (RGB): the irradiance
+/// at distance d on a surface tilted by theta is I cos(theta) / d^2.
+struct Light {
+  LightType type = LightType::Point;
+  Vec3 position{0.0f};
+  Vec3 direction{0.0f, -1.0f, 0.0f};  ///< unit; the axis of a spot or IES light
+  Color intensity{0.0f};              ///< W/sr on the axis (spot) or in every direction (point)
+  float innerAngleDeg = 0.0f;         ///< spot: full intensity inside this half-angle
+  float outerAngleDeg = 0.0f;         ///< spot: zero outside this half-angle, smooth between
+  Vec3 spinDegPerS{0.0f};             ///< animation: rotation rate of the direction (degrees/s)
+  /// IES: the photometric table, and the W/sr per candela applied to it (`intensity` is the
+  /// colour-weighted scale: intensity * candela gives W/sr).
+  std::shared_ptr<const IesProfile> ies;
+  std::string iesFile;
+
+  /// Radiant intensity (W/sr) toward the unit direction `toward` (from the light outward).
+  Color intensityToward(const Vec3& toward) const;
+  /// Total radiant power (W) the light emits in all directions.
+  Color power() const;
+};
+
+/// A pinhole camera; fovDeg is the vertical field of view.
+struct Camera {
+  Vec3 eye{0.0f, 0.0f, 1.0f};
+  Vec3 target{0.0f};
+  Vec3 up{0.0f, 1.0f, 0.0f};
+  float fovDeg = 40.0f;
+  int width = 512;
+  int height = 512;
+};
+
+/// The scene's "solver" object. Each is optional: a command-line flag wins over it, and a
+/// method's default applies where neither is given.
+struct SolverSettings {
+  std::optional<std::string> method;  ///< "patch", "voxel" or "pathtrace"
+  std::optional<int> spp;             ///< path tracer samples per pixel
+  std::optional<int> maxDepth;        ///< path tracer bounce limit (Russian roulette ends paths)
+  std::optional<uint64_t> seed;
+};
+
+struct Scene {
+  std::string name;  ///< built-in name or file path
+  std::vector<Vec3> positions;
+  std::vector<UVec3> triangles;        ///< CCW about the front normal
+  std::vector<uint32_t> triangleFace;  ///< face of each triangle
+  std::vector<Face> faces;
+  std::vector<SceneObject> objects;
+  std::vector<Material> materials;
+  std::vector<Light> lights;
+  std::optional<Camera> camera;  ///< none: the renderer frames the scene's bounds
+  SolverSettings solver;
+  std::vector<std::string> warnings;  ///< non-fatal problems found while loading
+
+  const Face& faceOf(uint32_t triangle) const { return faces[triangleFace[triangle]]; }
+  const Material& materialOf(uint32_t triangle) const { return materials[faceOf(triangle).material]; }
+  Vec3 triangleNormal(uint32_t triangle) const;  ///< unit geometric normal (front side)
+  float triangleArea(uint32_t triangle) const;
+  Bounds bounds() const;
+  /// Total emitted power (W): pi * Ke * area over emitting triangles plus every light's power.
+  Color emittedPower() const;
+  bool hasEmitters() const;
+  /// The camera of the scene, or one that frames its bounds from the front (+z looking -z).
+  Camera cameraOrDefault() const;
+};
+
+}  // namespace rad

@@ -1,0 +1,49 @@
+#pragma once
+// Builds a Scene from polygons: triangulates them, remembers each planar face, drops degenerate
+// triangles (one warning that counts them) and rejects non-finite coordinates. Every loader and
+// built-in scene goes through it, so all of them obey the same rules.
+
+#include <radiosity/scene.h>
+
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+
+namespace rad {
+
+class SceneBuilder {
+ public:
+  explicit SceneBuilder(std::string sceneName);
+
+  uint32_t addMaterial(Material material);
+  uint32_t addObject(std::string name);
+  /// Adds a vertex; `where` names the source (file:line) for the error if it is NaN or infinite.
+  uint32_t addVertex(const Vec3& position, const std::string& where);
+  /// Adds a polygon given by vertex indices, counter-clockwise about its front side.
+  /// A planar polygon becomes one Face (triangulated by ear clipping, so concave ones work);
+  /// a non-planar one becomes a face per triangle. Throws InputError (naming `where`) for fewer
+  /// than 3 corners or an index out of range.
+  void addPolygon(std::span<const uint32_t> corners, uint32_t material, uint32_t object,
+                  const std::string& where);
+  /// Adds an indexed triangle list (glTF). Adjacent coplanar triangles with the same material
+  /// that form a convex quad are remembered as one face, the rest as a face each.
+  void addTriangleMesh(std::span<const uint32_t> indices, uint32_t material, uint32_t object,
+                       const std::string& where);
+
+  Scene& scene() { return scene_; }
+  /// Finishes the scene: records the degenerate-triangle warning and returns it.
+  Scene build();
+
+ private:
+  void addFace(std::span<const uint32_t> corners, std::span<const UVec3> triangles,
+               uint32_t material, uint32_t object);
+  bool isDegenerate(const UVec3& triangle) const;
+  /// The convex planar quad two triangles form when they share a diagonal, if they do.
+  std::optional<std::array<uint32_t, 4>> quadOf(const UVec3& a, const UVec3& b) const;
+
+  Scene scene_;
+  size_t degenerateTriangles_ = 0;
+};
+
+}  // namespace rad

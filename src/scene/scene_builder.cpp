@@ -1,0 +1,168 @@
+#include <radiosity/error.h>
+#include <radiosity/scene_builder.h>
+
+#include "scene/polygon.h"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <optional>
+#include <cmath>
+
+namespace rad {
+
+namespace {
+
+// A polygon counts as planar when no corner is farther from its plane than this fraction of
+// the polygon's size: the Cornell box's red wall (3 mm warp over 550 mm) is not planar.
+constexpr double kPlanarTolerance = 1e-4;
+
+double polygonSize(std::span<const Vec3> corners) {
+  Bounds b;
+  for (const Vec3& c : corners) b.extend(c);
+  return b.diagonal();
+}
+
+}  // namespace
+
+SceneBuilder::SceneBuilder(std::string sceneName) { scene_.name = std::move(sceneName); }
+
+uint32_t SceneBuilder::addMaterial(Material material) {
+  scene_.materials.push_back(std::move(material));
+  return uint32_t(scene_.materials.size() - 1);
+}
+
+uint32_t SceneBuilder::addObject(std::string name) {
+  scene_.objects.push_back({std::move(name)});
+  return uint32_t(scene_.objects.size() - 1);
+}
+
+uint32_t SceneBuilder::addVertex(const Vec3& p, const std::string& where) {
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    throw InputError(where, fmt::format("vertex ({}, {}, {}) is not finite", p.x, p.y, p.z));
+  scene_.positions.push_back(p);
+  return uint32_t(scene_.positions.size() - 1);
+}
+
+bool SceneBuilder::isDegenerate(const UVec3& t) const {
+  const Vec3d a = scene_.positions[t.x], b = scene_.positions[t.y], c = scene_.positions[t.z];
+  const double twiceArea = glm::length(glm::cross(b - a, c - a));
+  const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+  // Zero area, or a sliver so thin that its normal is float noise.
+  return !(twiceArea > 1e-6 * longest * longest);
+}
+
+void SceneBuilder::addFace(std::span<const uint32_t> corners, std::span<const UVec3> triangles,
+                           uint32_t material, uint32_t object) {
+  Face face;
+  face.object = object;
+  face.material = material;
+  face.firstTriangle = uint32_t(scene_.triangles.size());
+  for (const UVec3& t : triangles) {
+    if (isDegenerate(t)) {
+      ++degenerateTriangles_;
+      continue;
+    }
+    scene_.triangles.push_back(t);
+    scene_.triangleFace.push_back(uint32_t(scene_.faces.size()));
+  }
+  face.triangleCount = uint32_t(scene_.triangles.size()) - face.firstTriangle;
+  if (face.triangleCount == 0) return;
+  face.corners.assign(corners.begin(), corners.end());
+  std::vector<Vec3> points;
+  for (uint32_t c : corners) points.push_back(scene_.positions[c]);
+  const Vec3d n = newellNormal(points);
+  face.area = float(0.5 * glm::length(n));
+  face.normal = Vec3(glm::normalize(n));
+  scene_.faces.push_back(std::move(face));
+}
+
+void SceneBuilder::addPolygon(std::span<const uint32_t> corners, uint32_t material,
+                              uint32_t object, const std::string& where) {
+  if (corners.size() < 3)
+    throw InputError(where, fmt::format("a face needs at least 3 vertices, got {}", corners.size()));
+  std::vector<Vec3> points;
+  for (uint32_t c : corners) {
+    if (c >= scene_.positions.size())
+      throw InputError(where, fmt::format("vertex index {} out of range (the file has {} vertices)",
+                                          c + 1, scene_.positions.size()));
+    points.push_back(scene_.positions[c]);
+  }
+  const Vec3d normal = newellNormal(points);
+  if (glm::length(normal) == 0.0) {
+    degenerateTriangles_ += corners.size() - 2;
+    return;
+  }
+  std::vector<UVec3> local = triangulatePolygon(points, normal);
+  std::vector<UVec3> global;
+  for (const UVec3& t : local) global.emplace_back(corners[t.x], corners[t.y], corners[t.z]);
+
+  if (corners.size() == 3 || planeDeviation(points) <= kPlanarTolerance * polygonSize(points)) {
+    addFace(corners, global, material, object);
+    return;
+  }
+  for (const UVec3& t : global) {
+    const std::array<uint32_t, 3> tri{t.x, t.y, t.z};
+    addFace(tri, std::span<const UVec3>(&t, 1), material, object);
+  }
+}
+
+std::optional<std::array<uint32_t, 4>> SceneBuilder::quadOf(const UVec3& a, const UVec3& b) const {
+  // Exporters write a quad as two consecutive triangles sharing its diagonal: (p,q,r), (p,r,s).
+  for (int rot = 0; rot < 3; ++rot) {
+    const uint32_t p = a[rot], q = a[(rot + 1) % 3], r = a[(rot + 2) % 3];
+    for (int k = 0; k < 3; ++k) {
+      if (b[k] != p || b[(k + 1) % 3] != r) continue;
+      const std::array<uint32_t, 4> quad{p, q, r, b[(k + 2) % 3]};
+      std::array<Vec3, 4> pts;
+      for (int j = 0; j < 4; ++j) pts[j] = scene_.positions[quad[j]];
+      const Vec3d n = newellNormal(pts);
+      if (glm::length(n) == 0.0 || planeDeviation(pts) > kPlanarTolerance * polygonSize(pts))
+        return std::nullopt;
+      for (int j = 0; j < 4; ++j) {
+        const Vec3d e0 = Vec3d(pts[(j + 1) % 4]) - Vec3d(pts[j]);
+        const Vec3d e1 = Vec3d(pts[(j + 2) % 4]) - Vec3d(pts[(j + 1) % 4]);
+        if (glm::dot(glm::cross(e0, e1), n) <= 0.0) return std::nullopt;  // not convex
+      }
+      return quad;
+    }
+  }
+  return std::nullopt;
+}
+
+void SceneBuilder::addTriangleMesh(std::span<const uint32_t> indices, uint32_t material,
+                                   uint32_t object, const std::string& where) {
+  if (indices.size() % 3 != 0)
+    throw InputError(where, fmt::format("triangle index count {} is not a multiple of 3", indices.size()));
+  for (uint32_t i : indices)
+    if (i >= scene_.positions.size())
+      throw InputError(where, fmt::format("vertex index {} out of range ({} vertices)", i,
+                                          scene_.positions.size()));
+  const size_t count = indices.size() / 3;
+  auto tri = [&](size_t t) { return UVec3(indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]); };
+  for (size_t t = 0; t < count; ++t) {
+    const UVec3 a = tri(t);
+    if (t + 1 < count) {
+      const UVec3 b = tri(t + 1);
+      if (auto quad = quadOf(a, b)) {
+        const std::array<UVec3, 2> pair{a, b};
+        addFace(*quad, pair, material, object);
+        ++t;
+        continue;
+      }
+    }
+    const std::array<uint32_t, 3> corners{a.x, a.y, a.z};
+    addFace(corners, std::span<const UVec3>(&a, 1), material, object);
+  }
+}
+
+Scene SceneBuilder::build() {
+  if (degenerateTriangles_ > 0)
+    scene_.warnings.push_back(
+        fmt::format("dropped {} degenerate triangle{} (zero or near-zero area)", degenerateTriangles_,
+                    degenerateTriangles_ == 1 ? "" : "s"));
+  degenerateTriangles_ = 0;
+  return std::move(scene_);
+}
+
+}  // namespace rad
