@@ -1,0 +1,33 @@
+#pragma once
+// The per-format image readers and writers behind writeImage/readImage (include/radiosity/image.h).
+// Writers write to `file` (a temporary chosen by writeFileAtomically) and name `displayName`, the
+// path the user asked for, in their errors. Readers throw InputError naming the file when it
+// is malformed or truncated.
+
+#include <radiosity/image.h>
+
+#include <filesystem>
+#include <string>
+
+namespace rad {
+
+/// 8-bit sRGB PNG, tone mapped by toneMapPixel. Throws std::runtime_error on a write failure.
+void writePng(const std::filesystem::path& file, const Image& image, float exposureEV,
+              const std::string& displayName);
+
+/// OpenEXR scanline file with R, G, B channels of the given type. Throws std::runtime_error on
+/// a write failure.
+void writeExr(const std::filesystem::path& file, const Image& image, ExrPixelType type,
+              const std::string& displayName);
+/// Reads the R, G, B channels (half, float or uint, converted to float) of an EXR file; a file
+/// with only a Y channel reads as grey. Alpha and other channels are ignored.
+Image readExr(const std::filesystem::path& file);
+
+/// Portable float map: "PF" colour, little-endian (scale -1), rows stored bottom to top.
+void writePfm(const std::filesystem::path& file, const Image& image,
+              const std::string& displayName);
+/// Reads colour ("PF") or grey ("Pf") PFM of either byte order; the magnitude of the scale is
+/// ignored, its sign gives the byte order.
+Image readPfm(const std::filesystem::path& file);
+
+}  // namespace rad

@@ -1,0 +1,49 @@
+#include "output/run_stats.h"
+
+#include "core/atomic_file.h"
+
+#include <nlohmann/json.hpp>
+
+namespace rad {
+
+namespace {
+
+nlohmann::json rgb(const Color& c) { return nlohmann::json::array({c.r, c.g, c.b}); }
+
+}  // namespace
+
+nlohmann::json toJson(const RunStats& s) {
+  nlohmann::json objects = nlohmann::json::array();
+  for (const ObjectRadiometry& o : s.objects)
+    objects.push_back({{"name", o.name},
+                       {"area", o.area},
+                       {"mean_irradiance", rgb(o.meanIrradiance)},
+                       {"mean_radiosity", rgb(o.meanRadiosity)}});
+  return {
+      {"scene", s.scene},
+      {"method", s.method},
+      {"counts",
+       {{"triangles", s.counts.triangles},
+        {"patches", s.counts.patches},
+        {"voxels", s.counts.voxels},
+        {"directions", s.counts.directions},
+        {"rays", s.counts.rays}}},
+      {"timings_s",
+       {{"load", s.timingsSeconds.load},
+        {"prepare", s.timingsSeconds.prepare},
+        {"solve", s.timingsSeconds.solve},
+        {"render", s.timingsSeconds.render},
+        {"total", s.timingsSeconds.total}}},
+      {"iterations", s.iterations},
+      {"residual", s.residual},
+      {"energy", {{"emitted", rgb(s.emittedPower)}, {"absorbed", rgb(s.absorbedPower)}}},
+      {"objects", objects},
+      {"memory_peak_bytes", s.memoryPeakBytes},
+  };
+}
+
+void writeRunStats(const std::string& path, const RunStats& stats) {
+  writeTextAtomically(path, toJson(stats).dump(2) + "\n");
+}
+
+}  // namespace rad

@@ -1,0 +1,37 @@
+#pragma once
+// The stats file of a run (`--stats FILE.json`); its fields are the contract in
+// docs/ARCHITECTURE.md ("Stats JSON"): scripts and the tests read them.
+
+#include <radiosity/object_radiometry.h>
+#include <radiosity/types.h>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rad {
+
+struct RunStats {
+  std::string scene;
+  std::string method;
+  struct Counts {
+    uint64_t triangles = 0, patches = 0, voxels = 0, directions = 0, rays = 0;
+  } counts;
+  struct Timings {
+    double load = 0, prepare = 0, solve = 0, render = 0, total = 0;
+  } timingsSeconds;
+  int iterations = 0;
+  double residual = 0.0;
+  Color emittedPower{0.0f};   ///< W, every emitter and light
+  Color absorbedPower{0.0f};  ///< W, sum of (1 - rho) H A over the objects
+  std::vector<ObjectRadiometry> objects;
+  uint64_t memoryPeakBytes = 0;
+};
+
+nlohmann::json toJson(const RunStats& stats);
+/// Writes the stats as indented JSON, atomically (temporary file + rename).
+void writeRunStats(const std::string& path, const RunStats& stats);
+
+}  // namespace rad

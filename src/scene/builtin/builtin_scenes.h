@@ -1,0 +1,17 @@
+#pragma once
+// Scenes built in code, reachable by name from loadScene (see scene_loader.cpp).
+
+#include <radiosity/scene.h>
+
+namespace rad {
+
+/// The Cornell box (Cornell University Program of Computer Graphics, "Cornell Box Data"), in
+/// millimetres, geometry identical to shared/reference/cornell/cornell_box.obj. With `spot`,
+/// the ceiling light is switched off and a spot light below it is aimed at the floor.
+Scene makeCornellBox(bool spot);
+
+/// A procedural furnished room whose triangle count grows roughly linearly with n (>= 1;
+/// InputError otherwise). Deterministic for a given n.
+Scene makeRoom(int n);
+
+}  // namespace rad

@@ -1,0 +1,289 @@
+// glTF 2.0 reader on top of tinygltf (Khronos glTF 2.0 specification: node hierarchy, accessor
+// layout, materials; KHR_materials_emissive_strength for emission above 1).
+
+#define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include "scene/io/gltf_loader.h"
+
+#include "scene/io/text_file.h"
+
+#include <radiosity/error.h>
+
+#include <fmt/format.h>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/gtx/transform.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <set>
+
+namespace rad {
+
+namespace {
+
+// The scene model ignores textures, so images are accepted without being decoded.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+               const unsigned char*, int, void*) {
+  return true;
+}
+
+std::string oneLine(std::string s) {
+  while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+  std::replace(s.begin(), s.end(), '\n', ';');
+  return s;
+}
+
+glm::mat4 localTransform(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    glm::dmat4 m;
+    std::copy(node.matrix.begin(), node.matrix.end(), glm::value_ptr(m));  // column-major both
+    return glm::mat4(m);
+  }
+  glm::mat4 t(1.0f), r(1.0f), s(1.0f);
+  if (node.translation.size() == 3)
+    t = glm::translate(glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+  if (node.rotation.size() == 4)  // glTF stores x, y, z, w
+    r = glm::mat4_cast(glm::quat(float(node.rotation[3]), float(node.rotation[0]),
+                                 float(node.rotation[1]), float(node.rotation[2])));
+  if (node.scale.size() == 3)
+    s = glm::scale(glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
+  return t * r * s;
+}
+
+class GltfReader {
+ public:
+  GltfReader(SceneBuilder& builder, const tinygltf::Model& model, std::string path)
+      : builder_(builder), model_(model), path_(std::move(path)) {}
+
+  void visit(int nodeIndex, const glm::mat4& parent, int depth);
+  void finish();
+
+ private:
+  std::string at(const std::string& jsonPath) const { return path_ + ": " + jsonPath; }
+  const tinygltf::Accessor& accessor(int index, const std::string& where) const;
+  /// Start of element 0 and the stride of an accessor, after checking it fits its buffer.
+  const unsigned char* elements(const tinygltf::Accessor& a, size_t elementSize, size_t& stride,
+                                const std::string& where) const;
+  std::vector<Vec3> positions(int index, const std::string& where) const;
+  std::vector<uint32_t> indices(int index, const std::string& where) const;
+  uint32_t material(int index);
+  void addMesh(int meshIndex, const glm::mat4& world, uint32_t object);
+
+  SceneBuilder& builder_;
+  const tinygltf::Model& model_;
+  std::string path_;
+  std::vector<int64_t> materials_;
+  int64_t defaultMaterial_ = -1;
+  size_t skippedPrimitives_ = 0, clampedMaterials_ = 0;
+  bool texturesIgnored_ = false;
+};
+
+const tinygltf::Accessor& GltfReader::accessor(int index, const std::string& where) const {
+  if (index < 0 || size_t(index) >= model_.accessors.size())
+    throw InputError(at(where), fmt::format("accessor {} does not exist", index));
+  const tinygltf::Accessor& a = model_.accessors[size_t(index)];
+  if (a.sparse.isSparse) throw InputError(at(where), "sparse accessors are not supported");
+  return a;
+}
+
+const unsigned char* GltfReader::elements(const tinygltf::Accessor& a, size_t elementSize,
+                                          size_t& stride, const std::string& where) const {
+  if (a.bufferView < 0 || size_t(a.bufferView) >= model_.bufferViews.size())
+    throw InputError(at(where), fmt::format("accessor has no valid bufferView ({})", a.bufferView));
+  const tinygltf::BufferView& view = model_.bufferViews[size_t(a.bufferView)];
+  if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
+    throw InputError(at(where), fmt::format("bufferView refers to missing buffer {}", view.buffer));
+  const tinygltf::Buffer& buffer = model_.buffers[size_t(view.buffer)];
+  stride = view.byteStride ? view.byteStride : elementSize;
+  const size_t needed = a.count == 0 ? 0 : (a.count - 1) * stride + elementSize;
+  if (view.byteOffset + view.byteLength > buffer.data.size() || a.byteOffset + needed > view.byteLength)
+    throw InputError(at(where), fmt::format("accessor of {} elements runs past the end of its buffer "
+                                            "({} bytes)", a.count, buffer.data.size()));
+  return buffer.data.data() + view.byteOffset + a.byteOffset;
+}
+
+std::vector<Vec3> GltfReader::positions(int index, const std::string& where) const {
+  const tinygltf::Accessor& a = accessor(index, where);
+  if (a.type != TINYGLTF_TYPE_VEC3 || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    throw InputError(at(where), "POSITION must be a VEC3 of FLOAT");
+  size_t stride = 0;
+  const unsigned char* data = elements(a, 12, stride, where);
+  std::vector<Vec3> out(a.count);
+  for (size_t i = 0; i < a.count; ++i) std::memcpy(&out[i], data + i * stride, 12);
+  return out;
+}
+
+std::vector<uint32_t> GltfReader::indices(int index, const std::string& where) const {
+  const tinygltf::Accessor& a = accessor(index, where);
+  size_t size = 0;
+  switch (a.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: size = 1; break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: size = 2; break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: size = 4; break;
+    default:
+      throw InputError(at(where), "indices must be unsigned byte, short or int");
+  }
+  if (a.type != TINYGLTF_TYPE_SCALAR) throw InputError(at(where), "indices must be SCALAR");
+  size_t stride = 0;
+  const unsigned char* data = elements(a, size, stride, where);
+  std::vector<uint32_t> out(a.count);
+  for (size_t i = 0; i < a.count; ++i) {
+    const unsigned char* p = data + i * stride;
+    if (size == 1) out[i] = *p;
+    else if (size == 2) { uint16_t v; std::memcpy(&v, p, 2); out[i] = v; }
+    else std::memcpy(&out[i], p, 4);
+  }
+  return out;
+}
+
+uint32_t GltfReader::material(int index) {
+  if (index < 0 || size_t(index) >= model_.materials.size()) {
+    if (defaultMaterial_ < 0) {
+      defaultMaterial_ = builder_.addMaterial({"default", Color(0.5f)});
+      builder_.scene().warnings.push_back(
+          path_ + ": primitives without a material use the default grey (rho 0.5)");
+    }
+    return uint32_t(defaultMaterial_);
+  }
+  materials_.resize(model_.materials.size(), -1);
+  if (materials_[size_t(index)] >= 0) return uint32_t(materials_[size_t(index)]);
+  const tinygltf::Material& m = model_.materials[size_t(index)];
+  const std::string where = fmt::format("/materials/{}", index);
+  Material mat;
+  mat.name = m.name.empty() ? fmt::format("material{}", index) : m.name;
+  const std::vector<double>& base = m.pbrMetallicRoughness.baseColorFactor;
+  for (int c = 0; c < 3; ++c) {
+    const double v = base.size() >= 3 ? base[size_t(c)] : 1.0;
+    if (!(v >= 0.0 && v <= 1.0))
+      throw InputError(at(where + "/pbrMetallicRoughness/baseColorFactor"),
+                       fmt::format("component {} out of range [0, 1]", v));
+    mat.rho[c] = float(std::min(v, 0.999));
+  }
+  if (maxComponent(mat.rho) >= 0.999f) {
+    ++clampedMaterials_;
+    builder_.scene().warnings.push_back(fmt::format(
+        "{}: material '{}' has baseColorFactor 1.0; rho clamped to 0.999 (rho must be < 1)", path_,
+        mat.name));
+  }
+  double strength = 1.0;
+  if (auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end()) {
+    const tinygltf::Value& s = it->second.Get("emissiveStrength");
+    if (s.IsNumber()) strength = s.GetNumberAsDouble();
+    if (!(strength >= 0.0))
+      throw InputError(at(where + "/extensions/KHR_materials_emissive_strength/emissiveStrength"),
+                       fmt::format("{} must be >= 0", strength));
+  }
+  for (int c = 0; c < 3 && m.emissiveFactor.size() == 3; ++c)
+    mat.emission[c] = float(m.emissiveFactor[size_t(c)] * strength);
+  mat.twoSided = m.doubleSided;
+  if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 && !texturesIgnored_) {
+    texturesIgnored_ = true;
+    builder_.scene().warnings.push_back(path_ + ": textures are ignored (baseColorFactor used)");
+  }
+  materials_[size_t(index)] = builder_.addMaterial(std::move(mat));
+  return uint32_t(materials_[size_t(index)]);
+}
+
+void GltfReader::addMesh(int meshIndex, const glm::mat4& world, uint32_t object) {
+  const tinygltf::Mesh& mesh = model_.meshes[size_t(meshIndex)];
+  const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const tinygltf::Primitive& prim = mesh.primitives[p];
+    const std::string where = fmt::format("/meshes/{}/primitives/{}", meshIndex, p);
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
+      ++skippedPrimitives_;
+      continue;
+    }
+    auto pos = prim.attributes.find("POSITION");
+    if (pos == prim.attributes.end()) throw InputError(at(where), "primitive has no POSITION");
+    const std::vector<Vec3> points = positions(pos->second, where + "/attributes/POSITION");
+    std::vector<uint32_t> idx;
+    if (prim.indices >= 0) {
+      idx = indices(prim.indices, where + "/indices");
+    } else {
+      idx.resize(points.size());
+      for (size_t i = 0; i < idx.size(); ++i) idx[i] = uint32_t(i);
+    }
+    if (idx.size() % 3 != 0)
+      throw InputError(at(where), fmt::format("{} indices is not a multiple of 3", idx.size()));
+    const uint32_t base = uint32_t(builder_.scene().positions.size());
+    for (const Vec3& v : points) builder_.addVertex(Vec3(world * glm::vec4(v, 1.0f)), at(where));
+    for (size_t i = 0; i < idx.size(); ++i) {
+      if (idx[i] >= points.size())
+        throw InputError(at(where + "/indices"), fmt::format("index {} out of range ({} vertices)",
+                                                             idx[i], points.size()));
+      idx[i] += base;
+    }
+    if (mirrored)
+      for (size_t t = 0; t < idx.size(); t += 3) std::swap(idx[t + 1], idx[t + 2]);
+    builder_.addTriangleMesh(idx, material(prim.material), object, at(where));
+  }
+}
+
+void GltfReader::visit(int nodeIndex, const glm::mat4& parent, int depth) {
+  const std::string where = fmt::format("/nodes/{}", nodeIndex);
+  if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size())
+    throw InputError(at(where), "node does not exist");
+  if (depth > 256) throw InputError(at(where), "node hierarchy deeper than 256 (a cycle?)");
+  const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
+  const glm::mat4 world = parent * localTransform(node);
+  if (node.mesh >= 0) {
+    if (size_t(node.mesh) >= model_.meshes.size())
+      throw InputError(at(where + "/mesh"), fmt::format("mesh {} does not exist", node.mesh));
+    std::string name = node.name;
+    if (name.empty()) name = model_.meshes[size_t(node.mesh)].name;
+    if (name.empty()) name = fmt::format("node{}", nodeIndex);
+    addMesh(node.mesh, world, builder_.addObject(name));
+  }
+  for (int child : node.children) visit(child, world, depth + 1);
+}
+
+void GltfReader::finish() {
+  if (skippedPrimitives_ > 0)
+    builder_.scene().warnings.push_back(fmt::format(
+        "{}: skipped {} non-triangle primitive{} (points or lines)", path_, skippedPrimitives_,
+        skippedPrimitives_ == 1 ? "" : "s"));
+}
+
+std::vector<int> rootNodes(const tinygltf::Model& model) {
+  if (!model.scenes.empty()) {
+    const int s = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size()
+                      ? model.defaultScene : 0;
+    return model.scenes[size_t(s)].nodes;
+  }
+  std::set<int> children;
+  for (const tinygltf::Node& n : model.nodes) children.insert(n.children.begin(), n.children.end());
+  std::vector<int> roots;
+  for (int i = 0; i < int(model.nodes.size()); ++i)
+    if (!children.count(i)) roots.push_back(i);
+  return roots;
+}
+
+}  // namespace
+
+void loadGltf(SceneBuilder& builder, const std::string& path, const glm::mat4& transform) {
+  std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (!std::ifstream(path, std::ios::binary))
+    throw InputError(path, "cannot open glTF file (missing or unreadable)");
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(&skipImage, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                                : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  if (!ok || !err.empty())
+    throw InputError(path, "invalid glTF: " + (err.empty() ? std::string("cannot parse") : oneLine(err)));
+  if (!warn.empty()) builder.scene().warnings.push_back(path + ": " + oneLine(warn));
+  GltfReader reader(builder, model, path);
+  for (int root : rootNodes(model)) reader.visit(root, transform, 0);
+  reader.finish();
+}
+
+}  // namespace rad

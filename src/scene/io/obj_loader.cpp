@@ -1,0 +1,250 @@
+// Wavefront OBJ/MTL reader on top of tinyobjloader. tinyobjloader accepts almost anything
+// (a bad number reads as 0), so both files are first checked line by line here, so that every
+// malformed statement is reported with its file and line instead of becoming silent geometry.
+
+#include "scene/io/obj_loader.h"
+
+#include "scene/io/text_file.h"
+
+#include <radiosity/error.h>
+
+#include <fmt/format.h>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+#include <glm/vec4.hpp>
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace rad {
+
+namespace {
+
+std::string at(const std::string& path, size_t line) { return fmt::format("{}:{}", path, line); }
+
+/// Line numbers of the statements the geometry is built from, in file order.
+struct ObjScan {
+  std::vector<size_t> vertexLines;
+  std::vector<size_t> faceLines;
+  std::vector<std::string> mtllibs;
+};
+
+/// Line by line, with the statement's words; comments and blank lines skipped.
+template <typename F>
+void forEachStatement(const std::string& text, F&& visit) {
+  size_t lineNo = 0, start = 0;
+  while (start <= text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    ++lineNo;
+    std::string_view line(text.data() + start, end - start);
+    const size_t hash = line.find('#');
+    if (hash != std::string_view::npos) line = line.substr(0, hash);
+    const std::vector<std::string_view> words = splitWords(line);
+    if (!words.empty()) visit(lineNo, words);
+    start = end + 1;
+  }
+}
+
+/// Checks that words[1..] are between minCount and maxCount finite numbers.
+std::vector<double> numbers(const std::vector<std::string_view>& words, size_t minCount,
+                            size_t maxCount, const std::string& where, const std::string& expected) {
+  const size_t count = words.size() - 1;
+  if (count < minCount || count > maxCount)
+    throw InputError(where, fmt::format("'{}' has {} value{}, expected {}", words[0], count,
+                                        count == 1 ? "" : "s", expected));
+  std::vector<double> values;
+  for (size_t i = 1; i < words.size(); ++i) {
+    const std::optional<double> v = parseNumber(words[i]);
+    if (!v)
+      throw InputError(where, fmt::format("'{}' is not a number in '{}' (expected {})", words[i],
+                                          words[0], expected));
+    if (!std::isfinite(*v))
+      throw InputError(where, fmt::format("'{}' value {} is not finite (expected {})", words[0],
+                                          words[i], expected));
+    values.push_back(*v);
+  }
+  return values;
+}
+
+/// One index of a face corner: a non-zero integer, negative counting back from the last.
+void checkIndex(std::string_view token, size_t available, const std::string& kind,
+                const std::string& where) {
+  long value = 0;
+  auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (ec != std::errc() || end != token.data() + token.size())
+    throw InputError(where, fmt::format("face {} index '{}' is not an integer", kind, token));
+  if (value == 0)
+    throw InputError(where, fmt::format("face {} index 0 is invalid (OBJ indices start at 1)", kind));
+  const long n = long(available);
+  if (value > n || value < -n)
+    throw InputError(where, fmt::format("face {} index {} out of range (1..{} or -1..-{} so far)",
+                                        kind, value, n, n));
+}
+
+void checkFace(const std::vector<std::string_view>& words, size_t v, size_t vt, size_t vn,
+               const std::string& where) {
+  if (words.size() < 4)
+    throw InputError(where, fmt::format("face has {} corners, expected at least 3", words.size() - 1));
+  for (size_t i = 1; i < words.size(); ++i) {
+    std::vector<std::string_view> parts;
+    std::string_view ref = words[i];
+    for (size_t slash; (slash = ref.find('/')) != std::string_view::npos;) {
+      parts.push_back(ref.substr(0, slash));
+      ref.remove_prefix(slash + 1);
+    }
+    parts.push_back(ref);
+    if (parts.size() > 3)
+      throw InputError(where, fmt::format("face corner '{}' is not v, v/vt, v//vn or v/vt/vn", words[i]));
+    checkIndex(parts[0], v, "vertex", where);
+    if (parts.size() > 1 && !parts[1].empty()) checkIndex(parts[1], vt, "texture", where);
+    if (parts.size() > 2) checkIndex(parts[2], vn, "normal", where);
+  }
+}
+
+ObjScan scanObj(const std::string& text, const std::string& path) {
+  ObjScan scan;
+  size_t vt = 0, vn = 0;
+  forEachStatement(text, [&](size_t line, const std::vector<std::string_view>& w) {
+    const std::string where = at(path, line);
+    if (w[0] == "v") {
+      numbers(w, 3, 7, where, "3 finite coordinates (x y z [w] or x y z r g b)");
+      scan.vertexLines.push_back(line);
+    } else if (w[0] == "vn") {
+      numbers(w, 3, 3, where, "3 finite normal components");
+      ++vn;
+    } else if (w[0] == "vt") {
+      numbers(w, 1, 3, where, "1 to 3 finite texture coordinates");
+      ++vt;
+    } else if (w[0] == "f") {
+      checkFace(w, scan.vertexLines.size(), vt, vn, where);
+      scan.faceLines.push_back(line);
+    } else if (w[0] == "mtllib") {
+      if (w.size() < 2) throw InputError(where, "'mtllib' needs a file name");
+      for (size_t i = 1; i < w.size(); ++i) scan.mtllibs.emplace_back(w[i]);
+    }
+  });
+  return scan;
+}
+
+/// Checks an MTL library; returns the names of the materials that state a Kd.
+std::set<std::string> scanMtl(const std::string& text, const std::string& path) {
+  std::set<std::string> withKd;
+  std::string current;
+  forEachStatement(text, [&](size_t line, const std::vector<std::string_view>& w) {
+    const std::string where = at(path, line);
+    const std::string key(w[0]);
+    if (key == "newmtl") {
+      if (w.size() != 2) throw InputError(where, "'newmtl' needs exactly one material name");
+      current = std::string(w[1]);
+    } else if (key == "Ka" || key == "Kd" || key == "Ks" || key == "Ke" || key == "Tf") {
+      if (w.size() > 1 && (w[1] == "spectral" || w[1] == "xyz"))
+        throw InputError(where, fmt::format("'{} {}' is not supported (expected r g b)", key, w[1]));
+      const std::vector<double> c = numbers(w, 1, 3, where, "1 or 3 finite numbers (r g b)");
+      if (c.size() == 2)
+        throw InputError(where, fmt::format("'{}' has 2 values, expected 1 or 3 (r g b)", key));
+      for (double x : c) {
+        if (key == "Kd" && !(x >= 0.0 && x < 1.0))
+          throw InputError(where, fmt::format("rho (Kd) {} of material '{}' must be in [0, 1)", x,
+                                              current));
+        if (key == "Ke" && x < 0.0)
+          throw InputError(where, fmt::format("emission (Ke) {} of material '{}' must be >= 0", x,
+                                              current));
+      }
+      if (key == "Kd") withKd.insert(current);
+    } else if (key == "Ns" || key == "Ni" || key == "d" || key == "Tr" || key == "illum") {
+      numbers(w, 1, 1, where, "1 finite number");
+    }
+  });
+  return withKd;
+}
+
+}  // namespace
+
+void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& transform) {
+  const std::string objText = readTextFile(path, "OBJ file");
+  const ObjScan scan = scanObj(objText, path);
+  std::string mtlText;
+  std::set<std::string> withKd;
+  for (const std::string& lib : scan.mtllibs) {
+    const std::string mtlPath = resolvePath(parentDirectory(path), lib);
+    const std::string text = readTextFile(mtlPath, "MTL file");
+    withKd.merge(scanMtl(text, mtlPath));
+    mtlText += text + "\n";
+  }
+
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromString(objText, mtlText, config))
+    throw InputError(path, "cannot parse OBJ: " + reader.Error());
+
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  const uint32_t base = uint32_t(builder.scene().positions.size());
+  for (size_t i = 0; 3 * i + 2 < attrib.vertices.size(); ++i) {
+    const glm::vec4 p = transform * glm::vec4(attrib.vertices[3 * i], attrib.vertices[3 * i + 1],
+                                              attrib.vertices[3 * i + 2], 1.0f);
+    const size_t line = i < scan.vertexLines.size() ? scan.vertexLines[i] : 0;
+    builder.addVertex(Vec3(p) / p.w, at(path, line));
+  }
+
+  const std::vector<tinyobj::material_t>& mtls = reader.GetMaterials();
+  std::vector<int64_t> sceneMaterial(mtls.size(), -1);
+  int64_t defaultMaterial = -1;
+  size_t facesWithoutMaterial = 0;
+  auto materialFor = [&](int id) -> uint32_t {
+    if (id < 0 || size_t(id) >= mtls.size()) {
+      ++facesWithoutMaterial;
+      if (defaultMaterial < 0) defaultMaterial = builder.addMaterial({"default", Color(0.5f)});
+      return uint32_t(defaultMaterial);
+    }
+    if (sceneMaterial[size_t(id)] < 0) {
+      const tinyobj::material_t& m = mtls[size_t(id)];
+      Material mat;
+      mat.name = m.name;
+      mat.rho = withKd.count(m.name) ? Color(m.diffuse[0], m.diffuse[1], m.diffuse[2]) : Color(0.5f);
+      mat.emission = Color(m.emission[0], m.emission[1], m.emission[2]);
+      sceneMaterial[size_t(id)] = builder.addMaterial(std::move(mat));
+    }
+    return uint32_t(sceneMaterial[size_t(id)]);
+  };
+
+  const bool mirrored = glm::determinant(glm::mat3(transform)) < 0.0f;
+  std::map<std::string, uint32_t> objects;
+  size_t faceIndex = 0;
+  std::vector<uint32_t> corners;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const std::string name = shape.name.empty() ? fileStem(path) : shape.name;
+    auto [it, added] = objects.try_emplace(name, 0);
+    if (added) it->second = builder.addObject(name);
+    size_t offset = 0;
+    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      const size_t n = shape.mesh.num_face_vertices[f];
+      corners.clear();
+      for (size_t k = 0; k < n; ++k)
+        corners.push_back(base + uint32_t(shape.mesh.indices[offset + k].vertex_index));
+      offset += n;
+      if (mirrored) std::reverse(corners.begin(), corners.end());
+      const size_t line = faceIndex < scan.faceLines.size() ? scan.faceLines[faceIndex] : 0;
+      ++faceIndex;
+      const int id = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
+      builder.addPolygon(corners, materialFor(id), it->second, at(path, line));
+    }
+  }
+  if (facesWithoutMaterial > 0)
+    builder.scene().warnings.push_back(
+        fmt::format("{}: {} face{} without a material use the default grey (rho 0.5)", path,
+                    facesWithoutMaterial, facesWithoutMaterial == 1 ? "" : "s"));
+  const size_t noKd = std::count_if(mtls.begin(), mtls.end(),
+                                    [&](const tinyobj::material_t& m) { return !withKd.count(m.name); });
+  if (noKd > 0)
+    builder.scene().warnings.push_back(
+        fmt::format("{}: {} material{} without Kd use rho 0.5", path, noKd, noKd == 1 ? "" : "s"));
+}
+
+}  // namespace rad

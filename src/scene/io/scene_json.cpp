@@ -1,0 +1,309 @@
+// Reads the JSON scene file of docs/ARCHITECTURE.md. Every key is checked against the keys its
+// object may have (a typo must not pass silently, as in pbrt's ReportUnused), and every value
+// against its type and range, so a message names the JSON path of the bad value.
+
+#include "scene/io/scene_json.h"
+
+#include "scene/io/gltf_loader.h"
+#include "scene/io/obj_loader.h"
+#include "scene/io/text_file.h"
+
+#include <radiosity/error.h>
+#include <radiosity/ies_profile.h>
+#include <radiosity/scene_builder.h>
+
+#include <fmt/format.h>
+#include <glm/gtx/transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <set>
+
+namespace rad {
+
+namespace {
+
+using Json = nlohmann::json;
+
+// W/sr per candela for IES lights when the file gives no "scale": 1 / WHTEFFICACY, Radiance's
+// luminous efficacy of uniform white light, 179 lm/W (VALIDATION.md 4.6).
+constexpr double kDefaultIesScale = 1.0 / 179.0;
+
+class JsonReader {
+ public:
+  explicit JsonReader(std::string path) : path_(std::move(path)) {}
+
+  [[noreturn]] void fail(const std::string& ptr, const std::string& what) const {
+    throw InputError(path_ + ": " + (ptr.empty() ? "/" : ptr), what);
+  }
+
+  void requireObject(const Json& j, const std::string& ptr) const {
+    if (!j.is_object()) fail(ptr, fmt::format("expected an object, got {}", j.type_name()));
+  }
+
+  void checkKeys(const Json& j, const std::string& ptr,
+                 std::initializer_list<const char*> allowed) const {
+    requireObject(j, ptr);
+    for (const auto& [key, value] : j.items()) {
+      if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; }))
+        fail(ptr + "/" + key, fmt::format("unknown key (expected one of: {})",
+                                          fmt::join(allowed, ", ")));
+    }
+  }
+
+  double number(const Json& j, const std::string& ptr) const {
+    if (!j.is_number()) fail(ptr, fmt::format("expected a number, got {}", j.type_name()));
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) fail(ptr, "expected a finite number");
+    return v;
+  }
+
+  int64_t integer(const Json& j, const std::string& ptr, int64_t lo, int64_t hi) const {
+    if (!j.is_number_integer() && !(j.is_number() && j.get<double>() == std::floor(j.get<double>())))
+      fail(ptr, fmt::format("expected an integer in [{}, {}], got {}", lo, hi, j.dump()));
+    const double v = j.get<double>();
+    if (v < double(lo) || v > double(hi))
+      fail(ptr, fmt::format("{} out of range [{}, {}]", j.dump(), lo, hi));
+    return j.is_number_unsigned() ? int64_t(j.get<uint64_t>()) : j.get<int64_t>();
+  }
+
+  std::string string(const Json& j, const std::string& ptr) const {
+    if (!j.is_string()) fail(ptr, fmt::format("expected a string, got {}", j.type_name()));
+    return j.get<std::string>();
+  }
+
+  bool boolean(const Json& j, const std::string& ptr) const {
+    if (!j.is_boolean()) fail(ptr, fmt::format("expected true or false, got {}", j.type_name()));
+    return j.get<bool>();
+  }
+
+  Vec3 vec3(const Json& j, const std::string& ptr) const {
+    if (!j.is_array() || j.size() != 3)
+      fail(ptr, fmt::format("expected an array of 3 numbers, got {}", j.dump()));
+    Vec3 v;
+    for (int i = 0; i < 3; ++i) v[i] = float(number(j[size_t(i)], fmt::format("{}/{}", ptr, i)));
+    return v;
+  }
+
+  /// A colour whose components must lie in [lo, hi) (or [lo, inf) when hi is infinite).
+  Color color(const Json& j, const std::string& ptr, const char* name, double lo, double hi) const {
+    const Vec3 c = vec3(j, ptr);
+    for (int i = 0; i < 3; ++i)
+      if (!(c[i] >= lo && c[i] < hi))
+        fail(ptr, std::isinf(hi) ? fmt::format("{} {} must be >= {}", name, c[i], lo)
+                                 : fmt::format("{} {} must be in [{}, {})", name, c[i], lo, hi));
+    return c;
+  }
+
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+std::string lowerExtension(const std::string& file) {
+  const size_t dot = file.find_last_of('.');
+  const size_t slash = file.find_last_of("/\\");
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = file.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+glm::mat4 readTransform(const JsonReader& r, const Json& j, const std::string& ptr) {
+  r.checkKeys(j, ptr, {"translate", "rotate_deg", "scale"});
+  glm::mat4 m(1.0f);
+  if (j.contains("translate")) m = glm::translate(r.vec3(j["translate"], ptr + "/translate"));
+  if (j.contains("rotate_deg")) {
+    const Vec3 a = glm::radians(r.vec3(j["rotate_deg"], ptr + "/rotate_deg"));
+    m = m * glm::rotate(a.z, Vec3(0, 0, 1)) * glm::rotate(a.y, Vec3(0, 1, 0)) *
+        glm::rotate(a.x, Vec3(1, 0, 0));
+  }
+  if (j.contains("scale")) {
+    const Json& s = j["scale"];
+    const Vec3 scale = s.is_number() ? Vec3(float(r.number(s, ptr + "/scale")))
+                                     : r.vec3(s, ptr + "/scale");
+    if (scale.x == 0.0f || scale.y == 0.0f || scale.z == 0.0f)
+      r.fail(ptr + "/scale", "scale components must be non-zero");
+    m = m * glm::scale(scale);
+  }
+  return m;
+}
+
+void readGeometry(const JsonReader& r, const Json& list, SceneBuilder& builder) {
+  if (!list.is_array()) r.fail("/geometry", fmt::format("expected an array, got {}", list.type_name()));
+  const std::string dir = parentDirectory(r.path());
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string ptr = fmt::format("/geometry/{}", i);
+    const Json& g = list[i];
+    r.checkKeys(g, ptr, {"file", "transform"});
+    if (!g.contains("file")) r.fail(ptr, "missing key \"file\"");
+    const std::string file = resolvePath(dir, r.string(g["file"], ptr + "/file"));
+    const glm::mat4 m = g.contains("transform") ? readTransform(r, g["transform"], ptr + "/transform")
+                                                : glm::mat4(1.0f);
+    const std::string ext = lowerExtension(file);
+    if (ext == ".obj") loadObj(builder, file, m);
+    else if (ext == ".gltf" || ext == ".glb") loadGltf(builder, file, m);
+    else r.fail(ptr + "/file", fmt::format("unsupported geometry extension '{}' (expected .obj, "
+                                           ".gltf or .glb)", ext));
+  }
+}
+
+void readMaterials(const JsonReader& r, const Json& j, Scene& scene) {
+  r.requireObject(j, "/materials");
+  for (const auto& [name, m] : j.items()) {
+    const std::string ptr = "/materials/" + name;
+    r.checkKeys(m, ptr, {"rho", "emission", "two_sided"});
+    bool found = false;
+    for (Material& mat : scene.materials) {
+      if (mat.name != name) continue;
+      found = true;
+      if (m.contains("rho")) mat.rho = r.color(m["rho"], ptr + "/rho", "rho", 0.0, 1.0);
+      if (m.contains("emission"))
+        mat.emission = r.color(m["emission"], ptr + "/emission", "emission", 0.0, INFINITY);
+      if (m.contains("two_sided")) mat.twoSided = r.boolean(m["two_sided"], ptr + "/two_sided");
+    }
+    if (!found) {
+      std::set<std::string> names;
+      for (const Material& mat : scene.materials) names.insert(mat.name);
+      r.fail(ptr, fmt::format("no material named '{}' in the geometry (available: {})", name,
+                              fmt::join(names, ", ")));
+    }
+  }
+}
+
+Vec3 readDirection(const JsonReader& r, const Json& j, const std::string& ptr) {
+  const Vec3 d = r.vec3(j, ptr);
+  const float len = glm::length(d);
+  if (!(len > 1e-12f)) r.fail(ptr, "direction has zero length (expected a non-zero vector)");
+  return d / len;
+}
+
+Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
+  r.requireObject(j, ptr);
+  if (!j.contains("type")) r.fail(ptr, "missing key \"type\" (point, spot or ies)");
+  const std::string type = r.string(j["type"], ptr + "/type");
+  Light light;
+  if (type == "point") {
+    r.checkKeys(j, ptr, {"type", "position", "intensity"});
+    light.type = LightType::Point;
+  } else if (type == "spot") {
+    r.checkKeys(j, ptr, {"type", "position", "direction", "intensity", "inner_angle_deg",
+                         "outer_angle_deg", "spin_deg_per_s"});
+    light.type = LightType::Spot;
+  } else if (type == "ies") {
+    r.checkKeys(j, ptr, {"type", "file", "position", "direction", "scale", "color", "spin_deg_per_s"});
+    light.type = LightType::Ies;
+  } else {
+    r.fail(ptr + "/type", fmt::format("unknown light type '{}' (expected point, spot or ies)", type));
+  }
+  auto required = [&](const char* key) -> const Json& {
+    if (!j.contains(key)) r.fail(ptr, fmt::format("missing key \"{}\" for a {} light", key, type));
+    return j[key];
+  };
+  light.position = r.vec3(required("position"), ptr + "/position");
+  if (j.contains("direction")) light.direction = readDirection(r, j["direction"], ptr + "/direction");
+  if (j.contains("spin_deg_per_s")) light.spinDegPerS = r.vec3(j["spin_deg_per_s"], ptr + "/spin_deg_per_s");
+  if (light.type != LightType::Ies)
+    light.intensity = r.color(required("intensity"), ptr + "/intensity", "intensity", 0.0, INFINITY);
+  if (light.type == LightType::Spot) {
+    light.innerAngleDeg = float(r.number(required("inner_angle_deg"), ptr + "/inner_angle_deg"));
+    light.outerAngleDeg = float(r.number(required("outer_angle_deg"), ptr + "/outer_angle_deg"));
+    if (!(light.innerAngleDeg > 0.0f && light.innerAngleDeg <= light.outerAngleDeg &&
+          light.outerAngleDeg < 180.0f))
+      r.fail(ptr, fmt::format("spot angles inner {} / outer {} must satisfy 0 < inner <= outer < 180",
+                              light.innerAngleDeg, light.outerAngleDeg));
+  }
+  if (light.type == LightType::Ies) {
+    light.iesFile = resolvePath(parentDirectory(r.path()), r.string(required("file"), ptr + "/file"));
+    light.ies = std::make_shared<const IesProfile>(loadIesProfile(light.iesFile));
+    double scale = kDefaultIesScale;
+    if (j.contains("scale")) {
+      scale = r.number(j["scale"], ptr + "/scale");
+      if (!(scale > 0.0)) r.fail(ptr + "/scale", fmt::format("scale {} must be > 0 (W/sr per cd)", scale));
+    }
+    const Color color = j.contains("color") ? r.color(j["color"], ptr + "/color", "color", 0.0, INFINITY)
+                                            : Color(1.0f);
+    light.intensity = color * float(scale);
+  }
+  return light;
+}
+
+Camera readCamera(const JsonReader& r, const Json& j) {
+  const std::string ptr = "/camera";
+  r.checkKeys(j, ptr, {"eye", "target", "up", "fov_deg", "width", "height"});
+  Camera c;
+  if (j.contains("eye")) c.eye = r.vec3(j["eye"], ptr + "/eye");
+  if (j.contains("target")) c.target = r.vec3(j["target"], ptr + "/target");
+  if (j.contains("up")) c.up = readDirection(r, j["up"], ptr + "/up");
+  if (j.contains("fov_deg")) {
+    c.fovDeg = float(r.number(j["fov_deg"], ptr + "/fov_deg"));
+    if (!(c.fovDeg > 0.0f && c.fovDeg < 180.0f))
+      r.fail(ptr + "/fov_deg", fmt::format("fov_deg {} out of range (0, 180)", c.fovDeg));
+  }
+  if (j.contains("width")) c.width = int(r.integer(j["width"], ptr + "/width", 1, 65536));
+  if (j.contains("height")) c.height = int(r.integer(j["height"], ptr + "/height", 1, 65536));
+  const Vec3 view = c.target - c.eye;
+  if (!(glm::length(view) > 0.0f)) r.fail(ptr, "eye and target coincide");
+  if (!(glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) > 1e-6f))
+    r.fail(ptr + "/up", "up is parallel to the viewing direction");
+  return c;
+}
+
+SolverSettings readSolver(const JsonReader& r, const Json& j) {
+  const std::string ptr = "/solver";
+  r.checkKeys(j, ptr, {"method", "spp", "max_depth", "seed"});
+  SolverSettings s;
+  if (j.contains("method")) {
+    s.method = r.string(j["method"], ptr + "/method");
+    if (*s.method != "patch" && *s.method != "voxel" && *s.method != "pathtrace")
+      r.fail(ptr + "/method", fmt::format("unknown method '{}' (expected patch, voxel or pathtrace)",
+                                          *s.method));
+  }
+  if (j.contains("spp")) s.spp = int(r.integer(j["spp"], ptr + "/spp", 1, 1 << 24));
+  if (j.contains("max_depth")) s.maxDepth = int(r.integer(j["max_depth"], ptr + "/max_depth", 1, 1 << 16));
+  if (j.contains("seed")) s.seed = uint64_t(r.integer(j["seed"], ptr + "/seed", 0, INT64_MAX));
+  return s;
+}
+
+Json parseJson(const std::string& text, const std::string& path) {
+  try {
+    return Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    // nlohmann reports a byte offset (1-based, just past the error); give line and column.
+    const size_t end = std::min(e.byte == 0 ? size_t(0) : e.byte - 1, text.size());
+    const size_t line = size_t(std::count(text.begin(), text.begin() + long(end), '\n')) + 1;
+    const size_t lineStart = text.rfind('\n', end == 0 ? 0 : end - 1);
+    const size_t column = lineStart == std::string::npos || end == 0 ? end + 1 : end - lineStart;
+    std::string what = e.what();
+    if (const size_t colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
+    throw InputError(fmt::format("{}:{}:{}", path, line, column), "invalid JSON: " + what);
+  }
+}
+
+}  // namespace
+
+Scene loadSceneJson(const std::string& path) {
+  const Json root = parseJson(readTextFile(path, "scene file"), path);
+  const JsonReader r(path);
+  r.checkKeys(root, "", {"geometry", "materials", "lights", "camera", "dynamic_objects", "solver"});
+  if (root.contains("dynamic_objects"))
+    r.fail("/dynamic_objects", "dynamic_objects not supported yet");
+  SceneBuilder builder(path);
+  if (root.contains("geometry")) readGeometry(r, root["geometry"], builder);
+  Scene& scene = builder.scene();
+  if (root.contains("materials")) readMaterials(r, root["materials"], scene);
+  if (root.contains("lights")) {
+    const Json& lights = root["lights"];
+    if (!lights.is_array()) r.fail("/lights", fmt::format("expected an array, got {}", lights.type_name()));
+    for (size_t i = 0; i < lights.size(); ++i)
+      scene.lights.push_back(readLight(r, lights[i], fmt::format("/lights/{}", i)));
+  }
+  if (root.contains("camera")) scene.camera = readCamera(r, root["camera"]);
+  if (root.contains("solver")) scene.solver = readSolver(r, root["solver"]);
+  return builder.build();
+}
+
+}  // namespace rad

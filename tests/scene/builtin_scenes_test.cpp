@@ -1,0 +1,106 @@
+// Built-in scenes: the Cornell box against the reference OBJ (tests/data/scene/cornell, a copy of
+// shared/reference/cornell), areas from VALIDATION.md 2.3 / 2.7; room:N scaling.
+
+#include "scene_summary.h"
+
+#include <radiosity/scene_loader.h>
+
+#include <gtest/gtest.h>
+
+namespace rad {
+namespace {
+
+using test::kData;
+
+TEST(BuiltinScenes, CornellMatchesReferenceObj) {
+  const Scene builtin = loadScene("cornell");
+  const Scene reference = loadScene(kData + "cornell/cornell_box.obj");
+  EXPECT_EQ(builtin.triangles.size(), reference.triangles.size());
+  EXPECT_EQ(builtin.triangles.size(), 46u);  // VALIDATION.md 2.7: 46 faces in the triangle file
+  const auto a = test::summarize(builtin, 0.01), b = test::summarize(reference, 0.01);
+  ASSERT_EQ(a.size(), 8u);
+  for (const auto& [name, o] : b) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(a.count(name));
+    EXPECT_NEAR(a.at(name).area, o.area, 1e-6 * o.area);
+    EXPECT_EQ(a.at(name).positions, o.positions);
+    EXPECT_EQ(a.at(name).material->rho, o.material->rho);
+    EXPECT_EQ(a.at(name).material->emission, o.material->emission);
+    for (const auto& [normal, area] : o.areaByNormal)
+      EXPECT_NEAR(a.at(name).areaByNormal.at(normal), area, 1e-6 * o.area);
+  }
+  // VALIDATION.md 2.3 / 2.7 areas (mm^2).
+  EXPECT_NEAR(a.at("floor").area, 308231.0, 0.5);
+  EXPECT_NEAR(a.at("back_wall").area, 303376.6, 0.5);
+  EXPECT_NEAR(a.at("ceiling").area, 297265.2, 0.5);
+  EXPECT_NEAR(a.at("light").area, 13650.0, 0.05);
+  EXPECT_NEAR(a.at("left_wall_red").area, 306904.5, 0.5);
+  EXPECT_NEAR(a.at("short_block").area, 137348.9, 0.5);
+  EXPECT_NEAR(a.at("tall_block").area, 247030.4, 0.5);
+  double total = 0.0;
+  for (const auto& [name, o] : a) total += o.area;
+  EXPECT_NEAR(total, 1920695.7, 2.0);
+  // VALIDATION.md 2.6 materials and the light's Ke.
+  EXPECT_EQ(a.at("floor").material->rho, Color(0.7383f, 0.7360f, 0.7387f));
+  EXPECT_EQ(a.at("left_wall_red").material->rho, Color(0.4939f, 0.0489f, 0.0512f));
+  EXPECT_EQ(a.at("right_wall_green").material->rho, Color(0.0684f, 0.3985f, 0.0866f));
+  EXPECT_EQ(a.at("light").material->emission, Color(20.7115f, 10.8551f, 2.7708f));
+  EXPECT_EQ(a.at("light").material->rho, Color(0.78f));
+  // The light faces down (-y), into the box.
+  EXPECT_TRUE(a.at("light").areaByNormal.count(test::key(Vec3(0, -1, 0), 1e-3)));
+  ASSERT_TRUE(builtin.camera);
+  EXPECT_EQ(builtin.camera->eye, Vec3(278, 273, -800));
+  EXPECT_NEAR(builtin.camera->fovDeg, 39.3077f, 1e-4);  // VALIDATION.md 2.2
+  EXPECT_EQ(builtin.camera->width, 512);
+  EXPECT_TRUE(builtin.lights.empty());
+}
+
+TEST(BuiltinScenes, CornellSpotHasNoEmittingSurfaceButASpot) {
+  const Scene s = loadScene("cornell-spot");
+  for (const Material& m : s.materials) EXPECT_FALSE(m.emits()) << m.name;
+  ASSERT_EQ(s.lights.size(), 1u);
+  const Light& l = s.lights[0];
+  EXPECT_EQ(l.type, LightType::Spot);
+  EXPECT_EQ(l.direction, Vec3(0, -1, 0));
+  EXPECT_EQ(l.innerAngleDeg, 25.0f);
+  EXPECT_EQ(l.outerAngleDeg, 35.0f);
+  EXPECT_LT(l.position.y, 548.8f);  // below the ceiling
+  EXPECT_TRUE(s.hasEmitters());
+  EXPECT_NO_THROW(requireEmitters(s));
+}
+
+TEST(BuiltinScenes, RoomGrowsLinearlyAndIsDeterministic) {
+  const Scene r1 = loadScene("room:1"), r8 = loadScene("room:8"), r16 = loadScene("room:16"),
+              r32 = loadScene("room:32");
+  EXPECT_LT(r1.triangles.size(), r8.triangles.size());
+  EXPECT_LT(r8.triangles.size(), r16.triangles.size());
+  const double ratio = double(r32.triangles.size()) / double(r16.triangles.size());
+  EXPECT_GT(ratio, 1.8);
+  EXPECT_LT(ratio, 2.2);
+  EXPECT_TRUE(r1.hasEmitters());
+  EXPECT_TRUE(r1.warnings.empty());
+  const Scene again = loadScene("room:8");
+  EXPECT_EQ(again.positions, r8.positions);
+  const auto objects = test::summarize(r8, 1e-4);
+  EXPECT_TRUE(objects.count("floor"));
+  EXPECT_TRUE(objects.count("ceiling"));
+  EXPECT_TRUE(objects.count("table_0"));
+  EXPECT_TRUE(objects.count("shelf_2"));
+  EXPECT_TRUE(objects.count("light_panel_7"));
+  // Closed furniture boxes face out; the shell faces in.
+  EXPECT_LT(objects.at("walls").volume + objects.at("floor").volume + objects.at("ceiling").volume, 0.0);
+  EXPECT_GT(objects.at("boxes_1").volume, 0.0);
+}
+
+TEST(BuiltinScenes, NamesAndBadRoomDetail) {
+  const std::vector<std::string> names = builtinSceneNames();
+  EXPECT_NE(std::find(names.begin(), names.end(), "cornell"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "room:N"), names.end());
+  for (const char* bad : {"room:0", "room:-3", "room:abc", "room:"}) {
+    const std::string m = test::errorOf([&] { loadScene(bad); });
+    EXPECT_NE(m.find(bad), std::string::npos) << m;
+  }
+}
+
+}  // namespace
+}  // namespace rad

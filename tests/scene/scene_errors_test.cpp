@@ -1,0 +1,192 @@
+// Every kind of bad scene input throws InputError naming the file and the line or JSON path.
+
+#include "scene_summary.h"
+
+#include <radiosity/scene_loader.h>
+
+#include <gtest/gtest.h>
+
+namespace rad {
+namespace {
+
+using test::errorOf;
+using test::kData;
+
+void expectMessage(const std::string& message, std::initializer_list<const char*> parts) {
+  for (const char* p : parts) EXPECT_NE(message.find(p), std::string::npos) << message;
+}
+
+TEST(SceneErrors, MissingFileAndUnsupportedExtension) {
+  expectMessage(errorOf([] { loadScene("/nonexistent/room.obj"); }), {"room.obj", "cannot open"});
+  expectMessage(errorOf([] { loadScene("/nonexistent/room.json"); }), {"room.json", "cannot open"});
+  expectMessage(errorOf([] { loadScene("nowhere"); }), {"nowhere", "cannot open"});
+  const auto dir = test::scratchDir("ext");
+  const std::string ply = test::writeFile(dir / "mesh.ply", "ply\n");
+  expectMessage(errorOf([&] { loadScene(ply); }), {"mesh.ply", "'.ply'", ".json", ".glb"});
+  // Upper-case extensions are accepted.
+  const std::string upper = test::writeFile(dir / "TRI.OBJ", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_EQ(loadScene(upper).triangles.size(), 1u);
+}
+
+TEST(SceneErrors, MalformedObjLines) {
+  const auto dir = test::scratchDir("obj");
+  struct Case {
+    const char* text;
+    const char* line;
+    const char* what;
+  };
+  const Case cases[] = {
+      {"v 0 0 0\nv 1 abc 0\n", "bad.obj:2", "abc"},
+      {"v 0 0\n", "bad.obj:1", "3 finite coordinates"},
+      {"v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n", "bad.obj:3", "not finite"},
+      {"v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n", "bad.obj:3", "not finite"},
+      {"# c\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "bad.obj:5", "out of range"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "bad.obj:4", "index 0"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", "bad.obj:4", "not an integer"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "bad.obj:4", "at least 3"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//2 2//1 3//1\n", "bad.obj:4", "normal index"},
+      {"vn 0 1\n", "bad.obj:1", "normal"},
+      {"vt x\n", "bad.obj:1", "'x'"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = test::writeFile(dir / "bad.obj", c.text);
+    expectMessage(errorOf([&] { loadScene(path); }), {c.line, c.what});
+  }
+  // A missing MTL library names the library.
+  const std::string noMtl = test::writeFile(dir / "nomtl.obj", "mtllib gone.mtl\nv 0 0 0\n");
+  expectMessage(errorOf([&] { loadScene(noMtl); }), {"gone.mtl", "cannot open"});
+}
+
+TEST(SceneErrors, MalformedMtlStatements) {
+  const auto dir = test::scratchDir("mtl");
+  test::writeFile(dir / "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+  const std::string obj = (dir / "m.obj").string();
+  struct Case {
+    const char* text;
+    const char* line;
+    const char* what;
+  };
+  const Case cases[] = {
+      {"newmtl a\nKd 0.5 abc 0.5\n", "m.mtl:2", "abc"},
+      {"newmtl a\n\nKd 1.0 0.5 0.5\n", "m.mtl:3", "must be in [0, 1)"},
+      {"newmtl a\nKd 0.5 -0.1 0.5\n", "m.mtl:2", "must be in [0, 1)"},
+      {"newmtl a\nKe -1 0 0\n", "m.mtl:2", ">= 0"},
+      {"newmtl a\nKd 0.5 0.5\n", "m.mtl:2", "1 or 3"},
+      {"newmtl a\nNs x\n", "m.mtl:2", "'x'"},
+  };
+  for (const Case& c : cases) {
+    test::writeFile(dir / "m.mtl", c.text);
+    expectMessage(errorOf([&] { loadScene(obj); }), {c.line, c.what});
+  }
+  test::writeFile(dir / "m.mtl", "newmtl a\nKd 0.25 0.5 0.75\nKe 1 2 3\n");
+  const Scene s = loadScene(obj);
+  EXPECT_EQ(s.materials.at(0).rho, Color(0.25f, 0.5f, 0.75f));
+  EXPECT_EQ(s.materials.at(0).emission, Color(1, 2, 3));
+}
+
+TEST(SceneErrors, BrokenGltfAndGlb) {
+  expectMessage(errorOf([] { loadScene(kData + "small/broken.gltf"); }), {"broken.gltf"});
+  expectMessage(errorOf([] { loadScene(kData + "small/truncated.glb"); }), {"truncated.glb"});
+  expectMessage(errorOf([] { loadScene(kData + "small/missing_buffer.gltf"); }),
+                {"missing_buffer.gltf", "does_not_exist.bin"});
+  const auto dir = test::scratchDir("gltf");
+  const std::string notGlb = test::writeFile(dir / "text.glb", "this is not a glb file");
+  expectMessage(errorOf([&] { loadScene(notGlb); }), {"text.glb"});
+}
+
+TEST(SceneErrors, GltfBaseColorOneIsClampedWithAWarning) {
+  const auto dir = test::scratchDir("gltf_clamp");
+  // One triangle; the buffer is 3 float positions, base64 in a data URI.
+  const std::string gltf = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],
+    "nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
+    "materials":[{"name":"paper","pbrMetallicRoughness":{"baseColorFactor":[1,1,1,1]}}],
+    "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
+                  "min":[0,0,0],"max":[1,1,0]}],
+    "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36}],
+    "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+  const Scene s = loadScene(test::writeFile(dir / "paper.gltf", gltf));
+  ASSERT_EQ(s.triangles.size(), 1u);
+  EXPECT_NEAR(s.materials.at(0).rho.r, 0.999f, 1e-6);
+  EXPECT_EQ(s.objects.at(0).name, "node0");
+  size_t hits = 0;
+  for (const std::string& w : s.warnings) hits += w.find("'paper'") != std::string::npos;
+  EXPECT_EQ(hits, 1u);
+}
+
+class JsonErrors : public testing::Test {
+ protected:
+  std::string load(const std::string& text) {
+    const auto dir = test::scratchDir("json");
+    const std::string path = test::writeFile(dir / "scene.json", text);
+    return errorOf([&] { loadScene(path); });
+  }
+  const std::string obj_ = "\"" + kData + "small/small.obj\"";
+  std::string withLight(const std::string& light) {
+    return "{\"geometry\": [{\"file\": " + obj_ + "}], \"lights\": [" + light + "]}";
+  }
+};
+
+TEST_F(JsonErrors, ParseErrorNamesLineAndColumn) {
+  // The stray comma is on line 3, column 12 (after two blanks, "camera" and the colon).
+  expectMessage(load("{\n  \"lights\": [],\n  \"camera\":,\n}\n"), {"scene.json:3:", "invalid JSON"});
+  expectMessage(load("{\n  \"lights\": [],\n  \"camera\":,\n}\n"), {"scene.json:3:12"});
+  expectMessage(load("{ \"geometry\": ["), {"scene.json:1:"});
+}
+
+TEST_F(JsonErrors, UnknownKeysNameTheirPath) {
+  expectMessage(load("{\"lihgts\": []}"), {"scene.json: /lihgts", "unknown key", "lights"});
+  expectMessage(load(withLight(R"({"type": "point", "position": [0,1,0], "intenisty": [1,1,1]})")),
+                {"scene.json: /lights/0/intenisty", "unknown key", "intensity"});
+  expectMessage(load("{\"camera\": {\"fov\": 40}}"), {"/camera/fov", "fov_deg"});
+  expectMessage(load("{\"geometry\": [{\"file\": " + obj_ + ", \"transfrom\": {}}]}"),
+                {"/geometry/0/transfrom"});
+  expectMessage(load("{\"solver\": {\"metod\": \"patch\"}}"), {"/solver/metod"});
+}
+
+TEST_F(JsonErrors, WrongTypesAndRanges) {
+  expectMessage(load("{\"camera\": {\"fov_deg\": \"wide\"}}"), {"/camera/fov_deg", "expected a number"});
+  expectMessage(load("{\"camera\": {\"fov_deg\": 180}}"), {"/camera/fov_deg", "(0, 180)"});
+  expectMessage(load("{\"camera\": {\"fov_deg\": 0}}"), {"/camera/fov_deg", "(0, 180)"});
+  expectMessage(load("{\"camera\": {\"width\": 0}}"), {"/camera/width", "out of range"});
+  expectMessage(load("{\"camera\": {\"height\": 2.5}}"), {"/camera/height", "integer"});
+  expectMessage(load("{\"geometry\": {}}"), {"/geometry", "expected an array"});
+  expectMessage(load(withLight(R"({"type": "point", "position": [0,1], "intensity": [1,1,1]})")),
+                {"/lights/0/position", "3 numbers"});
+  expectMessage(load(withLight(R"({"type": "point", "position": [0,1,0], "intensity": [1,-1,1]})")),
+                {"/lights/0/intensity", ">= 0"});
+  expectMessage(load(withLight(R"({"type": "spot", "position": [0,1,0], "direction": [0,0,0],
+                    "intensity": [1,1,1], "inner_angle_deg": 10, "outer_angle_deg": 20})")),
+                {"/lights/0/direction", "zero length"});
+  expectMessage(load(withLight(R"({"type": "spot", "position": [0,1,0], "direction": [0,-1,0],
+                    "intensity": [1,1,1], "inner_angle_deg": 30, "outer_angle_deg": 20})")),
+                {"/lights/0", "inner <= outer"});
+  expectMessage(load(withLight(R"({"type": "laser", "position": [0,1,0]})")), {"/lights/0/type", "laser"});
+  expectMessage(load("{\"solver\": {\"method\": \"magic\"}}"), {"/solver/method", "patch, voxel"});
+  expectMessage(load("{\"solver\": {\"spp\": 0}}"), {"/solver/spp", "out of range"});
+  expectMessage(load("{\"dynamic_objects\": []}"), {"/dynamic_objects", "not supported"});
+  expectMessage(load("{\"geometry\": [{\"file\": \"missing.obj\"}]}"), {"missing.obj", "cannot open"});
+  expectMessage(load("{\"geometry\": [{\"file\": \"a.stl\"}]}"), {"/geometry/0/file", "'.stl'"});
+  expectMessage(load(withLight(R"({"type": "ies", "file": "none.ies", "position": [0,1,0]})")),
+                {"none.ies", "cannot open"});
+}
+
+TEST_F(JsonErrors, MaterialOverridesAreChecked) {
+  auto scene = [&](const std::string& material) {
+    return "{\"geometry\": [{\"file\": " + obj_ + "}], \"materials\": {" + material + "}}";
+  };
+  expectMessage(load(scene(R"("red": {"rho": [1.0, 0.5, 0.5]})")), {"/materials/red/rho", "[0, 1)"});
+  expectMessage(load(scene(R"("red": {"rho": [0.5, -0.1, 0.5]})")), {"/materials/red/rho", "[0, 1)"});
+  expectMessage(load(scene(R"("red": {"two_sided": 1})")), {"/materials/red/two_sided", "true or false"});
+  expectMessage(load(scene(R"("purple": {"rho": [0.5, 0.5, 0.5]})")), {"/materials/purple", "red"});
+}
+
+TEST(SceneErrors, RequireEmittersRejectsADarkScene) {
+  const auto dir = test::scratchDir("dark");
+  const std::string path = test::writeFile(dir / "dark.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const Scene s = loadScene(path);
+  expectMessage(errorOf([&] { requireEmitters(s); }), {"dark.obj", "no emitting surface and no light"});
+  EXPECT_NO_THROW(requireEmitters(loadScene("cornell")));
+}
+
+}  // namespace
+}  // namespace rad
