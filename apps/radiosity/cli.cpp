@@ -1,14 +1,77 @@
 #include "cli.h"
 
+#include "commands.h"
+#include "console.h"
+
+#include <radiosity/error.h>
+#include <radiosity/version.h>
+
+#include <CLI/CLI.hpp>
+#include <tbb/global_control.h>
+
+#include <algorithm>
 #include <iostream>
+#include <memory>
+#include <optional>
 
 namespace rad::cli {
 
 int runCli(const std::vector<std::string>& args) { return runCli(args, std::cout, std::cerr); }
 
-int runCli(const std::vector<std::string>&, std::ostream&, std::ostream& err) {
-  err << "radiosity: not built yet\n";
-  return 1;
+int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  Console console(out, err);
+  CLI::App app{"radiosity " RADIOSITY_VERSION " - global illumination by radiosity", "radiosity"};
+  app.require_subcommand(1);
+  app.fallthrough();
+  app.set_version_flag("--version", "radiosity " RADIOSITY_VERSION " (" RADIOSITY_BUILD_TYPE ")");
+  int threads = 0;
+  bool quiet = false, verbose = false;
+  app.add_option("--threads", threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  app.add_flag("-q,--quiet", quiet, "Print errors only");
+  app.add_flag("-v,--verbose", verbose, "Print the banner, timings and details");
+
+  CommandAction action;
+  addRenderCommand(app, console, action);
+  addInfoCommand(app, console, action);
+  addBenchCommand(app, console, action);
+
+  try {
+    std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 wants them reversed
+    app.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    out << app.help();
+    return 0;
+  } catch (const CLI::CallForAllHelp&) {
+    out << app.help("", CLI::AppFormatMode::All);
+    return 0;
+  } catch (const CLI::CallForVersion&) {
+    out << app.version() << "\n";
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    err << "radiosity: " << e.what() << " (see radiosity --help)\n";
+    return 2;
+  }
+
+  console.setQuiet(quiet);
+  console.setVerbose(verbose);
+  console.detail("radiosity " RADIOSITY_VERSION " (" RADIOSITY_BUILD_TYPE " build)");
+  std::optional<tbb::global_control> threadLimit;
+  if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  try {
+    return action();
+  } catch (const InputError& e) {
+    console.finishProgress();
+    err << "radiosity: " << e.what() << "\n";
+    return 2;
+  } catch (const Cancelled&) {
+    console.finishProgress();
+    err << "radiosity: interrupted; no output written\n";
+    return 130;
+  } catch (const std::exception& e) {
+    console.finishProgress();
+    err << "radiosity: error: " << e.what() << "\n";
+    return 1;
+  }
 }
 
 }  // namespace rad::cli

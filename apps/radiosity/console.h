@@ -1,0 +1,61 @@
+#pragma once
+// What a command prints and where: results on `out`, warnings, progress and the summary line on
+// `err`; --quiet silences all but errors, --verbose adds the banner and timings.
+
+#include <radiosity/progress.h>
+
+#include <chrono>
+#include <iosfwd>
+#include <string>
+
+namespace rad::cli {
+
+class Console {
+ public:
+  Console(std::ostream& out, std::ostream& err) : out_(out), err_(err) {}
+
+  std::ostream& out() { return out_; }
+  void setQuiet(bool quiet) { quiet_ = quiet; }
+  void setVerbose(bool verbose) { verbose_ = verbose; }
+  bool verbose() const { return verbose_; }
+
+  void warn(const std::string& message);
+  void info(const std::string& message);    ///< unless --quiet
+  void detail(const std::string& message);  ///< only with --verbose
+  /// A progress callback for a long computation named `label`: draws a bar on stderr when it
+  /// is a terminal, and cancels (returns false) once the user has pressed Ctrl-C.
+  ProgressCallback progress(const std::string& label);
+  /// Ends a progress bar's line.
+  void finishProgress();
+
+ private:
+  std::ostream& out_;
+  std::ostream& err_;
+  bool quiet_ = false;
+  bool verbose_ = false;
+  bool barDrawn_ = false;
+};
+
+/// Installs a SIGINT handler for the lifetime of the object: the first Ctrl-C asks running
+/// computations to stop (through Console::progress), so no partial output is written.
+class InterruptGuard {
+ public:
+  InterruptGuard();
+  ~InterruptGuard();
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+  static bool interrupted();
+};
+
+/// Seconds elapsed since construction.
+class Stopwatch {
+ public:
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace rad::cli

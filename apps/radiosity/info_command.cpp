@@ -1,0 +1,67 @@
+// `radiosity info SCENE`: what a scene holds, and what is wrong with it.
+#include "commands.h"
+
+#include <radiosity/scene_loader.h>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <memory>
+#include <ostream>
+
+namespace rad::cli {
+
+namespace {
+
+const char* lightTypeName(LightType type) {
+  switch (type) {
+    case LightType::Point: return "point";
+    case LightType::Spot: return "spot";
+    case LightType::Ies: return "ies";
+  }
+  return "?";
+}
+
+int runInfo(const std::string& sceneName, Console& console) {
+  const Scene scene = loadScene(sceneName);
+  std::ostream& out = console.out();
+  size_t emissive = 0;
+  for (const Material& m : scene.materials) emissive += m.emits() ? 1 : 0;
+  out << fmt::format("scene      {}\n", scene.name);
+  out << fmt::format("objects    {}\n", scene.objects.size());
+  out << fmt::format("triangles  {}\n", scene.triangles.size());
+  out << fmt::format("faces      {}\n", scene.faces.size());
+  out << fmt::format("materials  {} ({} emissive)\n", scene.materials.size(), emissive);
+  out << fmt::format("lights     {}\n", scene.lights.size());
+  for (const Light& light : scene.lights)
+    out << fmt::format("  {:<5} at ({:g}, {:g}, {:g}), intensity ({:g}, {:g}, {:g}) W/sr\n",
+                       lightTypeName(light.type), light.position.x, light.position.y,
+                       light.position.z, light.intensity.r, light.intensity.g, light.intensity.b);
+  const Bounds b = scene.bounds();
+  if (!b.empty())
+    out << fmt::format("bounds     ({:g}, {:g}, {:g}) - ({:g}, {:g}, {:g})\n", b.min.x, b.min.y,
+                       b.min.z, b.max.x, b.max.y, b.max.z);
+  const Color power = scene.emittedPower();
+  out << fmt::format("emitted    ({:.6g}, {:.6g}, {:.6g}) W\n", power.r, power.g, power.b);
+  double area = 0.0;
+  for (const Face& f : scene.faces) area += f.area;
+  out << fmt::format("area       {:.6g}\n", area);
+  std::vector<std::string> warnings = scene.warnings;
+  if (!scene.hasEmitters()) warnings.push_back("no emitting surface and no light: renders will be black");
+  out << fmt::format("warnings   {}\n", warnings.size());
+  for (const std::string& w : warnings) out << "  " << w << "\n";
+  return 0;
+}
+
+}  // namespace
+
+void addInfoCommand(CLI::App& app, Console& console, CommandAction& action) {
+  auto scene = std::make_shared<std::string>();
+  CLI::App* sub = app.add_subcommand("info", "Print what a scene holds: counts, bounds, power, warnings");
+  sub->add_option("scene", *scene, "Scene file or built-in name")->required();
+  sub->callback([scene, &console, &action] {
+    action = [scene, &console] { return runInfo(*scene, console); };
+  });
+}
+
+}  // namespace rad::cli

@@ -1,0 +1,40 @@
+#pragma once
+// Chooses a point on the scene's emissive triangles for next-event estimation: a triangle with
+// probability proportional to its emitted power (luminance of pi * Ke * area, both sides of a
+// two-sided one), then a point uniform in its area.
+
+#include <radiosity/scene.h>
+
+#include <vector>
+
+#include "geometry/sampling.h"
+
+namespace rad {
+
+struct EmitterSample {
+  Vec3 point{0.0f};
+  Vec3 normal{0.0f};  ///< front normal of the chosen triangle
+  Color emission{0.0f};
+  bool twoSided = false;
+  float pdfArea = 0.0f;  ///< density of `point` per unit area (choice probability / area)
+};
+
+class EmitterSampler {
+ public:
+  /// Keeps a pointer to `scene`, which must outlive the sampler.
+  explicit EmitterSampler(const Scene& scene);
+
+  bool empty() const { return triangles_.empty(); }
+  /// `choose` picks the triangle, `position` the point in it; all uniform in [0, 1).
+  EmitterSample sample(float choose, Vec2 position) const;
+  /// Area density with which sample() returns points of `triangle` (0 for non-emitters).
+  float pdfArea(uint32_t triangle) const { return pdfArea_[triangle]; }
+
+ private:
+  const Scene* scene_;
+  std::vector<uint32_t> triangles_;
+  DiscreteDistribution distribution_;
+  std::vector<float> pdfArea_;  // per scene triangle
+};
+
+}  // namespace rad

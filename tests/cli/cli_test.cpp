@@ -1,0 +1,156 @@
+// End-to-end tests of the command line, driven in-process through runCli.
+#include "cli.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliResult {
+  int status;
+  std::string out, err;
+};
+
+CliResult run(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  const int status = rad::cli::runCli(args, out, err);
+  return {status, out.str(), err.str()};
+}
+
+fs::path freshDir(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("radiosity_cli_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+fs::path writeFile(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(Cli, RendersCornellBoxWithStats) {
+  const fs::path dir = freshDir("render");
+  const std::string png = (dir / "x.png").string(), stats = (dir / "s.json").string();
+  const CliResult r = run({"render", "cornell", "--method", "pathtrace", "--width", "64", "--height",
+                           "64", "--spp", "4", "-o", png, "--stats", stats, "--object-points", "8"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_GT(fs::file_size(png), 100u);
+  std::ifstream in(stats);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  // The fields of the stats contract (docs/ARCHITECTURE.md, "Stats JSON").
+  for (const char* key : {"scene", "method", "counts", "timings_s", "iterations", "residual",
+                          "energy", "objects", "memory_peak_bytes"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  for (const char* key : {"triangles", "patches", "voxels", "directions", "rays"})
+    EXPECT_TRUE(j["counts"].contains(key)) << key;
+  for (const char* key : {"load", "prepare", "solve", "render", "total"})
+    EXPECT_TRUE(j["timings_s"].contains(key)) << key;
+  EXPECT_EQ(j["scene"], "cornell");
+  EXPECT_EQ(j["method"], "pathtrace");
+  EXPECT_GT(j["counts"]["rays"].get<double>(), 64.0 * 64 * 4);
+  EXPECT_GT(j["memory_peak_bytes"].get<double>(), 1e6);
+  // One entry per object of the Cornell box, with physically sensible numbers: the floor is
+  // lit (irradiance > 0) and white paint reflects less than it receives.
+  ASSERT_EQ(j["objects"].size(), 8u);
+  for (const auto& o : j["objects"]) {
+    EXPECT_GT(o["area"].get<double>(), 0.0);
+    if (o["name"] == "floor") {
+      EXPECT_GT(o["mean_irradiance"][1].get<double>(), 0.0);
+      EXPECT_LT(o["mean_radiosity"][1].get<double>(), o["mean_irradiance"][1].get<double>());
+    }
+  }
+  // Absorbed power cannot exceed what was emitted (the box is open, light escapes).
+  EXPECT_LT(j["energy"]["absorbed"][1].get<double>(), j["energy"]["emitted"][1].get<double>());
+  EXPECT_GT(j["energy"]["absorbed"][1].get<double>(), 0.3 * j["energy"]["emitted"][1].get<double>());
+}
+
+TEST(Cli, WritesExrAndPfm) {
+  const fs::path dir = freshDir("formats");
+  for (const char* name : {"a.exr", "a.pfm"}) {
+    const std::string path = (dir / name).string();
+    const CliResult r = run({"render", "cornell", "--width", "16", "--height", "16", "--spp", "1",
+                             "-o", path, "--quiet"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::exists(path)) << path;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+  }
+}
+
+TEST(Cli, UnsupportedOutputExtensionFailsBeforeRendering) {
+  const fs::path dir = freshDir("badext");
+  const std::string jpg = (dir / "x.jpg").string();
+  const CliResult r = run({"render", "cornell", "-o", jpg});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("x.jpg"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(".png"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(jpg));
+}
+
+TEST(Cli, MissingSceneFileIsBadInput) {
+  const fs::path dir = freshDir("missing");
+  const std::string png = (dir / "x.png").string();
+  const CliResult r = run({"render", (dir / "nope.obj").string(), "-o", png});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("nope.obj"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_FALSE(fs::exists(png));
+}
+
+TEST(Cli, SceneWithoutLightIsRejected) {
+  const fs::path dir = freshDir("dark");
+  const fs::path obj = writeFile(dir / "dark.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string png = (dir / "x.png").string();
+  const CliResult r = run({"render", obj.string(), "-o", png});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("black"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(png));
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(run({}).status, 2);
+  EXPECT_EQ(run({"render"}).status, 2);
+  EXPECT_EQ(run({"render", "cornell", "--spp", "zero"}).status, 2);
+  EXPECT_EQ(run({"render", "cornell", "--method", "magic"}).status, 2);
+  EXPECT_EQ(run({"frobnicate"}).status, 2);
+  EXPECT_EQ(run({"--help"}).status, 0);
+}
+
+TEST(Cli, InfoPrintsCountsAndPower) {
+  const CliResult r = run({"info", "cornell"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("objects    8"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("lights     0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("emitted"), std::string::npos) << r.out;
+}
+
+TEST(Cli, InfoWarnsAboutDarkScene) {
+  const fs::path dir = freshDir("info_dark");
+  const fs::path obj = writeFile(dir / "dark.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const CliResult r = run({"info", obj.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("no emitting surface"), std::string::npos) << r.out;
+}
+
+TEST(Cli, SameSeedSameImage) {
+  const fs::path dir = freshDir("seed");
+  auto render = [&](const std::string& name, const std::string& seed, const std::string& threads) {
+    const std::string path = (dir / name).string();
+    EXPECT_EQ(run({"render", "cornell", "--width", "24", "--height", "24", "--spp", "2", "--seed",
+                   seed, "--threads", threads, "-o", path, "--quiet"}).status, 0);
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string a = render("a.pfm", "7", "1"), b = render("b.pfm", "7", "2");
+  const std::string c = render("c.pfm", "8", "2");
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a, c);
+}
+
+}  // namespace

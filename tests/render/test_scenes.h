@@ -1,0 +1,52 @@
+#pragma once
+// Hand-built scenes for the path tracer tests (independent of the scene loaders).
+
+#include <radiosity/scene_builder.h>
+
+#include <array>
+#include <string>
+
+namespace rad::test {
+
+/// Adds the quad p0 p1 p2 p3 (a planar, convex outline in either winding), oriented so that its
+/// front faces `front`.
+inline void addQuadFacing(SceneBuilder& b, std::array<Vec3, 4> corners, const Vec3& front,
+                          uint32_t material, uint32_t object) {
+  const Vec3 n = glm::cross(corners[1] - corners[0], corners[2] - corners[0]);
+  if (glm::dot(n, front) < 0.0f) std::swap(corners[1], corners[3]);
+  std::array<uint32_t, 4> ids{};
+  for (int k = 0; k < 4; ++k) ids[k] = b.addVertex(corners[k], "test");
+  b.addPolygon(ids, material, object, "test");
+}
+
+/// Axis-aligned square of side `size` centred at `c`, in the plane normal to axis `axis`.
+inline std::array<Vec3, 4> axisSquare(const Vec3& c, int axis, float size) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  std::array<Vec3, 4> q;
+  const float h = 0.5f * size;
+  const float su[4] = {-h, h, h, -h}, sv[4] = {-h, -h, h, h};
+  for (int k = 0; k < 4; ++k) {
+    q[k] = c;
+    q[k][u] += su[k];
+    q[k][v] += sv[k];
+  }
+  return q;
+}
+
+/// The unit cube [0,1]^3 seen from inside: six faces (one object each) facing inward.
+/// `materialOf(face)` gives each face's material index (faces 0..5: -x, +x, -y, +y, -z, +z).
+template <class MaterialOf>
+void addInwardCube(SceneBuilder& b, MaterialOf materialOf) {
+  int face = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side, ++face) {
+      Vec3 centre(0.5f);
+      centre[axis] = float(side);
+      Vec3 inward(0.0f);
+      inward[axis] = side == 0 ? 1.0f : -1.0f;
+      const uint32_t object = b.addObject("face" + std::to_string(face));
+      addQuadFacing(b, axisSquare(centre, axis, 1.0f), inward, materialOf(face), object);
+    }
+}
+
+}  // namespace rad::test
