@@ -1,0 +1,46 @@
+#include "voxel/voxel_grid.h"
+
+#include <algorithm>
+
+namespace rad {
+
+namespace {
+
+template <typename T>
+size_t bytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
+}  // namespace
+
+IVec3 VoxelGrid::cellCoordinates(uint32_t cell) const {
+  // The row holding the cell, then the slab holding the row.
+  const auto rowIt = std::upper_bound(rowCellBegin.begin(), rowCellBegin.end(), cell);
+  const uint32_t row = uint32_t(rowIt - rowCellBegin.begin()) - 1;
+  const auto slabIt = std::upper_bound(slabRowBegin.begin(), slabRowBegin.end(), row);
+  const int x = int(slabIt - slabRowBegin.begin()) - 1;
+  return IVec3(x, rowY[row], cellZ[cell]);
+}
+
+uint32_t VoxelGrid::findCell(const IVec3& c) const {
+  if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= dims.x || c.y >= dims.y || c.z >= dims.z)
+    return UINT32_MAX;
+  const auto rowsBegin = rowY.begin() + slabRowBegin[c.x];
+  const auto rowsEnd = rowY.begin() + slabRowBegin[c.x + 1];
+  const auto rowIt = std::lower_bound(rowsBegin, rowsEnd, int16_t(c.y));
+  if (rowIt == rowsEnd || *rowIt != c.y) return UINT32_MAX;
+  const size_t row = size_t(rowIt - rowY.begin());
+  const auto cellsBegin = cellZ.begin() + rowCellBegin[row];
+  const auto cellsEnd = cellZ.begin() + rowCellBegin[row + 1];
+  const auto cellIt = std::lower_bound(cellsBegin, cellsEnd, int16_t(c.z));
+  if (cellIt == cellsEnd || *cellIt != c.z) return UINT32_MAX;
+  return uint32_t(cellIt - cellZ.begin());
+}
+
+size_t VoxelGrid::memoryBytes() const {
+  return bytes(cellZ) + bytes(cellEntryBegin) + bytes(rowY) + bytes(rowCellBegin) +
+         bytes(slabRowBegin) + bytes(normal) + bytes(centroid) + bytes(area) + bytes(material) +
+         bytes(object) + bytes(entryCell) + bytes(materials);
+}
+
+}  // namespace rad

@@ -1,0 +1,60 @@
+#pragma once
+// The surface voxels of a scene, stored for sweeping: cells (occupied voxels) in x-major, then y,
+// then z order, grouped into rows (fixed x and y) and slabs (fixed x); each cell holds one entry
+// per side of the surfaces crossing it (a thin wall's front and back, a corner's two faces).
+// Entries are structure-of-arrays in cell order, so a sweep reads them sequentially.
+
+#include <radiosity/types.h>
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace rad {
+
+using IVec3 = glm::ivec3;
+
+/// A diffuse material as the voxel method sees it: an area-weighted blend of the scene's
+/// materials inside one voxel side.
+struct VoxelMaterial {
+  Color rho{0.0f};
+  Color emission{0.0f};  ///< radiance Ke; radiosity E = pi Ke
+  bool operator==(const VoxelMaterial&) const = default;
+};
+
+struct VoxelGrid {
+  Vec3 origin{0.0f};  ///< corner of voxel (0, 0, 0)
+  float voxelSize = 1.0f;
+  IVec3 dims{0};      ///< voxels per axis; every coordinate fits in int16
+
+  // Cells, sorted by (x, y, z).
+  std::vector<int16_t> cellZ;
+  std::vector<uint32_t> cellEntryBegin;  ///< cellCount + 1 offsets into the entries
+  // Rows: cells with the same x and y. Slab x holds rows [slabRowBegin[x], slabRowBegin[x+1]).
+  std::vector<int16_t> rowY;
+  std::vector<uint32_t> rowCellBegin;  ///< rowCount + 1 offsets into the cells
+  std::vector<uint32_t> slabRowBegin;  ///< dims.x + 1 offsets into the rows
+
+  // Entries (one per surface side in a cell).
+  std::vector<Vec3> normal;     ///< unit, area-weighted mean of the side's triangles
+  std::vector<Vec3> centroid;   ///< area-weighted centroid of the surface inside the voxel
+  std::vector<float> area;      ///< surface area the entry stands for (scene units^2)
+  std::vector<uint32_t> material;  ///< index into materials
+  std::vector<uint32_t> object;    ///< scene object with the largest share of the area
+  std::vector<uint32_t> entryCell;
+  std::vector<VoxelMaterial> materials;
+
+  size_t cellCount() const { return cellZ.size(); }
+  size_t entryCount() const { return normal.size(); }
+  size_t rowCount() const { return rowY.size(); }
+  /// Integer coordinates of a cell (found from the row structure; O(log rows)).
+  IVec3 cellCoordinates(uint32_t cell) const;
+  Vec3 cellCenter(const IVec3& c) const { return origin + (Vec3(c) + 0.5f) * voxelSize; }
+  /// The cell at integer coordinates, or UINT32_MAX when that voxel is empty. O(log) search.
+  uint32_t findCell(const IVec3& c) const;
+  /// Bytes held by the arrays above.
+  size_t memoryBytes() const;
+};
+
+}  // namespace rad

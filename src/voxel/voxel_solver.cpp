@@ -1,0 +1,127 @@
+#include "voxel/voxel_solver.h"
+
+#include "core/rng.h"
+#include "geometry/ray_caster.h"
+#include "render/path_integrator.h"
+#include "render/progress_ticker.h"
+#include "voxel/direction_set.h"
+
+#include <glm/gtc/constants.hpp>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+namespace rad {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Direct irradiance at every entry's centroid from emitters and lights, by shadow rays.
+std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
+                                    const VoxelSolverSettings& settings, uint64_t& rays) {
+  const RayCaster caster(scene);
+  const PathIntegrator direct(scene, caster, 1);
+  std::vector<Color> h(grid.entryCount());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.entryCount(), 256), [&](const auto& r) {
+    for (size_t e = r.begin(); e != r.end(); ++e) {
+      Rng rng(settings.seed, e);
+      Vec3d sum(0.0);
+      for (int s = 0; s < settings.directSamples; ++s)
+        sum += Vec3d(direct.irradiance(grid.centroid[e], grid.normal[e], rng));
+      h[e] = Color(sum / double(settings.directSamples));
+    }
+  });
+  rays = caster.raysCast();
+  return h;
+}
+
+// One Jacobi step: every slot sweeps its share of the direction pairs (pair k goes to slot
+// k mod slots, so the sums do not depend on scheduling), then the slots are added in order.
+void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLineSweep>& sweeps,
+                         std::vector<std::vector<glm::vec4>>& slots, const std::vector<Color>& source,
+                         ProgressTicker& ticker) {
+  const size_t slotCount = slots.size();
+  tbb::parallel_for(size_t(0), slotCount, size_t(1), [&](size_t slot) {
+    std::fill(slots[slot].begin(), slots[slot].end(), glm::vec4(0.0f));
+    for (size_t k = slot; k < directions.pairCount(); k += slotCount) {
+      if (ticker.cancelled()) return;
+      sweeps[slot].sweepPair(directions.pairFirst(k), source, slots[slot]);
+      ticker.tick();
+    }
+  });
+  ticker.throwIfCancelled();
+  for (size_t slot = 1; slot < slotCount; ++slot)
+    for (size_t e = 0; e < slots[0].size(); ++e) slots[0][e] += slots[slot][e];
+}
+
+double relativeChange(const VoxelGrid& grid, const std::vector<Color>& before,
+                      const std::vector<Color>& after) {
+  double change = 0.0, total = 0.0;
+  for (size_t e = 0; e < after.size(); ++e) {
+    change += grid.area[e] * std::abs(luminance(after[e]) - luminance(before[e]));
+    total += grid.area[e] * std::abs(luminance(after[e]));
+  }
+  return total > 0.0 ? change / total : 0.0;
+}
+
+}  // namespace
+
+VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
+                                  const VoxelSolverSettings& settings,
+                                  const ProgressCallback& progress) {
+  VoxelSolution solution;
+  const size_t n = grid.entryCount();
+  std::vector<Color> emitted(n), rho(n), direct(n, Color(0.0f));
+  for (size_t e = 0; e < n; ++e) {
+    emitted[e] = glm::pi<float>() * grid.materials[grid.material[e]].emission;
+    rho[e] = grid.materials[grid.material[e]].rho;
+  }
+  if (settings.directFirstShot) {
+    const auto start = std::chrono::steady_clock::now();
+    direct = directIrradiance(scene, grid, settings, solution.shadowRays);
+    solution.directSeconds = secondsSince(start);
+  }
+
+  const DirectionSet directions(settings.sphereRadius);
+  solution.directions = directions.size();
+  const size_t slotCount = size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  std::vector<DiscreteLineSweep> sweeps(slotCount, DiscreteLineSweep(grid, settings.sweep));
+  std::vector<std::vector<glm::vec4>> slots(slotCount, std::vector<glm::vec4>(n));
+
+  // The sweeps carry what surfaces send: all of B, or only its reflected part when the first
+  // shot has already delivered the emitters' light.
+  std::vector<Color> source(n), radiosity(n), irradiance(direct);
+  for (size_t e = 0; e < n; ++e) {
+    radiosity[e] = emitted[e] + rho[e] * direct[e];
+    source[e] = settings.directFirstShot ? rho[e] * direct[e] : emitted[e];
+  }
+  ProgressTicker ticker(progress, directions.pairCount() * size_t(std::max(settings.iterations, 1)));
+  const auto start = std::chrono::steady_clock::now();
+  for (int iteration = 0; iteration < settings.iterations; ++iteration) {
+    gatherAllDirections(directions, sweeps, slots, source, ticker);
+    const std::vector<glm::vec4>& gathered = slots[0];
+    std::vector<Color> next(n);
+    for (size_t e = 0; e < n; ++e) {
+      const float norm = settings.normalize && gathered[e].w > 0.0f ? gathered[e].w : 1.0f;
+      irradiance[e] = direct[e] + Color(gathered[e]) / norm;
+      next[e] = emitted[e] + rho[e] * irradiance[e];
+      source[e] = settings.directFirstShot ? next[e] - emitted[e] : next[e];
+    }
+    solution.residuals.push_back(relativeChange(grid, radiosity, next));
+    radiosity = std::move(next);
+    solution.cellVisits += uint64_t(grid.cellCount()) * directions.size();
+    if (settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance) break;
+  }
+  solution.sweepSeconds = secondsSince(start);
+  solution.radiosity = std::move(radiosity);
+  solution.irradiance = std::move(irradiance);
+  solution.workingBytes = slotCount * n * sizeof(glm::vec4) + 4 * n * sizeof(Color);
+  for (const DiscreteLineSweep& s : sweeps) solution.workingBytes += s.lineTableSize() * 20;
+  return solution;
+}
+
+}  // namespace rad

@@ -1,0 +1,254 @@
+#include "voxel/voxelizer.h"
+
+#include <radiosity/error.h>
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <cmath>
+
+namespace rad {
+
+namespace {
+
+// A convex polygon clipped from a triangle by at most 6 planes has at most 9 corners.
+struct ClipPolygon {
+  std::array<Vec3d, 12> p;
+  int n = 0;
+};
+
+// Sutherland-Hodgman against lo <= x[axis] <= hi (closed, so touching counts).
+ClipPolygon clipToSlab(const ClipPolygon& in, int axis, double lo, double hi) {
+  ClipPolygon tmp, out;
+  auto clip = [axis](const ClipPolygon& src, ClipPolygon& dst, double bound, double sign) {
+    dst.n = 0;
+    for (int i = 0; i < src.n; ++i) {
+      const Vec3d& a = src.p[i];
+      const Vec3d& b = src.p[(i + 1) % src.n];
+      const double da = sign * (a[axis] - bound), db = sign * (b[axis] - bound);
+      if (da >= 0.0) dst.p[dst.n++] = a;
+      if ((da >= 0.0) != (db >= 0.0)) dst.p[dst.n++] = a + (b - a) * (da / (da - db));
+    }
+  };
+  clip(in, tmp, lo, 1.0);
+  clip(tmp, out, hi, -1.0);
+  return out;
+}
+
+double polygonArea(const ClipPolygon& poly, Vec3d& centroid) {
+  Vec3d cross(0.0);
+  Vec3d weighted(0.0);
+  double area2 = 0.0;
+  for (int i = 1; i + 1 < poly.n; ++i) {
+    const Vec3d c = glm::cross(poly.p[i] - poly.p[0], poly.p[i + 1] - poly.p[0]);
+    const double a = glm::length(c);
+    cross += c;
+    area2 += a;
+    weighted += a * (poly.p[0] + poly.p[i] + poly.p[i + 1]) / 3.0;
+  }
+  centroid = area2 > 0.0 ? weighted / area2 : poly.p[0];
+  return 0.5 * glm::length(cross);
+}
+
+// A piece of one triangle side inside one voxel.
+struct Fragment {
+  uint64_t cellKey;
+  uint32_t triangle;
+  float area;
+  Vec3 centroid;
+  bool backSide;
+};
+
+uint64_t cellKey(int x, int y, int z) {
+  return (uint64_t(uint16_t(x)) << 32) | (uint64_t(uint16_t(y)) << 16) | uint64_t(uint16_t(z));
+}
+
+IVec3 keyCell(uint64_t key) { return IVec3(int((key >> 32) & 0xffff), int((key >> 16) & 0xffff), int(key & 0xffff)); }
+
+// Pieces of triangle t: slab by slab, row by row, so work follows the surface, not its box.
+void fragmentTriangle(const Scene& scene, const VoxelGrid& grid, uint32_t t, bool twoSided,
+                      std::vector<Fragment>& out) {
+  const double s = grid.voxelSize, eps = 1e-4 * s;
+  const Vec3d origin(grid.origin);
+  ClipPolygon tri;
+  tri.n = 3;
+  for (int k = 0; k < 3; ++k) tri.p[k] = Vec3d(scene.positions[scene.triangles[t][k]]) - origin;
+  Vec3d lo(tri.p[0]), hi(tri.p[0]);
+  for (int k = 1; k < 3; ++k) lo = glm::min(lo, tri.p[k]), hi = glm::max(hi, tri.p[k]);
+  auto cellRange = [&](double a, double b, int axis, int& first, int& last) {
+    first = std::max(0, int(std::floor((a - eps) / s)));
+    last = std::min(grid.dims[axis] - 1, int(std::floor((b + eps) / s)));
+  };
+  const size_t begin = out.size();
+  double total = 0.0;
+  int x0, x1;
+  cellRange(lo.x, hi.x, 0, x0, x1);
+  for (int x = x0; x <= x1; ++x) {
+    const ClipPolygon slab = clipToSlab(tri, 0, x * s - eps, (x + 1) * s + eps);
+    if (slab.n == 0) continue;
+    double ylo = slab.p[0].y, yhi = ylo;
+    for (int i = 1; i < slab.n; ++i) ylo = std::min(ylo, slab.p[i].y), yhi = std::max(yhi, slab.p[i].y);
+    int y0, y1;
+    cellRange(ylo, yhi, 1, y0, y1);
+    for (int y = y0; y <= y1; ++y) {
+      const ClipPolygon row = clipToSlab(slab, 1, y * s - eps, (y + 1) * s + eps);
+      if (row.n == 0) continue;
+      double zlo = row.p[0].z, zhi = zlo;
+      for (int i = 1; i < row.n; ++i) zlo = std::min(zlo, row.p[i].z), zhi = std::max(zhi, row.p[i].z);
+      int z0, z1;
+      cellRange(zlo, zhi, 2, z0, z1);
+      for (int z = z0; z <= z1; ++z) {
+        const ClipPolygon cell = clipToSlab(row, 2, z * s - eps, (z + 1) * s + eps);
+        if (cell.n == 0) continue;
+        Vec3d centroid;
+        const double area = polygonArea(cell, centroid);
+        total += area;
+        out.push_back({cellKey(x, y, z), t, float(area), Vec3(centroid + origin), false});
+      }
+    }
+  }
+  // The tolerance counts pieces on shared cube faces twice: scale to the triangle's exact area.
+  const double scale = total > 0.0 ? scene.triangleArea(t) / total : 0.0;
+  const size_t end = out.size();
+  for (size_t i = begin; i < end; ++i) {
+    out[i].area = float(out[i].area * scale);
+    if (twoSided) {
+      out.push_back(out[i]);
+      out.back().backSide = true;
+    }
+  }
+}
+
+// The sides of one cell: its fragments clustered by normal. Pieces within 60 degrees of each
+// other are one side (a curved or folded surface); a wall's back or a corner's other face is not.
+struct Side {
+  Vec3d normalSum{0.0}, centroidSum{0.0}, rhoArea{0.0}, keArea{0.0};
+  double weight = 0.0, area = 0.0;
+  std::vector<std::pair<uint32_t, double>> objectArea;
+};
+
+void addToSides(const Scene& scene, const Fragment& f, std::vector<Side>& sides) {
+  const Vec3 n = f.backSide ? -scene.triangleNormal(f.triangle) : scene.triangleNormal(f.triangle);
+  Side* side = nullptr;
+  for (Side& candidate : sides)
+    if (glm::dot(glm::normalize(candidate.normalSum), Vec3d(n)) > 0.5) side = &candidate;
+  if (!side) side = &sides.emplace_back();
+  // Pieces that only touch the cube (zero area) still orient and place the side.
+  const double w = std::max(double(f.area), 1e-12);
+  const Material& m = scene.materialOf(f.triangle);
+  side->normalSum += w * Vec3d(n);
+  side->centroidSum += w * Vec3d(f.centroid);
+  side->weight += w;
+  side->area += f.area;
+  side->rhoArea += w * Vec3d(m.rho);
+  side->keArea += w * Vec3d(m.emission);
+  const uint32_t object = scene.faceOf(f.triangle).object;
+  auto it = std::find_if(side->objectArea.begin(), side->objectArea.end(),
+                         [&](const auto& oa) { return oa.first == object; });
+  if (it == side->objectArea.end()) side->objectArea.emplace_back(object, w);
+  else it->second += w;
+}
+
+uint32_t internMaterial(VoxelGrid& grid, std::map<std::array<float, 6>, uint32_t>& index,
+                        const VoxelMaterial& m) {
+  const std::array<float, 6> key{m.rho.r, m.rho.g, m.rho.b, m.emission.r, m.emission.g, m.emission.b};
+  auto [it, inserted] = index.emplace(key, uint32_t(grid.materials.size()));
+  if (inserted) grid.materials.push_back(m);
+  return it->second;
+}
+
+void appendSide(VoxelGrid& grid, std::map<std::array<float, 6>, uint32_t>& materialIndex,
+                const Side& side) {
+  grid.normal.push_back(Vec3(glm::normalize(side.normalSum)));
+  grid.centroid.push_back(Vec3(side.centroidSum / side.weight));
+  grid.area.push_back(float(side.area));
+  const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};
+  grid.material.push_back(internMaterial(grid, materialIndex, m));
+  const auto best = std::max_element(side.objectArea.begin(), side.objectArea.end(),
+                                     [](const auto& a, const auto& b) { return a.second < b.second; });
+  grid.object.push_back(best->first);
+  grid.entryCell.push_back(uint32_t(grid.cellZ.size() - 1));
+}
+
+// Fills the grid's cells, rows, slabs and entries from fragments sorted by cell.
+void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, VoxelGrid& grid) {
+  std::map<std::array<float, 6>, uint32_t> materialIndex;
+  grid.slabRowBegin.assign(size_t(grid.dims.x) + 1, 0);
+  std::vector<Side> sides;
+  int lastX = -1, lastY = -1;
+  for (size_t i = 0; i < fragments.size();) {
+    const uint64_t key = fragments[i].cellKey;
+    sides.clear();
+    for (; i < fragments.size() && fragments[i].cellKey == key; ++i) addToSides(scene, fragments[i], sides);
+    const IVec3 c = keyCell(key);
+    if (c.x != lastX || c.y != lastY) {
+      grid.rowY.push_back(int16_t(c.y));
+      grid.rowCellBegin.push_back(uint32_t(grid.cellZ.size()));
+      for (int x = lastX + 1; x <= c.x; ++x) grid.slabRowBegin[x] = uint32_t(grid.rowY.size() - 1);
+      lastX = c.x;
+      lastY = c.y;
+    }
+    grid.cellZ.push_back(int16_t(c.z));
+    grid.cellEntryBegin.push_back(uint32_t(grid.normal.size()));
+    for (const Side& side : sides) appendSide(grid, materialIndex, side);
+  }
+  for (int x = lastX + 1; x <= grid.dims.x; ++x) grid.slabRowBegin[x] = uint32_t(grid.rowY.size());
+  grid.rowCellBegin.push_back(uint32_t(grid.cellZ.size()));
+  grid.cellEntryBegin.push_back(uint32_t(grid.normal.size()));
+}
+
+}  // namespace
+
+float voxelSizeForCount(const Scene& scene, size_t targetVoxels) {
+  // A planar piece of area A with unit normal n covers about A (|nx| + |ny| + |nz|) / s^2 voxels
+  // (the sum of its projections on the three axis planes).
+  double covered = 0.0;
+  for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+    const Vec3 n = glm::abs(scene.triangleNormal(t));
+    covered += scene.triangleArea(t) * (n.x + n.y + n.z);
+  }
+  return float(std::sqrt(covered / double(std::max<size_t>(targetVoxels, 1))));
+}
+
+VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
+                        const ProgressCallback& progress) {
+  if (scene.triangles.empty()) throw InputError(scene.name, "no triangles to voxelize");
+  VoxelGrid grid;
+  grid.voxelSize = settings.voxelSize > 0.0f ? settings.voxelSize
+                                             : voxelSizeForCount(scene, settings.targetVoxels);
+  Bounds b;
+  for (const UVec3& t : scene.triangles)
+    for (int k = 0; k < 3; ++k) b.extend(scene.positions[t[k]]);
+  // The scene's lowest planes fall on voxel centres, not on voxel faces.
+  grid.origin = b.min - 0.5f * grid.voxelSize;
+  const Vec3 cells = glm::floor((b.max - grid.origin) / grid.voxelSize) + 1.0f;
+  if (glm::any(glm::greaterThan(cells, Vec3(32767.0f))))
+    throw InputError(scene.name, fmt::format("voxel size {:g} gives a {:g} x {:g} x {:g} grid (at most "
+                                             "32767 per axis)", grid.voxelSize, cells.x, cells.y, cells.z));
+  grid.dims = IVec3(cells);
+
+  // Fragments per block of triangles, concatenated in block order: deterministic.
+  const size_t blockSize = 256;
+  const size_t blocks = (scene.triangles.size() + blockSize - 1) / blockSize;
+  std::vector<std::vector<Fragment>> perBlock(blocks);
+  tbb::parallel_for(size_t(0), blocks, [&](size_t blk) {
+    const size_t end = std::min(scene.triangles.size(), (blk + 1) * blockSize);
+    for (size_t t = blk * blockSize; t < end; ++t)
+      fragmentTriangle(scene, grid, uint32_t(t), scene.materialOf(uint32_t(t)).twoSided, perBlock[blk]);
+  });
+  if (progress && !progress(0.5)) throw Cancelled();
+  std::vector<Fragment> fragments;
+  for (auto& block : perBlock) fragments.insert(fragments.end(), block.begin(), block.end()), block = {};
+  std::stable_sort(fragments.begin(), fragments.end(),
+                   [](const Fragment& a, const Fragment& b) { return a.cellKey < b.cellKey; });
+  buildEntries(scene, fragments, grid);
+  if (progress && !progress(1.0)) throw Cancelled();
+  return grid;
+}
+
+}  // namespace rad

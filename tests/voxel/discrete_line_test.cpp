@@ -1,0 +1,198 @@
+// Properties of the discrete lines and of the voxelization they run through.
+#include "voxel/direction_set.h"
+#include "voxel/discrete_line_sweep.h"
+#include "voxel/voxelizer.h"
+
+#include "voxel/voxel_test_scenes.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+namespace rad {
+namespace {
+
+int64_t floorDiv(int64_t n, int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
+
+int dominantAxis(const IVec3& s) {
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(s[k]) > std::abs(s[axis])) axis = k;
+  return axis;
+}
+
+// The naive line of cell p for direction s, straight from the definition (an independent form of
+// the paper's floor((a y - b x) / a)): for each non-dominant axis j,
+// floor(s_j (p_j - (step_j / step_i) p_i)) in the frame where the direction is positive.
+std::pair<int64_t, int64_t> naiveLine(const IVec3& p, const IVec3& s) {
+  const int i = dominantAxis(s);
+  const int j = (i + 1) % 3, k = (i + 2) % 3;
+  const int64_t a = std::abs(s[i]), si = s[i] >= 0 ? 1 : -1;
+  auto coord = [&](int axis) {
+    const int64_t sj = s[axis] >= 0 ? 1 : -1;
+    return floorDiv(sj * si * (int64_t(p[axis]) * s[i] - int64_t(s[axis]) * p[i]), a);
+  };
+  return {coord(j), coord(k)};
+}
+
+std::vector<IVec3> randomSteps(int count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> component(-40, 40);
+  std::vector<IVec3> steps;
+  while (int(steps.size()) < count) {
+    const IVec3 s(component(rng), component(rng), component(rng));
+    if (s != IVec3(0)) steps.push_back(s);
+  }
+  // Axis-aligned, diagonal and tied directions, every sign.
+  for (const IVec3& s : {IVec3(1, 0, 0), IVec3(0, -1, 0), IVec3(0, 0, 1), IVec3(1, 1, 0),
+                         IVec3(-1, 1, 1), IVec3(2, -2, 1), IVec3(-3, 1, -3)})
+    steps.push_back(s);
+  return steps;
+}
+
+VoxelGrid sphereAndBoxGrid() {
+  SceneBuilder b("shapes");
+  const uint32_t m = b.addMaterial({"white", Color(0.5f), Color(0.0f), true});
+  test::addSphere(b, Vec3(0.0f), 1.0f, false, m, b.addObject("sphere"));
+  test::addInwardCube(b, [m](int) { return m; });
+  VoxelizerSettings settings;
+  settings.voxelSize = 0.05f;
+  return voxelizeScene(b.build(), settings);
+}
+
+TEST(DiscreteLines, PartitionMatchesTheNaiveLineDefinition) {
+  const VoxelGrid grid = sphereAndBoxGrid();
+  ASSERT_GT(grid.cellCount(), 5000u);
+  DiscreteLineSweep sweep(grid, {});
+  std::vector<IVec3> cells(grid.cellCount());
+  for (uint32_t c = 0; c < grid.cellCount(); ++c) cells[c] = grid.cellCoordinates(c);
+  for (const IVec3& step : randomSteps(200, 7)) {
+    SCOPED_TRACE(testing::Message() << "step " << step.x << " " << step.y << " " << step.z);
+    const std::vector<uint32_t> lines = sweep.lineOfEachCell(step);
+    // Same partition both ways: equal table index <=> equal naive line.
+    std::map<uint32_t, std::pair<int64_t, int64_t>> byIndex;
+    std::map<std::pair<int64_t, int64_t>, uint32_t> byLine;
+    for (uint32_t c = 0; c < grid.cellCount(); ++c) {
+      const auto line = naiveLine(cells[c], step);
+      ASSERT_TRUE(byIndex.emplace(lines[c], line).first->second == line);
+      ASSERT_EQ(byLine.emplace(line, lines[c]).first->second, lines[c]);
+      ASSERT_LT(lines[c], sweep.lineTableSize());
+    }
+  }
+}
+
+TEST(DiscreteLines, SweepOrderAdvancesAlongTheDirection) {
+  const VoxelGrid grid = sphereAndBoxGrid();
+  DiscreteLineSweep sweep(grid, {});
+  for (const IVec3& step : randomSteps(200, 11)) {
+    SCOPED_TRACE(testing::Message() << "step " << step.x << " " << step.y << " " << step.z);
+    const std::vector<uint32_t> lines = sweep.lineOfEachCell(step);
+    for (const IVec3& passStep : {step, -step}) {
+      std::map<uint32_t, IVec3> last;
+      for (uint32_t c : sweep.passOrder(passStep)) {
+        const IVec3 p = grid.cellCoordinates(c);
+        auto it = last.find(lines[c]);
+        if (it != last.end()) {
+          const IVec3 d = p - it->second;
+          // Every component moves with the direction's sign (or not at all), and the dominant
+          // one moves: each line holds one voxel per dominant coordinate, met in order.
+          for (int k = 0; k < 3; ++k) ASSERT_GE(d[k] * passStep[k], 0) << "axis " << k;
+          ASSERT_GT(d[dominantAxis(step)] * passStep[dominantAxis(step)], 0);
+        }
+        last[lines[c]] = p;
+      }
+    }
+  }
+}
+
+// Walks the naive line through `start` (a cell inside a closed surface) in direction s and
+// reports whether it meets an occupied voxel before leaving the grid.
+bool lineMeetsSurface(const VoxelGrid& grid, const IVec3& start, const IVec3& s) {
+  const int i = dominantAxis(s);
+  const auto line = naiveLine(start, s);
+  const int step = s[i] > 0 ? 1 : -1;
+  for (int xi = start[i] + step; xi >= 0 && xi < grid.dims[i]; xi += step) {
+    // The unique cell of the line with dominant coordinate xi: solve the floor for each axis.
+    IVec3 p = start;
+    p[i] = xi;
+    for (int axis : {(i + 1) % 3, (i + 2) % 3}) {
+      int lo = -2 * grid.dims[axis], hi = 2 * grid.dims[axis];
+      const int64_t want = axis == (i + 1) % 3 ? line.first : line.second;
+      // naiveLine is monotone in p[axis] (non-decreasing when signed): binary search.
+      const int sj = s[axis] >= 0 ? 1 : -1;
+      while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        IVec3 q = p;
+        q[axis] = mid * sj;
+        const auto l = naiveLine(q, s);
+        if ((axis == (i + 1) % 3 ? l.first : l.second) < want) lo = mid + 1;
+        else hi = mid;
+      }
+      p[axis] = lo * sj;
+    }
+    if (grid.findCell(p) != UINT32_MAX) return true;
+  }
+  return false;
+}
+
+void expectTunnelFree(const Scene& scene, const Vec3& inside, float clearance, float voxelSize) {
+  VoxelizerSettings settings;
+  settings.voxelSize = voxelSize;
+  const VoxelGrid grid = voxelizeScene(scene, settings);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> offset(-clearance, clearance);
+  const DirectionSet directions(6);  // 354 directions, every octant
+  int checked = 0;
+  for (int trial = 0; trial < 8; ++trial) {
+    const Vec3 p = inside + Vec3(offset(rng), offset(rng), offset(rng));
+    const IVec3 start = IVec3(glm::floor((p - grid.origin) / grid.voxelSize));
+    ASSERT_EQ(grid.findCell(start), UINT32_MAX);
+    for (size_t d = 0; d < directions.size(); ++d, ++checked)
+      ASSERT_TRUE(lineMeetsSurface(grid, start, directions[d].step))
+          << "leak from " << start.x << "," << start.y << "," << start.z << " along "
+          << directions[d].step.x << "," << directions[d].step.y << "," << directions[d].step.z;
+  }
+  EXPECT_GT(checked, 2000);
+}
+
+TEST(Voxelizer, ClosedBoxIsTunnelFree) {
+  expectTunnelFree(test::uniformCube(Color(0.5f), Color(0.0f)), Vec3(0.5f), 0.3f, 0.037f);
+}
+
+TEST(Voxelizer, ClosedSphereIsTunnelFree) {
+  SceneBuilder b("sphere");
+  const uint32_t m = b.addMaterial({"white", Color(0.5f), Color(0.0f), false});
+  test::addSphere(b, Vec3(0.1f, 0.2f, 0.3f), 1.0f, true, m, b.addObject("sphere"), 16, 32);
+  expectTunnelFree(b.build(), Vec3(0.1f, 0.2f, 0.3f), 0.5f, 0.031f);
+}
+
+TEST(Voxelizer, AreasAddUpToTheSurface) {
+  // The unit cube's six faces: area 6 (exact).
+  VoxelizerSettings settings;
+  settings.voxelSize = 0.043f;
+  const VoxelGrid grid = voxelizeScene(test::uniformCube(Color(0.5f), Color(0.0f)), settings);
+  double area = 0.0;
+  for (float a : grid.area) area += a;
+  EXPECT_NEAR(area, 6.0, 1e-4);
+  // Each face's voxels hold its normal.
+  for (size_t e = 0; e < grid.entryCount(); ++e)
+    EXPECT_NEAR(glm::length(grid.normal[e]), 1.0f, 1e-5f);
+}
+
+TEST(Voxelizer, ThinTwoSidedWallKeepsOneEntryPerSide) {
+  SceneBuilder b("wall");
+  const uint32_t m = b.addMaterial({"white", Color(0.5f), Color(0.0f), true});
+  test::addQuadFacing(b, test::axisSquare(Vec3(0.0f), 0, 1.0f), Vec3(1, 0, 0), m, b.addObject("wall"));
+  VoxelizerSettings settings;
+  settings.voxelSize = 0.1f;
+  const VoxelGrid grid = voxelizeScene(b.build(), settings);
+  ASSERT_EQ(grid.entryCount(), 2 * grid.cellCount());
+  for (uint32_t c = 0; c < grid.cellCount(); ++c) {
+    const uint32_t e = grid.cellEntryBegin[c];
+    EXPECT_NEAR(glm::dot(grid.normal[e], grid.normal[e + 1]), -1.0f, 1e-5f);
+  }
+}
+
+}  // namespace
+}  // namespace rad
