@@ -32,6 +32,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
 
   CommandAction action;
   addRenderCommand(app, console, action);
+  addSolveCommand(app, console, action);
   addInfoCommand(app, console, action);
   addBenchCommand(app, console, action);
 

@@ -15,6 +15,7 @@ namespace rad::cli {
 using CommandAction = std::function<int()>;
 
 void addRenderCommand(CLI::App& app, Console& console, CommandAction& action);
+void addSolveCommand(CLI::App& app, Console& console, CommandAction& action);
 void addInfoCommand(CLI::App& app, Console& console, CommandAction& action);
 void addBenchCommand(CLI::App& app, Console& console, CommandAction& action);
 

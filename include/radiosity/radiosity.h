@@ -11,5 +11,7 @@
 #include <radiosity/scene.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
+#include <radiosity/surface_radiance.h>
 #include <radiosity/types.h>
 #include <radiosity/version.h>
+#include <radiosity/voxel_radiosity.h>

@@ -81,6 +81,16 @@ struct SolverSettings {
   std::optional<int> spp;             ///< path tracer samples per pixel
   std::optional<int> maxDepth;        ///< path tracer bounce limit (Russian roulette ends paths)
   std::optional<uint64_t> seed;
+  // Voxel method (keys voxel_size, voxels, sphere_radius, iterations, tolerance,
+  // tangent_correction, first_shot, direct_samples).
+  std::optional<float> voxelSize;
+  std::optional<size_t> voxels;
+  std::optional<int> sphereRadius;
+  std::optional<int> iterations;
+  std::optional<double> tolerance;
+  std::optional<bool> tangentCorrection;
+  std::optional<bool> firstShot;
+  std::optional<int> directSamples;
 };
 
 struct Scene {

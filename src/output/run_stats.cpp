@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 
+#include <glm/gtc/constants.hpp>
 #include <nlohmann/json.hpp>
 
 namespace rad {
@@ -11,6 +12,18 @@ namespace {
 nlohmann::json rgb(const Color& c) { return nlohmann::json::array({c.r, c.g, c.b}); }
 
 }  // namespace
+
+Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& objects) {
+  std::vector<Color> emitted(scene.objects.size(), Color(0.0f));
+  for (const Face& f : scene.faces)
+    emitted[f.object] += scene.materials[f.material].emission * (glm::pi<float>() * f.area);
+  Color absorbed(0.0f);
+  for (size_t i = 0; i < objects.size() && i < scene.objects.size(); ++i) {
+    const ObjectRadiometry& o = objects[i];
+    absorbed += o.meanIrradiance * float(o.area) - (o.meanRadiosity * float(o.area) - emitted[i]);
+  }
+  return absorbed;
+}
 
 nlohmann::json toJson(const RunStats& s) {
   nlohmann::json objects = nlohmann::json::array();
@@ -36,6 +49,7 @@ nlohmann::json toJson(const RunStats& s) {
         {"total", s.timingsSeconds.total}}},
       {"iterations", s.iterations},
       {"residual", s.residual},
+      {"residuals", s.residuals},
       {"energy", {{"emitted", rgb(s.emittedPower)}, {"absorbed", rgb(s.absorbedPower)}}},
       {"objects", objects},
       {"memory_peak_bytes", s.memoryPeakBytes},

@@ -3,6 +3,7 @@
 // docs/ARCHITECTURE.md ("Stats JSON"): scripts and the tests read them.
 
 #include <radiosity/object_radiometry.h>
+#include <radiosity/scene.h>
 #include <radiosity/types.h>
 
 #include <nlohmann/json_fwd.hpp>
@@ -24,11 +25,16 @@ struct RunStats {
   } timingsSeconds;
   int iterations = 0;
   double residual = 0.0;
+  std::vector<double> residuals;  ///< per iteration, for methods that iterate
   Color emittedPower{0.0f};   ///< W, every emitter and light
   Color absorbedPower{0.0f};  ///< W, sum of (1 - rho) H A over the objects
   std::vector<ObjectRadiometry> objects;
   uint64_t memoryPeakBytes = 0;
 };
+
+/// Power absorbed by the objects, sum of (1 - rho) H A = H A - (B - E) A with E the objects'
+/// emitted radiosity, from their mean irradiance and radiosity.
+Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& objects);
 
 nlohmann::json toJson(const RunStats& stats);
 /// Writes the stats as indented JSON, atomically (temporary file + rename).

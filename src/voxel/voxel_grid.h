@@ -41,7 +41,10 @@ struct VoxelGrid {
   std::vector<Vec3> centroid;   ///< area-weighted centroid of the surface inside the voxel
   std::vector<float> area;      ///< surface area the entry stands for (scene units^2)
   std::vector<uint32_t> material;  ///< index into materials
-  std::vector<uint32_t> object;    ///< scene object with the largest share of the area
+  std::vector<uint32_t> object;    ///< the scene object the side belongs to
+  /// True when the entry has the orientation of the entry before it in the same cell: the
+  /// pieces of several objects in one plane (a lamp in a ceiling), which light sees as one.
+  std::vector<uint8_t> sharesOrientation;
   std::vector<uint32_t> entryCell;
   std::vector<VoxelMaterial> materials;
 

@@ -58,6 +58,23 @@ void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLin
     for (size_t e = 0; e < slots[0].size(); ++e) slots[0][e] += slots[slot][e];
 }
 
+// Pieces of several objects sharing one orientation in a cell (a lamp set in a ceiling) send
+// light as one surface: their area-weighted mean, whichever of them a line happens to meet.
+void blendSharedOrientations(const VoxelGrid& grid, std::vector<Color>& source) {
+  for (size_t begin = 0; begin < source.size();) {
+    size_t end = begin + 1;
+    while (end < source.size() && grid.sharesOrientation[end]) ++end;
+    if (end - begin > 1) {
+      Vec3d sum(0.0);
+      double area = 0.0;
+      for (size_t e = begin; e < end; ++e) sum += double(grid.area[e]) * Vec3d(source[e]), area += grid.area[e];
+      if (area > 0.0)
+        for (size_t e = begin; e < end; ++e) source[e] = Color(sum / area);
+    }
+    begin = end;
+  }
+}
+
 double relativeChange(const VoxelGrid& grid, const std::vector<Color>& before,
                       const std::vector<Color>& after) {
   double change = 0.0, total = 0.0;
@@ -102,6 +119,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   ProgressTicker ticker(progress, directions.pairCount() * size_t(std::max(settings.iterations, 1)));
   const auto start = std::chrono::steady_clock::now();
   for (int iteration = 0; iteration < settings.iterations; ++iteration) {
+    blendSharedOrientations(grid, source);
     gatherAllDirections(directions, sweeps, slots, source, ticker);
     const std::vector<glm::vec4>& gathered = slots[0];
     std::vector<Color> next(n);

@@ -125,33 +125,37 @@ void fragmentTriangle(const Scene& scene, const VoxelGrid& grid, uint32_t t, boo
 }
 
 // The sides of one cell: its fragments clustered by normal. Pieces within 60 degrees of each
-// other are one side (a curved or folded surface); a wall's back or a corner's other face is not.
+// other share an orientation (a curved or folded surface); a wall's back or a corner's other face
+// does not. Within an orientation each scene object keeps its own side, so that per-object
+// results stay exact where objects meet (a lamp set in a ceiling).
 struct Side {
+  uint32_t orientation = 0, object = 0;
   Vec3d normalSum{0.0}, centroidSum{0.0}, rhoArea{0.0}, keArea{0.0};
   double weight = 0.0, area = 0.0;
-  std::vector<std::pair<uint32_t, double>> objectArea;
 };
 
-void addToSides(const Scene& scene, const Fragment& f, std::vector<Side>& sides) {
+void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orientations,
+                std::vector<Side>& sides) {
   const Vec3 n = f.backSide ? -scene.triangleNormal(f.triangle) : scene.triangleNormal(f.triangle);
-  Side* side = nullptr;
-  for (Side& candidate : sides)
-    if (glm::dot(glm::normalize(candidate.normalSum), Vec3d(n)) > 0.5) side = &candidate;
-  if (!side) side = &sides.emplace_back();
+  uint32_t orientation = uint32_t(orientations.size());
+  for (uint32_t o = 0; o < orientations.size(); ++o)
+    if (glm::dot(glm::normalize(orientations[o]), Vec3d(n)) > 0.5) orientation = o;
+  if (orientation == orientations.size()) orientations.emplace_back(0.0);
+  const uint32_t object = scene.faceOf(f.triangle).object;
+  auto side = std::find_if(sides.begin(), sides.end(), [&](const Side& s) {
+    return s.orientation == orientation && s.object == object;
+  });
+  if (side == sides.end()) side = sides.insert(sides.end(), Side{orientation, object});
   // Pieces that only touch the cube (zero area) still orient and place the side.
   const double w = std::max(double(f.area), 1e-12);
   const Material& m = scene.materialOf(f.triangle);
+  orientations[orientation] += w * Vec3d(n);
   side->normalSum += w * Vec3d(n);
   side->centroidSum += w * Vec3d(f.centroid);
   side->weight += w;
   side->area += f.area;
   side->rhoArea += w * Vec3d(m.rho);
   side->keArea += w * Vec3d(m.emission);
-  const uint32_t object = scene.faceOf(f.triangle).object;
-  auto it = std::find_if(side->objectArea.begin(), side->objectArea.end(),
-                         [&](const auto& oa) { return oa.first == object; });
-  if (it == side->objectArea.end()) side->objectArea.emplace_back(object, w);
-  else it->second += w;
 }
 
 uint32_t internMaterial(VoxelGrid& grid, std::map<std::array<float, 6>, uint32_t>& index,
@@ -169,9 +173,7 @@ void appendSide(VoxelGrid& grid, std::map<std::array<float, 6>, uint32_t>& mater
   grid.area.push_back(float(side.area));
   const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};
   grid.material.push_back(internMaterial(grid, materialIndex, m));
-  const auto best = std::max_element(side.objectArea.begin(), side.objectArea.end(),
-                                     [](const auto& a, const auto& b) { return a.second < b.second; });
-  grid.object.push_back(best->first);
+  grid.object.push_back(side.object);
   grid.entryCell.push_back(uint32_t(grid.cellZ.size() - 1));
 }
 
@@ -180,11 +182,16 @@ void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, Vo
   std::map<std::array<float, 6>, uint32_t> materialIndex;
   grid.slabRowBegin.assign(size_t(grid.dims.x) + 1, 0);
   std::vector<Side> sides;
+  std::vector<Vec3d> orientations;
   int lastX = -1, lastY = -1;
   for (size_t i = 0; i < fragments.size();) {
     const uint64_t key = fragments[i].cellKey;
     sides.clear();
-    for (; i < fragments.size() && fragments[i].cellKey == key; ++i) addToSides(scene, fragments[i], sides);
+    orientations.clear();
+    for (; i < fragments.size() && fragments[i].cellKey == key; ++i)
+      addToSides(scene, fragments[i], orientations, sides);
+    std::stable_sort(sides.begin(), sides.end(),
+                     [](const Side& a, const Side& b) { return a.orientation < b.orientation; });
     const IVec3 c = keyCell(key);
     if (c.x != lastX || c.y != lastY) {
       grid.rowY.push_back(int16_t(c.y));
@@ -195,7 +202,10 @@ void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, Vo
     }
     grid.cellZ.push_back(int16_t(c.z));
     grid.cellEntryBegin.push_back(uint32_t(grid.normal.size()));
-    for (const Side& side : sides) appendSide(grid, materialIndex, side);
+    for (size_t k = 0; k < sides.size(); ++k) {
+      appendSide(grid, materialIndex, sides[k]);
+      grid.sharesOrientation.push_back(k > 0 && sides[k].orientation == sides[k - 1].orientation);
+    }
   }
   for (int x = lastX + 1; x <= grid.dims.x; ++x) grid.slabRowBegin[x] = uint32_t(grid.rowY.size());
   grid.rowCellBegin.push_back(uint32_t(grid.cellZ.size()));

@@ -153,4 +153,59 @@ TEST(Cli, SameSeedSameImage) {
   EXPECT_NE(a, c);
 }
 
+TEST(Cli, SolvesWithVoxelsAndExports) {
+  const fs::path dir = freshDir("voxel_solve");
+  const std::string csv = (dir / "v.csv").string(), ply = (dir / "v.ply").string();
+  const std::string stats = (dir / "v.json").string();
+  const std::vector<std::string> coarse = {"--voxels", "3000", "--sphere-radius", "4",
+                                           "--direct-samples", "4", "--quiet"};
+  std::vector<std::string> args = {"solve", "cornell", "--method", "voxel", "--export", csv,
+                                   "--stats", stats};
+  args.insert(args.end(), coarse.begin(), coarse.end());
+  ASSERT_EQ(run(args).status, 0);
+  std::ifstream in(stats);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["method"], "voxel");
+  EXPECT_GT(j["counts"]["voxels"].get<int>(), 2000);
+  // The digital sphere of radius 4 has 134 directions (python3 brute-force count).
+  EXPECT_EQ(j["counts"]["directions"].get<int>(), 134);
+  EXPECT_EQ(j["iterations"].get<int>(), 6);
+  EXPECT_EQ(j["residuals"].size(), 6u);
+  ASSERT_EQ(j["objects"].size(), 8u);
+
+  // One CSV row per voxel side, the documented columns.
+  std::ifstream rows(csv);
+  std::string header, line;
+  std::getline(rows, header);
+  EXPECT_EQ(header, "id,object,area,cx,cy,cz,nx,ny,nz,E_r,E_g,E_b,rho_r,rho_g,rho_b,H_r,H_g,H_b,B_r,B_g,B_b");
+  size_t count = 0;
+  while (std::getline(rows, line)) ++count;
+  EXPECT_EQ(count, j["counts"]["voxels"].get<size_t>());
+
+  args[5] = ply;
+  ASSERT_EQ(run(args).status, 0);
+  std::ifstream plyIn(ply, std::ios::binary);
+  std::string magic;
+  std::getline(plyIn, magic);
+  EXPECT_EQ(magic, "ply");
+  EXPECT_GT(fs::file_size(ply), count * 39);  // 6 floats, 3 bytes, 3 floats a vertex
+}
+
+TEST(Cli, RendersWithVoxels) {
+  const fs::path dir = freshDir("voxel_render");
+  const std::string png = (dir / "v.png").string();
+  const CliResult r = run({"render", "cornell", "--method", "voxel", "--voxels", "3000",
+                           "--sphere-radius", "4", "--width", "32", "--height", "32", "-o", png});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(png));
+}
+
+TEST(Cli, SolveRejectsUnknownExportFormat) {
+  const fs::path dir = freshDir("voxel_badexport");
+  const CliResult r = run({"solve", "cornell", "--export", (dir / "v.obj").string()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find(".csv"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "v.obj"));
+}
+
 }  // namespace

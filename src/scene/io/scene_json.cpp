@@ -254,7 +254,9 @@ Camera readCamera(const JsonReader& r, const Json& j) {
 
 SolverSettings readSolver(const JsonReader& r, const Json& j) {
   const std::string ptr = "/solver";
-  r.checkKeys(j, ptr, {"method", "spp", "max_depth", "seed"});
+  r.checkKeys(j, ptr, {"method", "spp", "max_depth", "seed", "voxel_size", "voxels", "sphere_radius",
+                       "iterations", "tolerance", "tangent_correction", "first_shot",
+                       "direct_samples"});
   SolverSettings s;
   if (j.contains("method")) {
     s.method = r.string(j["method"], ptr + "/method");
@@ -262,9 +264,26 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
       r.fail(ptr + "/method", fmt::format("unknown method '{}' (expected patch, voxel or pathtrace)",
                                           *s.method));
   }
-  if (j.contains("spp")) s.spp = int(r.integer(j["spp"], ptr + "/spp", 1, 1 << 24));
-  if (j.contains("max_depth")) s.maxDepth = int(r.integer(j["max_depth"], ptr + "/max_depth", 1, 1 << 16));
-  if (j.contains("seed")) s.seed = uint64_t(r.integer(j["seed"], ptr + "/seed", 0, INT64_MAX));
+  auto integer = [&](const char* key, int64_t lo, int64_t hi) {
+    return r.integer(j[key], ptr + "/" + key, lo, hi);
+  };
+  auto positive = [&](const char* key) {
+    const double v = r.number(j[key], ptr + "/" + key);
+    if (!(v > 0.0) || !std::isfinite(v)) r.fail(ptr + "/" + key, fmt::format("{} must be positive", v));
+    return v;
+  };
+  if (j.contains("spp")) s.spp = int(integer("spp", 1, 1 << 24));
+  if (j.contains("max_depth")) s.maxDepth = int(integer("max_depth", 1, 1 << 16));
+  if (j.contains("seed")) s.seed = uint64_t(integer("seed", 0, INT64_MAX));
+  if (j.contains("voxel_size")) s.voxelSize = float(positive("voxel_size"));
+  if (j.contains("voxels")) s.voxels = size_t(integer("voxels", 1, int64_t(1) << 32));
+  if (j.contains("sphere_radius")) s.sphereRadius = int(integer("sphere_radius", 1, 200));
+  if (j.contains("iterations")) s.iterations = int(integer("iterations", 1, 100000));
+  if (j.contains("tolerance")) s.tolerance = positive("tolerance");
+  if (j.contains("tangent_correction"))
+    s.tangentCorrection = r.boolean(j["tangent_correction"], ptr + "/tangent_correction");
+  if (j.contains("first_shot")) s.firstShot = r.boolean(j["first_shot"], ptr + "/first_shot");
+  if (j.contains("direct_samples")) s.directSamples = int(integer("direct_samples", 1, 1 << 20));
   return s;
 }
 

@@ -1,0 +1,30 @@
+#include "command_support.h"
+
+#include <radiosity/scene_loader.h>
+
+#include "core/memory_usage.h"
+
+namespace rad::cli {
+
+Scene loadSceneForCommand(const std::string& name, Console& console, RunStats& stats) {
+  Stopwatch loadTime;
+  Scene scene = loadScene(name);
+  stats.timingsSeconds.load = loadTime.seconds();
+  for (const std::string& w : scene.warnings) console.warn(scene.name + ": " + w);
+  requireEmitters(scene);
+  stats.counts.triangles = scene.triangles.size();
+  return scene;
+}
+
+void writeStatsFile(const std::string& path, const Scene& scene, const std::string& sceneName,
+                    const std::string& method, double totalSeconds, RunStats& stats) {
+  stats.scene = sceneName;
+  stats.method = method;
+  stats.emittedPower = scene.emittedPower();
+  if (!stats.objects.empty()) stats.absorbedPower = absorbedPower(scene, stats.objects);
+  stats.timingsSeconds.total = totalSeconds;
+  stats.memoryPeakBytes = peakResidentBytes();
+  writeRunStats(path, stats);
+}
+
+}  // namespace rad::cli

@@ -1,0 +1,22 @@
+#pragma once
+// Steps shared by the commands that compute light transport (render, solve).
+
+#include "console.h"
+
+#include <radiosity/scene.h>
+
+#include "output/run_stats.h"
+
+#include <string>
+
+namespace rad::cli {
+
+/// Loads the scene, prints its warnings, refuses a scene with nothing that emits (a black
+/// result), and records the load time and the triangle count.
+Scene loadSceneForCommand(const std::string& name, Console& console, RunStats& stats);
+
+/// Completes the stats (scene, method, emitted power, total time, peak memory) and writes them.
+void writeStatsFile(const std::string& path, const Scene& scene, const std::string& sceneName,
+                    const std::string& method, double totalSeconds, RunStats& stats);
+
+}  // namespace rad::cli

@@ -1,0 +1,48 @@
+#pragma once
+// The light-transport method and its settings, shared by `render` and `solve`: each setting is
+// a flag and a key of the scene's "solver" object; the flag wins, then the scene, then the
+// method's default.
+
+#include <radiosity/path_tracer.h>
+#include <radiosity/scene.h>
+#include <radiosity/voxel_radiosity.h>
+
+#include "output/run_stats.h"
+
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
+
+namespace rad::cli {
+
+class MethodOptions {
+ public:
+  /// `methods` lists the methods the command accepts, the first being the default.
+  MethodOptions(CLI::App& command, std::vector<std::string> methods);
+
+  /// Fills the settings from the scene where no flag was given; throws InputError for a
+  /// method the command does not offer.
+  void resolve(const Scene& scene);
+
+  const std::string& method() const { return method_; }
+  const PathTracerSettings& pathTracer() const { return pathTracer_; }
+  const VoxelRadiositySettings& voxel() const { return voxel_; }
+
+ private:
+  std::vector<std::string> methods_;
+  std::string method_;
+  PathTracerSettings pathTracer_;
+  VoxelRadiositySettings voxel_;
+  CLI::Option *methodFlag_, *sppFlag_, *maxDepthFlag_, *seedFlag_;
+  CLI::Option *voxelSizeFlag_, *voxelsFlag_, *radiusFlag_, *iterationsFlag_, *toleranceFlag_,
+      *tangentFlag_, *firstShotFlag_, *directSamplesFlag_;
+};
+
+/// The voxel method's numbers in the stats file.
+void addVoxelStats(const VoxelRadiosity& solution, RunStats& stats);
+
+}  // namespace rad::cli

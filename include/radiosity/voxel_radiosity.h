@@ -1,0 +1,71 @@
+#pragma once
+// Voxel (discrete) radiosity: the quasi-linear method that sweeps the directions of a digital
+// sphere, splits the voxels into parallel 3D discrete lines and exchanges light between
+// consecutive voxels of each line. O(N) memory, no ray traversal in the sweeps.
+// Based on: P. Chatelier and R. Malgouyres, "A low-complexity discrete radiosity method",
+// Computers & Graphics 30(1), 2006.
+
+#include <radiosity/object_radiometry.h>
+#include <radiosity/progress.h>
+#include <radiosity/scene.h>
+#include <radiosity/surface_radiance.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rad {
+
+struct VoxelRadiositySettings {
+  float voxelSize = 0.0f;          ///< voxel edge in scene units; 0: from targetVoxels
+  size_t targetVoxels = 200000;    ///< approximate number of surface voxels when voxelSize is 0
+  int sphereRadius = 38;           ///< radius R of the digital sphere (R = 38: 14,790 directions)
+  int iterations = 6;              ///< sweeps over all directions, as in the paper
+  double tolerance = 0.0;          ///< stop earlier once the relative change of B is below it
+  bool tangentCorrection = true;   ///< look through voxels a line only grazes
+  bool directFirstShot = true;     ///< direct light by shadow rays; the sweeps carry the rest
+  int directSamples = 64;          ///< shadow-ray samples per voxel side for the first shot
+  bool normalize = true;           ///< per-voxel normalization of the direction factors
+  uint64_t seed = 1;
+};
+
+struct VoxelRadiosityStats {
+  size_t voxels = 0;       ///< occupied voxels (cells)
+  size_t sides = 0;        ///< voxel sides (entries): one per surface orientation in a cell
+  size_t directions = 0;
+  float voxelSize = 0.0f;
+  uint64_t visits = 0;     ///< voxel-direction visits of all sweeps
+  uint64_t shadowRays = 0;
+  std::vector<double> residuals;  ///< relative change of B at each iteration
+  double voxelizeSeconds = 0.0, directSeconds = 0.0, sweepSeconds = 0.0;
+  size_t memoryBytes = 0;  ///< grid and solver arrays
+};
+
+/// The solved scene; a SurfaceRadiance that interpolates the voxels' irradiance smoothly.
+class VoxelRadiosity : public SurfaceRadiance {
+ public:
+  /// Voxelizes and solves `scene` (which must outlive the result). Throws InputError for bad
+  /// settings and rad::Cancelled if `progress` returns false.
+  VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings& settings,
+                 const ProgressCallback& progress = {});
+  ~VoxelRadiosity() override;
+  VoxelRadiosity(VoxelRadiosity&&) noexcept;
+  VoxelRadiosity& operator=(VoxelRadiosity&&) noexcept;
+
+  /// Ke + rho H / pi at the hit, with H interpolated from the voxel sides facing the hit's way.
+  Color radiance(const SurfaceHit& hit) const override;
+  /// Area-weighted means over the voxel sides of each scene object.
+  std::vector<ObjectRadiometry> objectRadiometry() const;
+  const VoxelRadiosityStats& stats() const;
+  /// One row per voxel side (the CSV columns of docs/ARCHITECTURE.md), written atomically.
+  void exportCsv(const std::string& path) const;
+  /// A binary PLY point cloud: position, normal, sRGB colour of B / pi, radiosity B.
+  void exportPly(const std::string& path) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rad

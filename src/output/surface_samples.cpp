@@ -1,0 +1,68 @@
+#include "output/surface_samples.h"
+
+#include <radiosity/image.h>
+
+#include "core/atomic_file.h"
+
+#include <fmt/format.h>
+#include <glm/gtc/constants.hpp>
+
+#include <cstring>
+
+namespace rad {
+
+namespace {
+
+// CSV fields are quoted when they hold a separator or a quote (RFC 4180).
+std::string csvField(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string quoted = "\"";
+  for (char c : s) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+template <typename T>
+void append(std::string& out, const T& value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  out.append(bytes, sizeof(T));
+}
+
+}  // namespace
+
+void writeSurfaceSamplesCsv(const std::string& path, const Scene& scene,
+                            std::span<const SurfaceSample> samples) {
+  std::string text =
+      "id,object,area,cx,cy,cz,nx,ny,nz,E_r,E_g,E_b,rho_r,rho_g,rho_b,H_r,H_g,H_b,B_r,B_g,B_b\n";
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const SurfaceSample& s = samples[i];
+    const std::string object = s.object < scene.objects.size() ? scene.objects[s.object].name : "";
+    text += fmt::format("{},{},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},"
+                        "{:g},{:g},{:g},{:g},{:g}\n",
+                        i, csvField(object), s.area, s.position.x, s.position.y, s.position.z,
+                        s.normal.x, s.normal.y, s.normal.z, s.emitted.r, s.emitted.g, s.emitted.b,
+                        s.rho.r, s.rho.g, s.rho.b, s.irradiance.r, s.irradiance.g, s.irradiance.b,
+                        s.radiosity.r, s.radiosity.g, s.radiosity.b);
+  }
+  writeTextAtomically(path, text);
+}
+
+void writeSurfaceSamplesPly(const std::string& path, std::span<const SurfaceSample> samples) {
+  std::string out = fmt::format(
+      "ply\nformat binary_little_endian 1.0\ncomment radiosity: one vertex per surface element\n"
+      "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float nx\nproperty float ny\nproperty float nz\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+      "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n"
+      "end_header\n",
+      samples.size());
+  for (const SurfaceSample& s : samples) {
+    for (float v : {s.position.x, s.position.y, s.position.z, s.normal.x, s.normal.y, s.normal.z})
+      append(out, v);
+    for (uint8_t c : toneMapPixel(s.radiosity / glm::pi<float>(), 0.0f)) append(out, c);
+    for (float v : {s.radiosity.r, s.radiosity.g, s.radiosity.b}) append(out, v);
+  }
+  writeTextAtomically(path, out);
+}
+
+}  // namespace rad

@@ -1,0 +1,30 @@
+#pragma once
+// Per-element results of a radiosity method (a patch or a voxel side) and the files they go to:
+// CSV (one row per element, the columns of docs/ARCHITECTURE.md) and a binary PLY point cloud.
+
+#include <radiosity/scene.h>
+
+#include <span>
+#include <string>
+
+namespace rad {
+
+struct SurfaceSample {
+  uint32_t object = 0;
+  float area = 0.0f;
+  Vec3 position{0.0f};
+  Vec3 normal{0.0f};
+  Color emitted{0.0f};     ///< E = pi Ke, radiosity emitted
+  Color rho{0.0f};
+  Color irradiance{0.0f};  ///< H
+  Color radiosity{0.0f};   ///< B = E + rho H
+};
+
+/// Writes `id,object,area,cx,cy,cz,nx,ny,nz,E_r,...,B_b` rows; object names from `scene`.
+void writeSurfaceSamplesCsv(const std::string& path, const Scene& scene,
+                            std::span<const SurfaceSample> samples);
+/// Writes a binary little-endian PLY: x y z nx ny nz (float), red green blue (uchar: the sRGB
+/// tone-mapped radiance B / pi), radiosity_r/g/b (float).
+void writeSurfaceSamplesPly(const std::string& path, std::span<const SurfaceSample> samples);
+
+}  // namespace rad

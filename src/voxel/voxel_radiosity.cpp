@@ -1,0 +1,133 @@
+// The public face of the voxel method: voxelize, solve, then answer radiance queries.
+#include <radiosity/error.h>
+#include <radiosity/voxel_radiosity.h>
+
+#include "output/surface_samples.h"
+#include "voxel/voxel_irradiance_field.h"
+#include "voxel/voxel_solver.h"
+#include "voxel/voxelizer.h"
+
+#include <fmt/format.h>
+#include <glm/gtc/constants.hpp>
+
+#include <chrono>
+
+namespace rad {
+
+struct VoxelRadiosity::Impl {
+  const Scene* scene;
+  VoxelGrid grid;
+  VoxelSolution solution;
+  VoxelRadiosityStats stats;
+
+  VoxelIrradianceField field() const { return VoxelIrradianceField(grid, solution.irradiance); }
+  std::vector<SurfaceSample> samples() const;
+};
+
+namespace {
+
+void validate(const VoxelRadiositySettings& s) {
+  auto fail = [](const std::string& what) { throw InputError("voxel settings", what); };
+  if (!(s.voxelSize >= 0.0f) || !std::isfinite(s.voxelSize))
+    fail(fmt::format("voxel size {} must be positive", s.voxelSize));
+  if (s.voxelSize == 0.0f && s.targetVoxels < 1) fail("voxel count must be at least 1");
+  if (s.sphereRadius < 1 || s.sphereRadius > 200)
+    fail(fmt::format("sphere radius {} out of range [1, 200]", s.sphereRadius));
+  if (s.iterations < 1) fail(fmt::format("iterations {} must be at least 1", s.iterations));
+  if (s.tolerance < 0.0) fail(fmt::format("tolerance {} must not be negative", s.tolerance));
+  if (s.directSamples < 1) fail(fmt::format("direct samples {} must be at least 1", s.directSamples));
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings& settings,
+                               const ProgressCallback& progress)
+    : impl_(std::make_unique<Impl>()) {
+  validate(settings);
+  impl_->scene = &scene;
+  const auto start = std::chrono::steady_clock::now();
+  impl_->grid = voxelizeScene(scene, {settings.voxelSize, settings.targetVoxels});
+  impl_->stats.voxelizeSeconds = secondsSince(start);
+
+  VoxelSolverSettings solver;
+  solver.sphereRadius = settings.sphereRadius;
+  solver.iterations = settings.iterations;
+  solver.tolerance = settings.tolerance;
+  solver.directFirstShot = settings.directFirstShot;
+  solver.directSamples = settings.directSamples;
+  solver.normalize = settings.normalize;
+  solver.sweep.tangentCorrection = settings.tangentCorrection;
+  solver.seed = settings.seed;
+  impl_->solution = solveVoxelRadiosity(scene, impl_->grid, solver, progress);
+
+  VoxelRadiosityStats& s = impl_->stats;
+  const VoxelSolution& solution = impl_->solution;
+  s.voxels = impl_->grid.cellCount();
+  s.sides = impl_->grid.entryCount();
+  s.directions = solution.directions;
+  s.voxelSize = impl_->grid.voxelSize;
+  s.visits = solution.cellVisits;
+  s.shadowRays = solution.shadowRays;
+  s.residuals = solution.residuals;
+  s.directSeconds = solution.directSeconds;
+  s.sweepSeconds = solution.sweepSeconds;
+  s.memoryBytes = impl_->grid.memoryBytes() + solution.workingBytes;
+}
+
+VoxelRadiosity::~VoxelRadiosity() = default;
+VoxelRadiosity::VoxelRadiosity(VoxelRadiosity&&) noexcept = default;
+VoxelRadiosity& VoxelRadiosity::operator=(VoxelRadiosity&&) noexcept = default;
+
+Color VoxelRadiosity::radiance(const SurfaceHit& hit) const {
+  const Material& m = impl_->scene->materialOf(hit.triangle);
+  if (!hit.frontFace && !m.twoSided) return Color(0.0f);
+  const Vec3 n = hit.frontFace ? hit.normal : -hit.normal;
+  // The hit's own material, not the voxel's blend: colour edges and emitters stay sharp.
+  return m.emission + m.rho * impl_->field().at(hit.point, n) / glm::pi<float>();
+}
+
+std::vector<ObjectRadiometry> VoxelRadiosity::objectRadiometry() const {
+  const Scene& scene = *impl_->scene;
+  std::vector<ObjectRadiometry> objects(scene.objects.size());
+  std::vector<Vec3d> h(objects.size(), Vec3d(0.0)), b(objects.size(), Vec3d(0.0));
+  const VoxelGrid& grid = impl_->grid;
+  for (size_t e = 0; e < grid.entryCount(); ++e) {
+    const uint32_t o = grid.object[e];
+    objects[o].area += grid.area[e];
+    h[o] += double(grid.area[e]) * Vec3d(impl_->solution.irradiance[e]);
+    b[o] += double(grid.area[e]) * Vec3d(impl_->solution.radiosity[e]);
+  }
+  for (size_t o = 0; o < objects.size(); ++o) {
+    objects[o].name = scene.objects[o].name;
+    if (objects[o].area <= 0.0) continue;
+    objects[o].meanIrradiance = Color(h[o] / objects[o].area);
+    objects[o].meanRadiosity = Color(b[o] / objects[o].area);
+  }
+  return objects;
+}
+
+const VoxelRadiosityStats& VoxelRadiosity::stats() const { return impl_->stats; }
+
+std::vector<SurfaceSample> VoxelRadiosity::Impl::samples() const {
+  std::vector<SurfaceSample> out(grid.entryCount());
+  for (size_t e = 0; e < out.size(); ++e) {
+    const VoxelMaterial& m = grid.materials[grid.material[e]];
+    out[e] = {grid.object[e], grid.area[e], grid.centroid[e], grid.normal[e],
+              glm::pi<float>() * m.emission, m.rho, solution.irradiance[e], solution.radiosity[e]};
+  }
+  return out;
+}
+
+void VoxelRadiosity::exportCsv(const std::string& path) const {
+  writeSurfaceSamplesCsv(path, *impl_->scene, impl_->samples());
+}
+
+void VoxelRadiosity::exportPly(const std::string& path) const {
+  writeSurfaceSamplesPly(path, impl_->samples());
+}
+
+}  // namespace rad
