@@ -13,14 +13,15 @@
 //
 // What a voxel side sees along its line: the light travelling along the pass direction s reaches
 // side e from the first voxel behind it whose surface the backward ray from e's centroid really
-// meets. Each line keeps its last few voxels; a voxel is looked through when the ray only grazes
-// its surface (it runs in the surface's plane, or the plane is crossed outside that voxel), is
-// met by a side facing e (the source) or by a back (blocked). This is the paper's tangent
-// correction made exact per side: the voxels of a floor do not hide each other from a wall at a
+// meets (side_visibility.h). Each line keeps its last few voxels, with the plane and radiosity of
+// single-sided ones inline so that the common case touches one line record and nothing else. A
+// voxel is looked through when the ray only grazes its surface: this is the paper's tangent
+// correction made exact per side; the voxels of a floor do not hide each other from a wall at a
 // grazing angle, and the sides of a thin wall never see through it. Runs of voxels along the
 // same planes are kept as one, so long grazing runs cost one slot.
 
 #include "voxel/direction_set.h"
+#include "voxel/side_visibility.h"
 #include "voxel/voxel_grid.h"
 
 #include <glm/vec4.hpp>
@@ -38,52 +39,73 @@ class DiscreteLineSweep {
  public:
   DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings& settings);
 
+  /// A voxel behind on the line, 16 bytes: a single side inline (its plane n.x = d with n in
+  /// snorm16, its radiosity in half floats), or, with a zero normal, a cell of several sides
+  /// whose index is stored in `offset`'s bits and which is looked up in the grid.
+  struct Slot {
+    int16_t normal[3];
+    uint16_t radiosity[3];
+    float offset;
+  };
+  /// What the sweeps read of each side, prepared once per iteration (B changes between).
+  struct Source {
+    std::span<const Color> radiosity;  ///< B per entry
+    std::span<const Slot> slots;       ///< per entry: its plane and B packed (packSides)
+  };
+  /// Packs every entry's plane and radiosity into its line-history form.
+  static void packSides(const VoxelGrid& grid, std::span<const Color> radiosity,
+                        std::span<Slot> slots);
+
   /// Sweeps the direction and its opposite. For each entry e facing back along a pass direction s
   /// (cos = -n_e . s > 0): gathered[e].w += cos * w and gathered[e].rgb += B(source) * cos * w,
   /// w = solidAngle / pi, where the source is the entry of the preceding voxel on e's line that
-  /// faces e. `radiosity` is B per entry.
-  void sweepPair(const DiscreteDirection& direction, std::span<const Color> radiosity,
+  /// faces e.
+  void sweepPair(const DiscreteDirection& direction, const Source& source,
                  std::span<glm::vec4> gathered);
 
   /// The naive line of every cell for a direction (for tests): lines[cell].
   std::vector<uint32_t> lineOfEachCell(const IVec3& step);
   /// Cells in the order a pass along `step` visits them (for tests).
-  std::vector<uint32_t> passOrder(const IVec3& step) const;
+  std::vector<uint32_t> passOrder(const IVec3& step);
   size_t lineTableSize() const { return lines_.size(); }
+  size_t lineTableBytes() const { return lines_.capacity() * sizeof(LineState); }
 
  private:
-  static constexpr int kHistory = 5;
-  /// The line's last voxels (runs along one plane collapsed), most recent first.
-  struct LineState {
+  static constexpr int kHistory = 3;
+  /// One cache line per line: the last voxels (runs along the same planes collapsed), most
+  /// recent first, so that a visit touches this record and the visited cell's own data only.
+  struct alignas(64) LineState {
     uint32_t stamp = 0;
     uint32_t count = 0;
     int32_t lastDominant = 0;
-    uint32_t cells[kHistory] = {};
+    uint32_t unused = 0;
+    Slot slots[kHistory];
   };
-  enum class Sight { Through, Source, Blocked };
+  static_assert(sizeof(LineState) == 64);
+
   void prepareLines(const IVec3& step);
-  void pass(const IVec3& step, const Vec3& unit, float weight, std::span<const Color> radiosity,
+  template <bool kTangentCorrection>
+  void pass(const IVec3& step, const Vec3& unit, float weight, const Source& source,
             std::span<glm::vec4> gathered);
-  void visitCell(uint32_t cell, uint32_t line, int32_t dominant, const Vec3& unit, float weight,
-                 std::span<const Color> radiosity, std::span<glm::vec4> gathered);
-  /// How the backward ray from entry e (along -unit) meets cell q; `source` gets the entry of q
-  /// it sees when the answer is Source.
-  Sight look(uint32_t e, uint32_t q, const Vec3& unit, uint32_t& source) const;
-  /// False when a ray from `origin` meeting f's plane at `point` misses f's polygon at a
-  /// concave fold with another side of cell q (or has to pass through that side first).
-  bool insideFold(uint32_t f, uint32_t q, const Vec3& point, const Vec3& origin) const;
-  /// The side of e's own cell that e sees along -unit, if any (faces of an inner edge).
-  bool lookWithinCell(uint32_t e, uint32_t cell, const Vec3& unit, uint32_t& source) const;
-  /// True when cell p holds the same planes as cell q (a floor, or the two faces of an edge):
-  /// consecutive such cells on a line are one run.
-  bool continuesPlanes(uint32_t p, uint32_t q) const;
-  void remember(LineState& state, uint32_t cell, int32_t dominant) const;
+  template <bool kTangentCorrection>
+  void visitCell(uint32_t cell, LineState& state, int32_t dominant, const Vec3& unit, float weight,
+                 const Source& source, std::span<glm::vec4> gathered);
+  /// What entry e sees in slot s; `light` gets the source's radiosity when it is Source.
+  Sight look(uint32_t e, const Slot& s, const Vec3& unit, const Source& source,
+             Color& light) const;
+  template <bool kTangentCorrection>
+  void remember(LineState& state, uint32_t cell, int32_t dominant, const Source& source) const;
+  /// Calls f(cell, line, dominant) for every cell in the order of a pass along `step`.
+  template <typename F>
+  void forEachCellInPassOrder(const IVec3& step, F&& f) const;
 
   const VoxelGrid& grid_;
   SweepSettings settings_;
+  SideVisibility visibility_;
   std::vector<int32_t> lineTable_[3];      ///< per axis: contribution to the flat line index
   std::vector<int32_t> dominantTable_[3];  ///< per axis: contribution to the signed dominant coordinate
   std::vector<LineState> lines_;
+  std::vector<int64_t> scratchU_[3], scratchV_[3];  ///< per-direction tables, reused
   uint32_t stamp_ = 0;
 };
 

@@ -42,8 +42,8 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
 // One Jacobi step: every slot sweeps its share of the direction pairs (pair k goes to slot
 // k mod slots, so the sums do not depend on scheduling), then the slots are added in order.
 void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLineSweep>& sweeps,
-                         std::vector<std::vector<glm::vec4>>& slots, const std::vector<Color>& source,
-                         ProgressTicker& ticker) {
+                         std::vector<std::vector<glm::vec4>>& slots,
+                         const DiscreteLineSweep::Source& source, ProgressTicker& ticker) {
   const size_t slotCount = slots.size();
   tbb::parallel_for(size_t(0), slotCount, size_t(1), [&](size_t slot) {
     std::fill(slots[slot].begin(), slots[slot].end(), glm::vec4(0.0f));
@@ -116,11 +116,13 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     radiosity[e] = emitted[e] + rho[e] * direct[e];
     source[e] = settings.directFirstShot ? rho[e] * direct[e] : emitted[e];
   }
+  std::vector<DiscreteLineSweep::Slot> packed(n);
   ProgressTicker ticker(progress, directions.pairCount() * size_t(std::max(settings.iterations, 1)));
   const auto start = std::chrono::steady_clock::now();
   for (int iteration = 0; iteration < settings.iterations; ++iteration) {
     blendSharedOrientations(grid, source);
-    gatherAllDirections(directions, sweeps, slots, source, ticker);
+    DiscreteLineSweep::packSides(grid, source, packed);
+    gatherAllDirections(directions, sweeps, slots, {source, packed}, ticker);
     const std::vector<glm::vec4>& gathered = slots[0];
     std::vector<Color> next(n);
     for (size_t e = 0; e < n; ++e) {
@@ -137,8 +139,9 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   solution.sweepSeconds = secondsSince(start);
   solution.radiosity = std::move(radiosity);
   solution.irradiance = std::move(irradiance);
-  solution.workingBytes = slotCount * n * sizeof(glm::vec4) + 4 * n * sizeof(Color);
-  for (const DiscreteLineSweep& s : sweeps) solution.workingBytes += s.lineTableSize() * 20;
+  solution.workingBytes = slotCount * n * sizeof(glm::vec4) + 4 * n * sizeof(Color) +
+                          n * sizeof(DiscreteLineSweep::Slot);
+  for (const DiscreteLineSweep& s : sweeps) solution.workingBytes += s.lineTableBytes();
   return solution;
 }
 

@@ -1,0 +1,88 @@
+#include "voxel/side_visibility.h"
+
+#include <cmath>
+#include <limits>
+
+namespace rad {
+
+namespace {
+
+// Points closer than this many voxels to a plane lie in it.
+constexpr float kPlaneTolerance = 0.05f;
+
+}  // namespace
+
+SideVisibility::SideVisibility(const VoxelGrid& grid)
+    : grid_(grid), tolerance_(kPlaneTolerance * grid.voxelSize) {}
+
+Sight SideVisibility::look(uint32_t e, uint32_t q, const Vec3& unit,
+                                                 uint32_t& source) const {
+  const float tolerance = tolerance_;
+  const Vec3 ce = grid_.centroid[e];
+  Sight sight = Sight::Through;
+  float nearest = std::numeric_limits<float>::max();
+  for (uint32_t f = grid_.cellEntryBegin[q]; f < grid_.cellEntryBegin[q + 1]; ++f) {
+    const Vec3 nf = grid_.normal[f];
+    const float height = glm::dot(nf, ce - grid_.centroid[f]);
+    const float approach = glm::dot(nf, unit);
+    if (std::abs(height) <= tolerance || height * approach <= 0.0f) continue;
+    const float t = height / approach;
+    if (t >= nearest || !insideFold(f, q, ce - t * unit, ce)) continue;
+    nearest = t;
+    sight = height > 0.0f ? Sight::Source : Sight::Blocked;
+    source = f;
+  }
+  return sight;
+}
+
+bool SideVisibility::insideFold(uint32_t f, uint32_t q, const Vec3& point,
+                                   const Vec3& origin) const {
+  // Where f meets another side g of the cell in a concave fold (g stands in front of f), f's
+  // polygon ends at g's plane: a crossing of f's plane behind g is past the edge of f.
+  // The fold's own edge is sharp: a side lying in g's plane is not in front of it.
+  const float tolerance = tolerance_, edge = 1e-3f * grid_.voxelSize;
+  for (uint32_t g = grid_.cellEntryBegin[q]; g < grid_.cellEntryBegin[q + 1]; ++g) {
+    if (g == f || glm::dot(grid_.normal[f], grid_.centroid[g] - grid_.centroid[f]) <= tolerance) continue;
+    // The crossing must lie in front of g, and so must the ray's origin: a ray from behind g
+    // reaches f's front only through g.
+    if (glm::dot(grid_.normal[g], point - grid_.centroid[g]) < -edge ||
+        glm::dot(grid_.normal[g], origin - grid_.centroid[g]) < -edge)
+      return false;
+  }
+  return true;
+}
+
+bool SideVisibility::lookWithinCell(uint32_t e, uint32_t cell, const Vec3& unit,
+                                       uint32_t& source) const {
+  // Only sides of a concave fold (each in front of the other) see each other; the outer sides
+  // of a convex corner, or a wall's two sides, never do.
+  const float tolerance = tolerance_;
+  float best = 0.0f;
+  for (uint32_t f = grid_.cellEntryBegin[cell]; f < grid_.cellEntryBegin[cell + 1]; ++f) {
+    const Vec3 gap = grid_.centroid[e] - grid_.centroid[f];
+    const float approach = glm::dot(grid_.normal[f], unit);
+    if (f == e || glm::dot(grid_.normal[f], gap) <= tolerance ||
+        -glm::dot(grid_.normal[e], gap) <= tolerance || approach <= best)
+      continue;
+    best = approach;
+    source = f;
+  }
+  return best > 0.0f;
+}
+
+bool SideVisibility::continuesPlanes(uint32_t p, uint32_t q) const {
+  const uint32_t pBegin = grid_.cellEntryBegin[p], pEnd = grid_.cellEntryBegin[p + 1];
+  const uint32_t qBegin = grid_.cellEntryBegin[q], qEnd = grid_.cellEntryBegin[q + 1];
+  if (pEnd - pBegin != qEnd - qBegin) return false;
+  const float tolerance = tolerance_;
+  for (uint32_t a = pBegin; a < pEnd; ++a) {
+    bool matched = false;
+    for (uint32_t b = qBegin; b < qEnd && !matched; ++b)
+      matched = glm::dot(grid_.normal[a], grid_.normal[b]) > kSamePlaneCos &&
+                std::abs(glm::dot(grid_.normal[b], grid_.centroid[a] - grid_.centroid[b])) <= tolerance;
+    if (!matched) return false;
+  }
+  return true;
+}
+
+}  // namespace rad

@@ -1,0 +1,43 @@
+#pragma once
+// What a voxel side sees of another voxel along a discrete line: the geometric tests behind the
+// voxel sweep's visibility, for cells that hold several sides (edges, corners, thin walls).
+//
+// The voxels know planes (a side's normal and centroid), not polygons. The backward ray from a
+// side's centroid meets the plane of side f at t = height / approach when the signs agree; a
+// ray in the plane or leaving it grazes f and passes. The nearest plane met decides: its front
+// is the source of light, its back blocks. Where two sides of a cell form a concave fold (each
+// in front of the other, like a room's inner edge), each side's polygon ends at the other's
+// plane, which keeps light from turning around the outside of a convex edge.
+
+#include "voxel/voxel_grid.h"
+
+namespace rad {
+
+enum class Sight { Through, Source, Blocked };
+
+class SideVisibility {
+ public:
+  explicit SideVisibility(const VoxelGrid& grid);
+
+  /// How the backward ray from entry e (along -unit) meets the sides of `cell`; `source` gets
+  /// the side it sees when the answer is Source.
+  Sight look(uint32_t e, uint32_t cell, const Vec3& unit, uint32_t& source) const;
+  /// The side of e's own cell that e sees along -unit, if any (the faces of an inner edge).
+  bool lookWithinCell(uint32_t e, uint32_t cell, const Vec3& unit, uint32_t& source) const;
+  /// True when cell p holds the same planes as cell q (a floor, or the two faces of an edge):
+  /// consecutive such cells on a line are one run.
+  bool continuesPlanes(uint32_t p, uint32_t q) const;
+  /// Distance under which a point lies in a plane: a grazing line runs inside it.
+  float planeTolerance() const { return tolerance_; }
+
+ private:
+  bool insideFold(uint32_t f, uint32_t cell, const Vec3& point, const Vec3& origin) const;
+
+  const VoxelGrid& grid_;
+  float tolerance_;
+};
+
+/// Normals within about 8 degrees belong to one plane.
+inline constexpr float kSamePlaneCos = 0.99f;
+
+}  // namespace rad
