@@ -1,9 +1,8 @@
-// `radiosity bench [pathtrace|all] [--json]`: throughput numbers that notes and reports quote.
+// `radiosity bench [pathtrace|voxel|voxel-scaling|all] [--json]`: throughput numbers that notes and reports quote.
 // Fixed workloads on built-in scenes, so numbers from different machines compare.
 #include "commands.h"
 
-#include <radiosity/path_tracer.h>
-#include <radiosity/scene_loader.h>
+#include "bench_workloads.h"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -19,43 +18,26 @@ namespace {
 struct BenchOptions {
   std::string which = "all";
   bool json = false;
+  size_t voxels = 100000;
+  int sphereRadius = 38;
+  int scalingRadius = 8;
+  size_t scalingMaxVoxels = 4000000;
+  std::string output = "bench_out";
 };
-
-// The reference path tracer on the Cornell box: 128x128 pixels, 32 samples per pixel.
-nlohmann::json benchPathTracer(Console& console) {
-  const Scene scene = loadScene("cornell");
-  Camera camera = scene.cameraOrDefault();
-  camera.width = camera.height = 128;
-  PathTracerSettings settings;
-  settings.samplesPerPixel = 32;
-  const PathTracedImage result =
-      renderPathTraced(scene, camera, settings, console.progress("bench pathtrace"));
-  console.finishProgress();
-  const PathTracerStats& s = result.stats;
-  return {{"scene", "cornell"},
-          {"width", camera.width},
-          {"height", camera.height},
-          {"spp", settings.samplesPerPixel},
-          {"seconds", s.seconds},
-          {"rays", s.rays},
-          {"rays_per_s", double(s.rays) / s.seconds},
-          {"paths_per_s", double(s.paths) / s.seconds}};
-}
 
 int runBench(const BenchOptions& o, Console& console) {
   nlohmann::json results;
-  if (o.which == "pathtrace" || o.which == "all") results["pathtrace"] = benchPathTracer(console);
+  const bool all = o.which == "all";
+  if (all || o.which == "pathtrace") results["pathtrace"] = benchPathTracer(console);
+  if (all || o.which == "voxel") results["voxel"] = benchVoxel(console, o.voxels, o.sphereRadius);
+  if (o.which == "voxel-scaling")
+    results["voxel-scaling"] = benchVoxelScaling(console, o.scalingRadius, o.scalingMaxVoxels, o.output);
   if (o.json) {
     console.out() << results.dump(2) << "\n";
     return 0;
   }
   for (const auto& [name, r] : results.items())
-    console.out() << fmt::format("{:<10} {:>8.2f} Mrays/s  {:>8.2f} Mpaths/s  ({} {}x{} at {} spp, "
-                                 "{:.2f} s)\n",
-                                 name, r["rays_per_s"].get<double>() * 1e-6,
-                                 r["paths_per_s"].get<double>() * 1e-6, r["scene"].get<std::string>(),
-                                 r["width"].get<int>(), r["height"].get<int>(), r["spp"].get<int>(),
-                                 r["seconds"].get<double>());
+    console.out() << fmt::format("{:<14} {}\n", name, r["summary"].get<std::string>());
   return 0;
 }
 
@@ -64,7 +46,18 @@ int runBench(const BenchOptions& o, Console& console) {
 void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* sub = app.add_subcommand("bench", "Measure throughput on fixed workloads");
-  sub->add_option("which", o->which, "What to measure")->check(CLI::IsMember({"pathtrace", "all"}));
+  sub->add_option("which", o->which,
+                  "What to measure: pathtrace, voxel, all (both), voxel-scaling (minutes)")
+      ->check(CLI::IsMember({"pathtrace", "voxel", "voxel-scaling", "all"}));
+  sub->add_option("--voxels", o->voxels, "voxel: surface voxels of the room (default 100000)")
+      ->check(CLI::Range(size_t(1000), size_t(1) << 30));
+  sub->add_option("--sphere-radius", o->sphereRadius, "voxel: sphere radius R (default 38)")
+      ->check(CLI::Range(1, 200));
+  sub->add_option("--scaling-radius", o->scalingRadius, "voxel-scaling: sphere radius (default 8)")
+      ->check(CLI::Range(1, 200));
+  sub->add_option("--scaling-max-voxels", o->scalingMaxVoxels,
+                  "voxel-scaling: largest voxel count (default 4000000)");
+  sub->add_option("--output-dir", o->output, "voxel-scaling: where the table and plot go");
   sub->add_flag("--json", o->json, "Print the results as JSON");
   sub->callback([o, &console, &action] { action = [o, &console] { return runBench(*o, console); }; });
 }

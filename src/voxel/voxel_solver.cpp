@@ -45,14 +45,20 @@ void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLin
                          std::vector<std::vector<glm::vec4>>& slots,
                          const DiscreteLineSweep::Source& source, ProgressTicker& ticker) {
   const size_t slotCount = slots.size();
-  tbb::parallel_for(size_t(0), slotCount, size_t(1), [&](size_t slot) {
-    std::fill(slots[slot].begin(), slots[slot].end(), glm::vec4(0.0f));
-    for (size_t k = slot; k < directions.pairCount(); k += slotCount) {
-      if (ticker.cancelled()) return;
-      sweeps[slot].sweepPair(directions.pairFirst(k), source, slots[slot]);
-      ticker.tick();
-    }
-  });
+  // One task per slot: the simple partitioner splits down to single slots.
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, slotCount, 1),
+      [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t slot = range.begin(); slot != range.end(); ++slot) {
+          std::fill(slots[slot].begin(), slots[slot].end(), glm::vec4(0.0f));
+          for (size_t k = slot; k < directions.pairCount(); k += slotCount) {
+            if (ticker.cancelled()) return;
+            sweeps[slot].sweepPair(directions.pairFirst(k), source, slots[slot]);
+            ticker.tick();
+          }
+        }
+      },
+      tbb::simple_partitioner());
   ticker.throwIfCancelled();
   for (size_t slot = 1; slot < slotCount; ++slot)
     for (size_t e = 0; e < slots[0].size(); ++e) slots[0][e] += slots[slot][e];

@@ -1,0 +1,136 @@
+#include "bench_workloads.h"
+
+#include <radiosity/scene_loader.h>
+#include <radiosity/voxel_radiosity.h>
+
+#include "core/atomic_file.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace rad::cli {
+
+namespace {
+
+// The paper's run: 2 million voxels, R = 38 (14,790 directions), 6 iterations, 27 hours on a
+// 900 MHz Athlon (Chatelier and Malgouyres 2006).
+constexpr double kPaperVisits = 2e6 * 14790.0 * 6.0;
+constexpr double kPaperSeconds = 27.0 * 3600.0;
+// The room the benchmarks sweep: furnished, closed, lit by a ceiling panel.
+constexpr const char* kScene = "room:16";
+
+struct SweepMeasurement {
+  size_t voxels = 0, sides = 0, directions = 0;
+  double secondsPerIteration = 0.0, visitsPerSecond = 0.0, bytesPerSide = 0.0;
+};
+
+// One sweep iteration (no first shot, so the time is the sweep's alone).
+SweepMeasurement measureSweep(const Scene& scene, size_t voxels, int sphereRadius, Console& console) {
+  VoxelRadiositySettings settings;
+  settings.targetVoxels = voxels;
+  settings.sphereRadius = sphereRadius;
+  settings.iterations = 1;
+  settings.directFirstShot = false;
+  const VoxelRadiosity solution(scene, settings, console.progress(fmt::format("sweep {} voxels", voxels)));
+  console.finishProgress();
+  const VoxelRadiosityStats& s = solution.stats();
+  return {s.voxels, s.sides, s.directions, s.sweepSeconds, double(s.visits) / s.sweepSeconds,
+          double(s.memoryBytes) / double(s.sides)};
+}
+
+std::string svgPlot(const std::vector<SweepMeasurement>& points, double slope) {
+  // Log-log axes over the measured range, a polyline and a dot per measurement.
+  double x0 = 1e300, x1 = 0, y0 = 1e300, y1 = 0;
+  for (const auto& p : points) {
+    x0 = std::min(x0, std::log10(double(p.voxels))), x1 = std::max(x1, std::log10(double(p.voxels)));
+    y0 = std::min(y0, std::log10(p.secondsPerIteration)), y1 = std::max(y1, std::log10(p.secondsPerIteration));
+  }
+  const double w = 640, h = 420, m = 60;
+  auto px = [&](double v) { return m + (std::log10(v) - x0) / std::max(x1 - x0, 1e-9) * (w - 2 * m); };
+  auto py = [&](double v) { return h - m - (std::log10(v) - y0) / std::max(y1 - y0, 1e-9) * (h - 2 * m); };
+  std::string svg = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" "
+      "font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      "<text x=\"{}\" y=\"24\">Voxel sweep: seconds per iteration against voxels (log-log), slope {:.3f}</text>\n"
+      "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n"
+      "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n",
+      w, h, m, slope, m, h - m, w - m, h - m, m, m, m, h - m);
+  std::string line;
+  for (const auto& p : points) {
+    line += fmt::format("{:.1f},{:.1f} ", px(double(p.voxels)), py(p.secondsPerIteration));
+    svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"#c33\"/>\n"
+                       "<text x=\"{:.1f}\" y=\"{:.1f}\">{:.3g} s</text>\n"
+                       "<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{:.2g}</text>\n",
+                       px(double(p.voxels)), py(p.secondsPerIteration), px(double(p.voxels)) + 6,
+                       py(p.secondsPerIteration) - 6, p.secondsPerIteration, px(double(p.voxels)),
+                       h - m + 18, double(p.voxels));
+  }
+  svg += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"#c33\"/>\n", line);
+  svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">voxels</text>\n</svg>\n", w / 2, h - 12);
+  return svg;
+}
+
+}  // namespace
+
+nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius) {
+  const Scene scene = loadScene(kScene);
+  const SweepMeasurement m = measureSweep(scene, voxels, sphereRadius, console);
+  const double paperSeconds = kPaperVisits / m.visitsPerSecond;
+  return {{"scene", kScene},
+          {"voxels", m.voxels},
+          {"sides", m.sides},
+          {"directions", m.directions},
+          {"seconds_per_iteration", m.secondsPerIteration},
+          {"visits_per_s", m.visitsPerSecond},
+          {"bytes_per_side", m.bytesPerSide},
+          {"paper_workload_s", paperSeconds},
+          {"speedup_over_paper", kPaperSeconds / paperSeconds},
+          {"summary",
+           fmt::format("{:.1f} M visits/s ({} {} voxels, {} directions, {:.2f} s/iteration, {:.0f} B/side); "
+                       "paper workload (2e6 voxels, R 38, 6 it.) extrapolated: {:.0f} s = {:.0f}x the paper",
+                       m.visitsPerSecond * 1e-6, kScene, m.voxels, m.directions, m.secondsPerIteration,
+                       m.bytesPerSide, paperSeconds, kPaperSeconds / paperSeconds)}};
+}
+
+nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxVoxels,
+                                 const std::string& outputDirectory) {
+  const Scene scene = loadScene(kScene);
+  std::vector<SweepMeasurement> points;
+  for (size_t n : {100000, 200000, 500000, 1000000, 2000000, 4000000})
+    if (n <= maxVoxels) points.push_back(measureSweep(scene, n, sphereRadius, console));
+  // Least-squares slope of log(time) against log(voxels).
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const auto& p : points) {
+    const double x = std::log(double(p.voxels)), y = std::log(p.secondsPerIteration);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  const double k = double(points.size());
+  const double slope = points.size() > 1 ? (k * sxy - sx * sy) / (k * sxx - sx * sx) : 0.0;
+
+  std::string csv = "voxels,sides,directions,seconds_per_iteration,visits_per_s,bytes_per_side\n";
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& p : points) {
+    csv += fmt::format("{},{},{},{:.4f},{:.0f},{:.1f}\n", p.voxels, p.sides, p.directions,
+                       p.secondsPerIteration, p.visitsPerSecond, p.bytesPerSide);
+    rows.push_back({{"voxels", p.voxels}, {"seconds_per_iteration", p.secondsPerIteration},
+                    {"visits_per_s", p.visitsPerSecond}, {"bytes_per_side", p.bytesPerSide}});
+  }
+  std::filesystem::create_directories(outputDirectory);
+  const std::string table = (std::filesystem::path(outputDirectory) / "voxel_scaling.csv").string();
+  const std::string plot = (std::filesystem::path(outputDirectory) / "voxel_scaling.svg").string();
+  writeTextAtomically(table, csv);
+  writeTextAtomically(plot, svgPlot(points, slope));
+  return {{"scene", kScene},
+          {"sphere_radius", sphereRadius},
+          {"points", rows},
+          {"loglog_slope", slope},
+          {"table", table},
+          {"plot", plot},
+          {"summary", fmt::format("log-log slope {:.3f} over {} sizes ({} to {} voxels, R {}); table {}, plot {}",
+                                  slope, points.size(), points.front().voxels, points.back().voxels,
+                                  sphereRadius, table, plot)}};
+}
+
+}  // namespace rad::cli

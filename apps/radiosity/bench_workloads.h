@@ -1,0 +1,25 @@
+#pragma once
+// The fixed workloads of `radiosity bench`. Each returns its numbers as JSON, with a one-line
+// "summary" for the text output.
+
+#include "console.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace rad::cli {
+
+/// The reference path tracer on the Cornell box: rays per second.
+nlohmann::json benchPathTracer(Console& console);
+
+/// The voxel sweep on a furnished room: voxel-direction visits per second, bytes per voxel, and
+/// the paper's workload (2e6 voxels, R = 38, 6 iterations) extrapolated from the rate.
+nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius);
+
+/// Time per sweep iteration against the voxel count (1e5 .. 4e6), its log-log slope, and a
+/// table (CSV) and plot (SVG) of it written to `outputDirectory`.
+nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxVoxels,
+                                 const std::string& outputDirectory);
+
+}  // namespace rad::cli
