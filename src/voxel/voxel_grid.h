@@ -45,7 +45,6 @@ struct VoxelGrid {
   /// True when the entry has the orientation of the entry before it in the same cell: the
   /// pieces of several objects in one plane (a lamp in a ceiling), which light sees as one.
   std::vector<uint8_t> sharesOrientation;
-  std::vector<uint32_t> entryCell;
   std::vector<VoxelMaterial> materials;
 
   size_t cellCount() const { return cellZ.size(); }

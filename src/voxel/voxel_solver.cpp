@@ -81,16 +81,6 @@ void blendSharedOrientations(const VoxelGrid& grid, std::vector<Color>& source) 
   }
 }
 
-double relativeChange(const VoxelGrid& grid, const std::vector<Color>& before,
-                      const std::vector<Color>& after) {
-  double change = 0.0, total = 0.0;
-  for (size_t e = 0; e < after.size(); ++e) {
-    change += grid.area[e] * std::abs(luminance(after[e]) - luminance(before[e]));
-    total += grid.area[e] * std::abs(luminance(after[e]));
-  }
-  return total > 0.0 ? change / total : 0.0;
-}
-
 }  // namespace
 
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
@@ -98,16 +88,15 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const ProgressCallback& progress) {
   VoxelSolution solution;
   const size_t n = grid.entryCount();
-  std::vector<Color> emitted(n), rho(n), direct(n, Color(0.0f));
-  for (size_t e = 0; e < n; ++e) {
-    emitted[e] = glm::pi<float>() * grid.materials[grid.material[e]].emission;
-    rho[e] = grid.materials[grid.material[e]].rho;
-  }
+  auto emitted = [&](size_t e) { return glm::pi<float>() * grid.materials[grid.material[e]].emission; };
+  auto rho = [&](size_t e) { return grid.materials[grid.material[e]].rho; };
+  std::vector<Color> direct(settings.directFirstShot ? n : 0);
   if (settings.directFirstShot) {
     const auto start = std::chrono::steady_clock::now();
     direct = directIrradiance(scene, grid, settings, solution.shadowRays);
     solution.directSeconds = secondsSince(start);
   }
+  auto directAt = [&](size_t e) { return direct.empty() ? Color(0.0f) : direct[e]; };
 
   const DirectionSet directions(settings.sphereRadius);
   solution.directions = directions.size();
@@ -117,10 +106,11 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
 
   // The sweeps carry what surfaces send: all of B, or only its reflected part when the first
   // shot has already delivered the emitters' light.
-  std::vector<Color> source(n), radiosity(n), irradiance(direct);
+  std::vector<Color> source(n), radiosity(n), irradiance(n);
   for (size_t e = 0; e < n; ++e) {
-    radiosity[e] = emitted[e] + rho[e] * direct[e];
-    source[e] = settings.directFirstShot ? rho[e] * direct[e] : emitted[e];
+    irradiance[e] = directAt(e);
+    radiosity[e] = emitted(e) + rho(e) * irradiance[e];
+    source[e] = settings.directFirstShot ? rho(e) * irradiance[e] : emitted(e);
   }
   std::vector<DiscreteLineSweep::Slot> packed(n);
   ProgressTicker ticker(progress, directions.pairCount() * size_t(std::max(settings.iterations, 1)));
@@ -130,24 +120,27 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     DiscreteLineSweep::packSides(grid, source, packed);
     gatherAllDirections(directions, sweeps, slots, {source, packed}, ticker);
     const std::vector<glm::vec4>& gathered = slots[0];
-    std::vector<Color> next(n);
+    double change = 0.0, total = 0.0;
     for (size_t e = 0; e < n; ++e) {
       const float norm = settings.normalize && gathered[e].w > 0.0f ? gathered[e].w : 1.0f;
-      irradiance[e] = direct[e] + Color(gathered[e]) / norm;
-      next[e] = emitted[e] + rho[e] * irradiance[e];
-      source[e] = settings.directFirstShot ? next[e] - emitted[e] : next[e];
+      irradiance[e] = directAt(e) + Color(gathered[e]) / norm;
+      const Color next = emitted(e) + rho(e) * irradiance[e];
+      change += grid.area[e] * std::abs(luminance(next) - luminance(radiosity[e]));
+      total += grid.area[e] * std::abs(luminance(next));
+      radiosity[e] = next;
+      source[e] = settings.directFirstShot ? next - emitted(e) : next;
     }
-    solution.residuals.push_back(relativeChange(grid, radiosity, next));
-    radiosity = std::move(next);
+    solution.residuals.push_back(total > 0.0 ? change / total : 0.0);
     solution.cellVisits += uint64_t(grid.cellCount()) * directions.size();
     if (settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance) break;
   }
   solution.sweepSeconds = secondsSince(start);
-  solution.radiosity = std::move(radiosity);
-  solution.irradiance = std::move(irradiance);
-  solution.workingBytes = slotCount * n * sizeof(glm::vec4) + 4 * n * sizeof(Color) +
+  solution.workingBytes = slotCount * n * sizeof(glm::vec4) +
+                          (direct.size() + source.size() + 2 * n) * sizeof(Color) +
                           n * sizeof(DiscreteLineSweep::Slot);
   for (const DiscreteLineSweep& s : sweeps) solution.workingBytes += s.lineTableBytes();
+  solution.radiosity = std::move(radiosity);
+  solution.irradiance = std::move(irradiance);
   return solution;
 }
 

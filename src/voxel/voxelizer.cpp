@@ -174,7 +174,6 @@ void appendSide(VoxelGrid& grid, std::map<std::array<float, 6>, uint32_t>& mater
   const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};
   grid.material.push_back(internMaterial(grid, materialIndex, m));
   grid.object.push_back(side.object);
-  grid.entryCell.push_back(uint32_t(grid.cellZ.size() - 1));
 }
 
 // Fills the grid's cells, rows, slabs and entries from fragments sorted by cell.
