@@ -5,6 +5,7 @@
 #include "voxel/voxel_test_scenes.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtx/component_wise.hpp>
 
@@ -106,6 +107,30 @@ TEST(VoxelSolver, LightInsideClosedBoxDoesNotLeak) {
     EXPECT_GT(outside, 1000u);
     EXPECT_GT(insideLight, 0.0);
   }
+}
+
+TEST(VoxelSolver, DeterministicForAThreadCount) {
+  SceneBuilder b("room");
+  const uint32_t wall = b.addMaterial({"wall", Color(0.6f), Color(0.0f), false});
+  const uint32_t lamp = b.addMaterial({"lamp", Color(0.5f), Color(2.0f), false});
+  test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : wall; });
+  const Scene scene = b.build();
+  const VoxelGrid grid = voxelize(scene, 1.0f / 16.0f);
+  VoxelSolverSettings settings;
+  settings.sphereRadius = 6;
+  settings.iterations = 3;
+  settings.directSamples = 4;
+  auto solve = [&](int threads) {
+    tbb::task_arena arena(threads);
+    return arena.execute([&] { return solveVoxelRadiosity(scene, grid, settings).radiosity; });
+  };
+  const std::vector<Color> first = solve(2), second = solve(2);
+  ASSERT_EQ(first.size(), second.size());
+  for (size_t e = 0; e < first.size(); ++e) ASSERT_EQ(first[e], second[e]) << e;
+  // Another thread count sums the directions in another order: equal up to rounding.
+  const std::vector<Color> serial = solve(1);
+  for (size_t e = 0; e < first.size(); ++e)
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(serial[e][c], first[e][c], 1e-4f * (1.0f + first[e][c]));
 }
 
 }  // namespace
