@@ -135,7 +135,7 @@ void DiscreteLineSweep::remember(LineState& state, uint32_t cell, int32_t domina
   }
   bool continues = false;
   if (kTangentCorrection && state.count > 0 && std::abs(dominant - state.lastDominant) == 1) {
-    const Slot& last = state.slots[0];
+    const Slot& last = state.recent(0);
     if (single && !holdsCell(last.normal)) {
       const Vec3 n = slotNormal(last.normal);
       continues = glm::dot(n, grid_.normal[first]) > kSamePlaneCos &&
@@ -146,10 +146,10 @@ void DiscreteLineSweep::remember(LineState& state, uint32_t cell, int32_t domina
     }
   }
   if (!continues) {
-    for (int i = kHistory - 1; i > 0; --i) state.slots[i] = state.slots[i - 1];
+    state.head = (state.head + kHistory - 1) % kHistory;  // the oldest slot becomes the newest
     state.count = std::min<uint32_t>(state.count + 1, kHistory);
   }
-  state.slots[0] = slot;  // a run along the same planes stays one slot: its nearest voxel
+  state.slots[state.head] = slot;  // a run along the same planes stays one slot: its nearest voxel
   state.lastDominant = dominant;
 }
 
@@ -174,7 +174,7 @@ void DiscreteLineSweep::visitCell(uint32_t cell, LineState& state, int32_t domin
     }
     for (uint32_t i = 0; i < depth; ++i) {
       Color light;
-      const Sight sight = look(e, state.slots[i], unit, source, light);
+      const Sight sight = look(e, state.recent(i), unit, source, light);
       if (kTangentCorrection && sight == Sight::Through) continue;
       if (sight == Sight::Source) gathered[e] += glm::vec4(light * w, 0.0f);
       break;

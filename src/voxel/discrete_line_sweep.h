@@ -78,8 +78,9 @@ class DiscreteLineSweep {
     uint32_t stamp = 0;
     uint32_t count = 0;
     int32_t lastDominant = 0;
-    uint32_t unused = 0;
+    uint32_t head = 0;  ///< slots[head] is the most recent, then head + 1, ... (mod kHistory)
     Slot slots[kHistory];
+    const Slot& recent(uint32_t i) const { return slots[(head + i) % kHistory]; }
   };
   static_assert(sizeof(LineState) == 64);
 
