@@ -29,7 +29,7 @@ inline void forEach(uint32_t begin, uint32_t end, bool ascending, F&& f) {
 DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings& settings)
     : grid_(grid), settings_(settings), visibility_(grid) {}
 
-void DiscreteLineSweep::prepareLines(const IVec3& step) {
+void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset) {
   // Axes by decreasing |component|: d[0] dominant. Components a >= b >= c >= 0 after signing.
   std::array<int, 3> d{0, 1, 2};
   std::stable_sort(d.begin(), d.end(), [&](int i, int j) { return std::abs(step[i]) > std::abs(step[j]); });
@@ -44,8 +44,9 @@ void DiscreteLineSweep::prepareLines(const IVec3& step) {
     v.resize(u.size());
     for (size_t t = 0; t < u.size(); ++t) {
       const int64_t m = sign * int64_t(t);  // coordinate in the frame where the direction is positive
-      u[t] = k == 0 ? -ceilDiv(b * m, a) : (k == 1 ? m : 0);
-      v[t] = k == 0 ? -ceilDiv(c * m, a) : (k == 2 ? m : 0);
+      // floor((a y - b x + u) / a) = y - ceil((b x - u) / a), likewise for z.
+      u[t] = k == 0 ? -ceilDiv(b * m - offset.u, a) : (k == 1 ? m : 0);
+      v[t] = k == 0 ? -ceilDiv(c * m - offset.v, a) : (k == 2 ? m : 0);
     }
     const auto [ulo, uhi] = std::minmax_element(u.begin(), u.end());
     const auto [vlo, vhi] = std::minmax_element(v.begin(), v.end());
@@ -231,8 +232,8 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
 }
 
 void DiscreteLineSweep::sweepPair(const DiscreteDirection& direction, const Source& source,
-                                  std::span<glm::vec4> gathered) {
-  prepareLines(direction.step);
+                                  std::span<glm::vec4> gathered, const LineOffset& offset) {
+  prepareLines(direction.step, offset);
   const float weight = float(direction.solidAngle / 3.14159265358979323846);
   const Vec3 unit(direction.unit);
   if (settings_.tangentCorrection) {
@@ -244,8 +245,8 @@ void DiscreteLineSweep::sweepPair(const DiscreteDirection& direction, const Sour
   }
 }
 
-std::vector<uint32_t> DiscreteLineSweep::lineOfEachCell(const IVec3& step) {
-  prepareLines(step);
+std::vector<uint32_t> DiscreteLineSweep::lineOfEachCell(const IVec3& step, const LineOffset& offset) {
+  prepareLines(step, offset);
   std::vector<uint32_t> lines(grid_.cellCount());
   forEachCellInPassOrder(step, [&](uint32_t cell, uint32_t line, int32_t) { lines[cell] = line; });
   return lines;

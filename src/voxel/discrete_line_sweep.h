@@ -35,6 +35,13 @@ struct SweepSettings {
   bool tangentCorrection = true;
 };
 
+/// Shifts a direction's lines: voxel (x, y, z) of the naive line (floor((a y - b x + u) / a),
+/// floor((a z - c x + v) / a)), 0 <= u, v < a. Still naive lines that partition space; a new
+/// shift each iteration keeps the lines' pattern from repeating (aliasing) between bounces.
+struct LineOffset {
+  int64_t u = 0, v = 0;
+};
+
 class DiscreteLineSweep {
  public:
   DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings& settings);
@@ -61,10 +68,10 @@ class DiscreteLineSweep {
   /// w = solidAngle / pi, where the source is the entry of the preceding voxel on e's line that
   /// faces e.
   void sweepPair(const DiscreteDirection& direction, const Source& source,
-                 std::span<glm::vec4> gathered);
+                 std::span<glm::vec4> gathered, const LineOffset& offset = {});
 
   /// The naive line of every cell for a direction (for tests): lines[cell].
-  std::vector<uint32_t> lineOfEachCell(const IVec3& step);
+  std::vector<uint32_t> lineOfEachCell(const IVec3& step, const LineOffset& offset = {});
   /// Cells in the order a pass along `step` visits them (for tests).
   std::vector<uint32_t> passOrder(const IVec3& step);
   size_t lineTableSize() const { return lines_.size(); }
@@ -84,7 +91,7 @@ class DiscreteLineSweep {
   };
   static_assert(sizeof(LineState) == 64);
 
-  void prepareLines(const IVec3& step);
+  void prepareLines(const IVec3& step, const LineOffset& offset = {});
   template <bool kTangentCorrection>
   void pass(const IVec3& step, const Vec3& unit, float weight, const Source& source,
             std::span<glm::vec4> gathered);

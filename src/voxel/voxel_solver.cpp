@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 
 namespace rad {
@@ -41,9 +42,17 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
 
 // One Jacobi step: every slot sweeps its share of the direction pairs (pair k goes to slot
 // k mod slots, so the sums do not depend on scheduling), then the slots are added in order.
+// The line shift of pair k in an iteration: fixed by the seed, so results are reproducible.
+LineOffset lineOffset(const DiscreteDirection& d, uint64_t seed, int iteration, size_t k) {
+  Rng rng(seed ^ (uint64_t(iteration) << 32), k);
+  const int64_t a = std::max({std::abs(d.step.x), std::abs(d.step.y), std::abs(d.step.z)});
+  return {int64_t(rng.next() % uint64_t(a)), int64_t(rng.next() % uint64_t(a))};
+}
+
 void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLineSweep>& sweeps,
                          std::vector<std::vector<glm::vec4>>& slots,
-                         const DiscreteLineSweep::Source& source, ProgressTicker& ticker) {
+                         const DiscreteLineSweep::Source& source, const VoxelSolverSettings& settings,
+                         int iteration, ProgressTicker& ticker) {
   const size_t slotCount = slots.size();
   // One task per slot: the simple partitioner splits down to single slots.
   tbb::parallel_for(
@@ -53,7 +62,10 @@ void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLin
           std::fill(slots[slot].begin(), slots[slot].end(), glm::vec4(0.0f));
           for (size_t k = slot; k < directions.pairCount(); k += slotCount) {
             if (ticker.cancelled()) return;
-            sweeps[slot].sweepPair(directions.pairFirst(k), source, slots[slot]);
+            const DiscreteDirection& d = directions.pairFirst(k);
+            const LineOffset offset = settings.jitterLines ? lineOffset(d, settings.seed, iteration, k)
+                                                           : LineOffset{};
+            sweeps[slot].sweepPair(d, source, slots[slot], offset);
             ticker.tick();
           }
         }
@@ -118,7 +130,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   for (int iteration = 0; iteration < settings.iterations; ++iteration) {
     blendSharedOrientations(grid, source);
     DiscreteLineSweep::packSides(grid, source, packed);
-    gatherAllDirections(directions, sweeps, slots, {source, packed}, ticker);
+    gatherAllDirections(directions, sweeps, slots, {source, packed}, settings, iteration, ticker);
     const std::vector<glm::vec4>& gathered = slots[0];
     double change = 0.0, total = 0.0;
     for (size_t e = 0; e < n; ++e) {

@@ -25,6 +25,7 @@ struct VoxelSolverSettings {
   bool directFirstShot = true; ///< direct light by shadow rays, then sweep the indirect bounces
   int directSamples = 64;      ///< shadow-ray samples per voxel side for the first shot
   bool normalize = true;       ///< divide each side's gathered light by its sum of cos * w
+  bool jitterLines = true;     ///< shift each direction's lines anew every iteration
   SweepSettings sweep;
   uint64_t seed = 1;
 };

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <map>
 #include <random>
 
@@ -23,17 +25,27 @@ int dominantAxis(const IVec3& s) {
 }
 
 // The naive line of cell p for direction s, straight from the definition (an independent form of
-// the paper's floor((a y - b x) / a)): for each non-dominant axis j,
-// floor(s_j (p_j - (step_j / step_i) p_i)) in the frame where the direction is positive.
-std::pair<int64_t, int64_t> naiveLine(const IVec3& p, const IVec3& s) {
+// the paper's floor((a y - b x + offset) / a)): for each non-dominant axis j, in the frame where
+// the direction is positive, floor((a s_j p_j - |step_j| s_i p_i + offset_j) / a). The offsets go
+// to the non-dominant axes by decreasing |component| (u first), as in the sweep.
+std::array<int, 2> nonDominantAxes(const IVec3& s) {
   const int i = dominantAxis(s);
-  const int j = (i + 1) % 3, k = (i + 2) % 3;
+  std::array<int, 2> others{(i + 1) % 3, (i + 2) % 3};
+  if (std::abs(s[others[1]]) > std::abs(s[others[0]]) ||
+      (std::abs(s[others[1]]) == std::abs(s[others[0]]) && others[1] < others[0]))
+    std::swap(others[0], others[1]);
+  return others;
+}
+
+std::pair<int64_t, int64_t> naiveLine(const IVec3& p, const IVec3& s, const LineOffset& offset = {}) {
+  const int i = dominantAxis(s);
+  const std::array<int, 2> others = nonDominantAxes(s);
   const int64_t a = std::abs(s[i]), si = s[i] >= 0 ? 1 : -1;
-  auto coord = [&](int axis) {
+  auto coord = [&](int axis, int64_t shift) {
     const int64_t sj = s[axis] >= 0 ? 1 : -1;
-    return floorDiv(sj * si * (int64_t(p[axis]) * s[i] - int64_t(s[axis]) * p[i]), a);
+    return floorDiv(a * sj * p[axis] - std::abs(int64_t(s[axis])) * si * p[i] + shift, a);
   };
-  return {coord(j), coord(k)};
+  return {coord(others[0], offset.u), coord(others[1], offset.v)};
 }
 
 std::vector<IVec3> randomSteps(int count, uint32_t seed) {
@@ -67,14 +79,18 @@ TEST(DiscreteLines, PartitionMatchesTheNaiveLineDefinition) {
   DiscreteLineSweep sweep(grid, {});
   std::vector<IVec3> cells(grid.cellCount());
   for (uint32_t c = 0; c < grid.cellCount(); ++c) cells[c] = grid.cellCoordinates(c);
+  std::mt19937 rng(5);
   for (const IVec3& step : randomSteps(200, 7)) {
     SCOPED_TRACE(testing::Message() << "step " << step.x << " " << step.y << " " << step.z);
-    const std::vector<uint32_t> lines = sweep.lineOfEachCell(step);
+    // Half the directions with their lines shifted, as the solver's jitter does.
+    const int64_t a = std::max({std::abs(step.x), std::abs(step.y), std::abs(step.z)});
+    const LineOffset offset = rng() % 2 ? LineOffset{int64_t(rng() % a), int64_t(rng() % a)} : LineOffset{};
+    const std::vector<uint32_t> lines = sweep.lineOfEachCell(step, offset);
     // Same partition both ways: equal table index <=> equal naive line.
     std::map<uint32_t, std::pair<int64_t, int64_t>> byIndex;
     std::map<std::pair<int64_t, int64_t>, uint32_t> byLine;
     for (uint32_t c = 0; c < grid.cellCount(); ++c) {
-      const auto line = naiveLine(cells[c], step);
+      const auto line = naiveLine(cells[c], step, offset);
       ASSERT_TRUE(byIndex.emplace(lines[c], line).first->second == line);
       ASSERT_EQ(byLine.emplace(line, lines[c]).first->second, lines[c]);
       ASSERT_LT(lines[c], sweep.lineTableSize());
@@ -116,9 +132,10 @@ bool lineMeetsSurface(const VoxelGrid& grid, const IVec3& start, const IVec3& s)
     // The unique cell of the line with dominant coordinate xi: solve the floor for each axis.
     IVec3 p = start;
     p[i] = xi;
-    for (int axis : {(i + 1) % 3, (i + 2) % 3}) {
+    const std::array<int, 2> others = nonDominantAxes(s);
+    for (int axis : others) {
       int lo = -2 * grid.dims[axis], hi = 2 * grid.dims[axis];
-      const int64_t want = axis == (i + 1) % 3 ? line.first : line.second;
+      const int64_t want = axis == others[0] ? line.first : line.second;
       // naiveLine is monotone in p[axis] (non-decreasing when signed): binary search.
       const int sj = s[axis] >= 0 ? 1 : -1;
       while (lo < hi) {
@@ -126,7 +143,7 @@ bool lineMeetsSurface(const VoxelGrid& grid, const IVec3& start, const IVec3& s)
         IVec3 q = p;
         q[axis] = mid * sj;
         const auto l = naiveLine(q, s);
-        if ((axis == (i + 1) % 3 ? l.first : l.second) < want) lo = mid + 1;
+        if ((axis == others[0] ? l.first : l.second) < want) lo = mid + 1;
         else hi = mid;
       }
       p[axis] = lo * sj;

@@ -32,7 +32,8 @@ TEST(VoxelSolver, UniformFurnaceConvergesToEOverOneMinusRho) {
   const Color expected = glm::pi<float>() * ke / 0.5f;
   for (size_t e = 0; e < grid.entryCount(); ++e)
     for (int c = 0; c < 3; ++c) ASSERT_NEAR(s.radiosity[e][c], expected[c], 1e-3f * expected[c]) << e;
-  EXPECT_LT(s.residuals.back(), 1e-6);
+  // 24 Jacobi steps shrink the change by 0.5^24; what remains is rounding (B travels as halves).
+  EXPECT_LT(s.residuals.back(), 1e-5);
 }
 
 double weightedSum(const VoxelGrid& grid, const std::vector<Color>& values, int channel) {
