@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 
@@ -37,6 +38,10 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
                             "Look through voxels a line only grazes (default on)")->group(voxel);
   firstShotFlag_ = c.add_flag("--first-shot,!--no-first-shot", voxel_.directFirstShot,
                               "Direct light by shadow rays before the sweeps (default on)")->group(voxel);
+  normalizeFlag_ = c.add_flag("--normalize,!--no-normalize", voxel_.normalize,
+                              "Per-voxel normalization of the direction factors (default on)")->group(voxel);
+  jitterFlag_ = c.add_flag("--jitter-lines,!--no-jitter-lines", voxel_.jitterLines,
+                           "Shift each direction's lines every iteration (default on)")->group(voxel);
   directSamplesFlag_ = c.add_option("--direct-samples", voxel_.directSamples,
                                     "Shadow-ray samples per voxel side for the first shot (default 64)")
                            ->check(CLI::Range(1, 1 << 20))->group(voxel);
@@ -69,6 +74,16 @@ void MethodOptions::resolve(const Scene& scene) {
 
 void addVoxelStats(const VoxelRadiosity& solution, RunStats& stats) {
   const VoxelRadiosityStats& v = solution.stats();
+  stats.methodDetails = {{"voxel_size", v.voxelSize},
+                         {"cells", v.voxels},
+                         {"sides", v.sides},
+                         {"visits", v.visits},
+                         {"visits_per_s", double(v.visits) / std::max(v.sweepSeconds, 1e-9)},
+                         {"shadow_rays", v.shadowRays},
+                         {"memory_bytes", v.memoryBytes},
+                         {"bytes_per_side", double(v.memoryBytes) / double(std::max<size_t>(v.sides, 1))},
+                         {"seconds", {{"voxelize", v.voxelizeSeconds}, {"first_shot", v.directSeconds},
+                                      {"sweeps", v.sweepSeconds}}}};
   stats.counts.voxels = v.sides;
   stats.counts.directions = v.directions;
   stats.counts.rays += v.shadowRays;

@@ -39,7 +39,7 @@ class MethodOptions {
   VoxelRadiositySettings voxel_;
   CLI::Option *methodFlag_, *sppFlag_, *maxDepthFlag_, *seedFlag_;
   CLI::Option *voxelSizeFlag_, *voxelsFlag_, *radiusFlag_, *iterationsFlag_, *toleranceFlag_,
-      *tangentFlag_, *firstShotFlag_, *directSamplesFlag_;
+      *tangentFlag_, *firstShotFlag_, *directSamplesFlag_, *normalizeFlag_, *jitterFlag_;
 };
 
 /// The voxel method's numbers in the stats file.

@@ -27,6 +27,7 @@ struct VoxelRadiositySettings {
   bool directFirstShot = true;     ///< direct light by shadow rays; the sweeps carry the rest
   int directSamples = 64;          ///< shadow-ray samples per voxel side for the first shot
   bool normalize = true;           ///< per-voxel normalization of the direction factors
+  bool jitterLines = true;         ///< shift each direction's lines anew every iteration
   uint64_t seed = 1;
 };
 

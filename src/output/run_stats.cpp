@@ -26,13 +26,14 @@ Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& obj
 }
 
 nlohmann::json toJson(const RunStats& s) {
+  nlohmann::json details = s.methodDetails.is_null() ? nlohmann::json::object() : s.methodDetails;
   nlohmann::json objects = nlohmann::json::array();
   for (const ObjectRadiometry& o : s.objects)
     objects.push_back({{"name", o.name},
                        {"area", o.area},
                        {"mean_irradiance", rgb(o.meanIrradiance)},
                        {"mean_radiosity", rgb(o.meanRadiosity)}});
-  return {
+  nlohmann::json j = {
       {"scene", s.scene},
       {"method", s.method},
       {"counts",
@@ -54,6 +55,8 @@ nlohmann::json toJson(const RunStats& s) {
       {"objects", objects},
       {"memory_peak_bytes", s.memoryPeakBytes},
   };
+  if (!details.empty()) j[s.method] = details;
+  return j;
 }
 
 void writeRunStats(const std::string& path, const RunStats& stats) {

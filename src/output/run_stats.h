@@ -6,7 +6,7 @@
 #include <radiosity/scene.h>
 #include <radiosity/types.h>
 
-#include <nlohmann/json_fwd.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <string>
@@ -30,6 +30,8 @@ struct RunStats {
   Color absorbedPower{0.0f};  ///< W, sum of (1 - rho) H A over the objects
   std::vector<ObjectRadiometry> objects;
   uint64_t memoryPeakBytes = 0;
+  /// Numbers particular to the method, written under the method's name ("voxel": {...}).
+  nlohmann::json methodDetails;
 };
 
 /// Power absorbed by the objects, sum of (1 - rho) H A = H A - (B - E) A with E the objects'

@@ -60,6 +60,7 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
   solver.directFirstShot = settings.directFirstShot;
   solver.directSamples = settings.directSamples;
   solver.normalize = settings.normalize;
+  solver.jitterLines = settings.jitterLines;
   solver.sweep.tangentCorrection = settings.tangentCorrection;
   solver.seed = settings.seed;
   impl_->solution = solveVoxelRadiosity(scene, impl_->grid, solver, progress);
