@@ -61,6 +61,7 @@ Image renderWithVoxels(const Scene& scene, const Camera& camera, const RenderOpt
                        Console& console, RunStats& stats) {
   const VoxelRadiosity solution(scene, o.method.voxel(), console.progress("voxel solve"));
   console.finishProgress();
+  for (const std::string& w : solution.stats().warnings) console.warn(w);
   addVoxelStats(solution, stats);
   Stopwatch renderTime;
   SurfaceRenderSettings settings;

@@ -41,6 +41,7 @@ int runSolve(SolveOptions& o, Console& console) {
   InterruptGuard interruptible;
   const VoxelRadiosity solution(scene, o.method.voxel(), console.progress("voxel solve"));
   console.finishProgress();
+  for (const std::string& w : solution.stats().warnings) console.warn(w);
   addVoxelStats(solution, stats);
   if (ext == ".csv") solution.exportCsv(o.exportPath);
   if (ext == ".ply") solution.exportPly(o.exportPath);

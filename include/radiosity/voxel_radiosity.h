@@ -41,6 +41,7 @@ struct VoxelRadiosityStats {
   std::vector<double> residuals;  ///< relative change of B at each iteration
   double voxelizeSeconds = 0.0, directSeconds = 0.0, sweepSeconds = 0.0;
   size_t memoryBytes = 0;  ///< grid and solver arrays
+  std::vector<std::string> warnings;  ///< settings that lose light, and why
 };
 
 /// The solved scene; a SurfaceRadiance that interpolates the voxels' irradiance smoothly.

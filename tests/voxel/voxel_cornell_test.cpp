@@ -41,3 +41,35 @@ TEST(VoxelCornell, SurfaceMeansMatchThePathTracer) {
 
 }  // namespace
 }  // namespace rad
+
+namespace rad {
+namespace {
+
+TEST(VoxelCornell, SpotLightReachesVoxelsThroughTheFirstShot) {
+  const Scene scene = loadScene("cornell-spot");
+  PathTracerSettings reference;
+  reference.samplesPerPixel = 128;
+  std::map<std::string, ObjectRadiometry> expected;
+  for (const ObjectRadiometry& o : estimateObjectRadiometry(scene, 200, reference)) expected[o.name] = o;
+
+  VoxelRadiositySettings settings;
+  settings.targetVoxels = 8000;
+  settings.sphereRadius = 8;
+  settings.directSamples = 16;
+  const VoxelRadiosity lit(scene, settings);
+  EXPECT_TRUE(lit.stats().warnings.empty());
+  for (const ObjectRadiometry& o : lit.objectRadiometry()) {
+    if (o.name != "floor" && o.name != "back_wall") continue;
+    // Coarse (8k voxels, R = 8) yet within 10% of the path tracer (200 points x 128 paths).
+    EXPECT_NEAR(o.meanRadiosity.g, expected.at(o.name).meanRadiosity.g,
+                0.1 * expected.at(o.name).meanRadiosity.g) << o.name;
+  }
+
+  settings.directFirstShot = false;  // the sweeps alone cannot see a point light
+  const VoxelRadiosity dark(scene, settings);
+  ASSERT_EQ(dark.stats().warnings.size(), 1u);
+  for (const ObjectRadiometry& o : dark.objectRadiometry()) EXPECT_EQ(o.meanRadiosity.g, 0.0f) << o.name;
+}
+
+}  // namespace
+}  // namespace rad
