@@ -1,7 +1,8 @@
-// `radiosity bench [pathtrace|voxel|voxel-scaling|all] [--json]`: throughput numbers that notes and reports quote.
+// `radiosity bench [pathtrace|patch|voxel|voxel-scaling|all] [--json]`: throughput numbers that notes and reports quote.
 // Fixed workloads on built-in scenes, so numbers from different machines compare.
 #include "commands.h"
 
+#include "bench_patch.h"
 #include "bench_workloads.h"
 
 #include <CLI/CLI.hpp>
@@ -29,6 +30,7 @@ int runBench(const BenchOptions& o, Console& console) {
   nlohmann::json results;
   const bool all = o.which == "all";
   if (all || o.which == "pathtrace") results["pathtrace"] = benchPathTracer(console);
+  if (all || o.which == "patch") results["patch"] = benchPatch(console);
   if (all || o.which == "voxel") results["voxel"] = benchVoxel(console, o.voxels, o.sphereRadius);
   if (o.which == "voxel-scaling")
     results["voxel-scaling"] = benchVoxelScaling(console, o.scalingRadius, o.scalingMaxVoxels, o.output);
@@ -47,8 +49,8 @@ void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* sub = app.add_subcommand("bench", "Measure throughput on fixed workloads");
   sub->add_option("which", o->which,
-                  "What to measure: pathtrace, voxel, all (both), voxel-scaling (minutes)")
-      ->check(CLI::IsMember({"pathtrace", "voxel", "voxel-scaling", "all"}));
+                  "What to measure: pathtrace, patch, voxel, all (those three), voxel-scaling (minutes)")
+      ->check(CLI::IsMember({"pathtrace", "patch", "voxel", "voxel-scaling", "all"}));
   sub->add_option("--voxels", o->voxels, "voxel: surface voxels of the room (default 100000)")
       ->check(CLI::Range(size_t(1000), size_t(1) << 30));
   sub->add_option("--sphere-radius", o->sphereRadius, "voxel: sphere radius R (default 38)")

@@ -3,6 +3,7 @@
 // a flag and a key of the scene's "solver" object; the flag wins, then the scene, then the
 // method's default.
 
+#include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
 #include <radiosity/scene.h>
 #include <radiosity/voxel_radiosity.h>
@@ -31,18 +32,27 @@ class MethodOptions {
   const std::string& method() const { return method_; }
   const PathTracerSettings& pathTracer() const { return pathTracer_; }
   const VoxelRadiositySettings& voxel() const { return voxel_; }
+  const PatchRadiositySettings& patch() const { return patch_; }
 
  private:
   std::vector<std::string> methods_;
   std::string method_;
   PathTracerSettings pathTracer_;
   VoxelRadiositySettings voxel_;
+  PatchRadiositySettings patch_;
+  std::string estimator_ = "hemisphere", solver_ = "gauss-seidel", shading_ = "smooth";
   CLI::Option *methodFlag_, *sppFlag_, *maxDepthFlag_, *seedFlag_;
   CLI::Option *voxelSizeFlag_, *voxelsFlag_, *radiusFlag_, *iterationsFlag_, *toleranceFlag_,
       *tangentFlag_, *firstShotFlag_, *directSamplesFlag_, *normalizeFlag_, *jitterFlag_;
+  CLI::Option *patchSizeFlag_, *patchesFlag_, *estimatorFlag_, *ffRaysFlag_, *thresholdFlag_,
+      *cacheDirFlag_, *solverFlag_, *maxIterationsFlag_, *shadingFlag_;
+  void addPatchFlags(CLI::App& command);
+  void resolvePatch(const Scene& scene);
 };
 
 /// The voxel method's numbers in the stats file.
 void addVoxelStats(const VoxelRadiosity& solution, RunStats& stats);
+/// The patch method's numbers in the stats file.
+void addPatchStats(const PatchRadiosity& solution, RunStats& stats);
 
 }  // namespace rad::cli

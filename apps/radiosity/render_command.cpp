@@ -6,6 +6,7 @@
 
 #include <radiosity/error.h>
 #include <radiosity/image.h>
+#include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
 #include <radiosity/surface_radiance.h>
 #include <radiosity/voxel_radiosity.h>
@@ -21,7 +22,7 @@ namespace rad::cli {
 namespace {
 
 struct RenderOptions {
-  explicit RenderOptions(CLI::App& command) : method(command, {"pathtrace", "voxel"}) {}
+  explicit RenderOptions(CLI::App& command) : method(command, {"pathtrace", "voxel", "patch"}) {}
   MethodOptions method;
   std::string scene, output, stats;
   int width = 0, height = 0;
@@ -57,12 +58,8 @@ Image renderWithPathTracer(const Scene& scene, const Camera& camera, const Rende
   return std::move(result.image);
 }
 
-Image renderWithVoxels(const Scene& scene, const Camera& camera, const RenderOptions& o,
-                       Console& console, RunStats& stats) {
-  const VoxelRadiosity solution(scene, o.method.voxel(), console.progress("voxel solve"));
-  console.finishProgress();
-  for (const std::string& w : solution.stats().warnings) console.warn(w);
-  addVoxelStats(solution, stats);
+Image renderSolution(const Scene& scene, const Camera& camera, const SurfaceRadiance& solution,
+                     const RenderOptions& o, Console& console, RunStats& stats) {
   Stopwatch renderTime;
   SurfaceRenderSettings settings;
   settings.samplesPerPixel = o.method.pathTracer().samplesPerPixel;
@@ -71,6 +68,24 @@ Image renderWithVoxels(const Scene& scene, const Camera& camera, const RenderOpt
   console.finishProgress();
   stats.timingsSeconds.render = renderTime.seconds();
   return image;
+}
+
+Image renderWithVoxels(const Scene& scene, const Camera& camera, const RenderOptions& o,
+                       Console& console, RunStats& stats) {
+  const VoxelRadiosity solution(scene, o.method.voxel(), console.progress("voxel solve"));
+  console.finishProgress();
+  for (const std::string& w : solution.stats().warnings) console.warn(w);
+  addVoxelStats(solution, stats);
+  return renderSolution(scene, camera, solution, o, console, stats);
+}
+
+Image renderWithPatches(const Scene& scene, const Camera& camera, const RenderOptions& o,
+                        Console& console, RunStats& stats) {
+  const PatchRadiosity solution(scene, o.method.patch(), console.progress("patch solve"));
+  console.finishProgress();
+  for (const std::string& w : solution.stats().warnings) console.warn(w);
+  addPatchStats(solution, stats);
+  return renderSolution(scene, camera, solution, o, console, stats);
 }
 
 int runRender(RenderOptions& o, Console& console) {
@@ -86,9 +101,10 @@ int runRender(RenderOptions& o, Console& console) {
   if (o.width > 0) camera.width = o.width;
   if (o.height > 0) camera.height = o.height;
   InterruptGuard interruptible;
-  const Image image = o.method.method() == "pathtrace"
-                          ? renderWithPathTracer(scene, camera, o, console, stats)
-                          : renderWithVoxels(scene, camera, o, console, stats);
+  const std::string& method = o.method.method();
+  const Image image = method == "pathtrace" ? renderWithPathTracer(scene, camera, o, console, stats)
+                      : method == "patch"   ? renderWithPatches(scene, camera, o, console, stats)
+                                            : renderWithVoxels(scene, camera, o, console, stats);
   ImageWriteOptions writeOptions;
   writeOptions.exposureEV = o.exposure;
   writeOptions.exrPixelType = o.exrFloat ? ExrPixelType::Float : ExrPixelType::Half;

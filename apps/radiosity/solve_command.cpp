@@ -1,10 +1,11 @@
-// `radiosity solve SCENE --method voxel`: computes the radiosity solution and exports it
+// `radiosity solve SCENE --method voxel|patch`: computes the radiosity solution and exports it
 // (per-element CSV, PLY point cloud) with its numbers in the stats file.
 #include "command_support.h"
 #include "commands.h"
 #include "method_options.h"
 
 #include <radiosity/error.h>
+#include <radiosity/patch_radiosity.h>
 #include <radiosity/voxel_radiosity.h>
 
 #include <CLI/CLI.hpp>
@@ -19,7 +20,7 @@ namespace rad::cli {
 namespace {
 
 struct SolveOptions {
-  explicit SolveOptions(CLI::App& command) : method(command, {"voxel"}) {}
+  explicit SolveOptions(CLI::App& command) : method(command, {"voxel", "patch"}) {}
   MethodOptions method;
   std::string scene, exportPath, stats;
 };
@@ -28,6 +29,31 @@ std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return ext;
+}
+
+int solveWithPatches(const SolveOptions& o, const Scene& scene, const std::string& ext,
+                     const Stopwatch& total, RunStats& stats, Console& console) {
+  const PatchRadiosity solution(scene, o.method.patch(), console.progress("patch solve"));
+  console.finishProgress();
+  for (const std::string& w : solution.stats().warnings) console.warn(w);
+  addPatchStats(solution, stats);
+  if (ext == ".csv") solution.exportCsv(o.exportPath);
+  if (ext == ".ply") solution.exportPly(o.exportPath);
+  if (!o.stats.empty())
+    writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
+  const PatchRadiosityStats& p = solution.stats();
+  console.info(fmt::format(
+      "solved {} with patch: {} patches, form factors {} ({} entries, {:.1f} MB, rows sum to "
+      "{:.3f} on average), {} {} sweeps, residual {:.2g}, {:.2f} s{}{}",
+      o.scene, p.patches,
+      p.cacheLoaded ? fmt::format("loaded in {:.2f} s", p.cacheLoadSeconds)
+                    : fmt::format("{:.2f} s, {:.1f} M rays/s", p.formFactorSeconds,
+                                  double(p.rays) / std::max(p.formFactorSeconds, 1e-9) * 1e-6),
+      p.nonZeros, double(p.tableBytes) / 1e6, p.rowSumMean, p.iterations, p.solver,
+      p.residuals.empty() ? 0.0 : p.residuals.back(), total.seconds(),
+      o.exportPath.empty() ? "" : " -> " + o.exportPath,
+      o.stats.empty() ? "" : ", stats -> " + o.stats));
+  return 0;
 }
 
 int runSolve(SolveOptions& o, Console& console) {
@@ -39,6 +65,7 @@ int runSolve(SolveOptions& o, Console& console) {
   Scene scene = loadSceneForCommand(o.scene, console, stats);
   o.method.resolve(scene);
   InterruptGuard interruptible;
+  if (o.method.method() == "patch") return solveWithPatches(o, scene, ext, total, stats, console);
   const VoxelRadiosity solution(scene, o.method.voxel(), console.progress("voxel solve"));
   console.finishProgress();
   for (const std::string& w : solution.stats().warnings) console.warn(w);
@@ -65,7 +92,7 @@ void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("scene", o->scene, "Scene file (.json .obj .gltf .glb) or built-in: cornell, "
                                      "cornell-spot, room:N")->required();
   sub->add_option("--export", o->exportPath,
-                  "Per-element results: .csv (a row per voxel side) or .ply (a point cloud)");
+                  "Per-element results: .csv (a row per voxel side or patch) or .ply (a point cloud)");
   sub->add_option("--stats", o->stats, "Write the run's numbers to this JSON file");
   sub->callback([o, &console, &action] { action = [o, &console] { return runSolve(*o, console); }; });
 }

@@ -91,6 +91,17 @@ struct SolverSettings {
   std::optional<bool> tangentCorrection;
   std::optional<bool> firstShot;
   std::optional<int> directSamples;
+  // Patch method (keys patch_size, patches, ff_estimator, ff_rays, ff_threshold, cache_dir,
+  // solver, max_iterations, shading; tolerance is shared with the voxel method).
+  std::optional<float> patchSize;
+  std::optional<size_t> patches;
+  std::optional<std::string> ffEstimator;  ///< "hemisphere", "pairwise" or "exact"
+  std::optional<int> ffRays;
+  std::optional<double> ffThreshold;
+  std::optional<std::string> cacheDir;
+  std::optional<std::string> patchSolver;  ///< "jacobi", "gauss-seidel" or "progressive"
+  std::optional<int> maxIterations;
+  std::optional<std::string> shading;      ///< "smooth" or "flat"
 };
 
 struct Scene {

@@ -200,6 +200,64 @@ TEST(Cli, RendersWithVoxels) {
   EXPECT_TRUE(fs::exists(png));
 }
 
+TEST(Cli, SolvesWithPatchesExportsAndCaches) {
+  const fs::path dir = freshDir("patch_solve");
+  const std::string csv = (dir / "p.csv").string(), stats = (dir / "p.json").string();
+  const std::vector<std::string> args = {"solve", "cornell", "--method", "patch", "--patches", "500",
+                                         "--ff-rays", "64", "--cache-dir", (dir / "cache").string(),
+                                         "--export", csv, "--stats", stats};
+  const CliResult first = run(args);
+  ASSERT_EQ(first.status, 0) << first.err;
+  std::ifstream in(stats);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["method"], "patch");
+  EXPECT_GE(j["counts"]["patches"].get<int>(), 500);
+  EXPECT_EQ(j["counts"]["rays"].get<double>(), 64.0 * j["counts"]["patches"].get<double>());
+  EXPECT_GE(j["iterations"].get<int>(), 1);
+  EXPECT_LT(j["residual"].get<double>(), 1e-3);  // the default tolerance
+  ASSERT_EQ(j["objects"].size(), 8u);
+  // One CSV row per patch, the documented columns.
+  std::ifstream rows(csv);
+  std::string header, line;
+  std::getline(rows, header);
+  EXPECT_EQ(header, "id,object,area,cx,cy,cz,nx,ny,nz,E_r,E_g,E_b,rho_r,rho_g,rho_b,H_r,H_g,H_b,B_r,B_g,B_b");
+  size_t count = 0;
+  while (std::getline(rows, line)) ++count;
+  EXPECT_EQ(count, j["counts"]["patches"].get<size_t>());
+  // The second run loads the form factors from the cache.
+  const CliResult second = run(args);
+  ASSERT_EQ(second.status, 0) << second.err;
+  // The summary line (info, on stderr) says where the form factors came from.
+  EXPECT_NE(second.err.find("form factors loaded"), std::string::npos) << second.err;
+}
+
+TEST(Cli, RendersWithPatchesAndSceneSolverKeys) {
+  const fs::path dir = freshDir("patch_render");
+  const std::string png = (dir / "p.png").string();
+  CliResult r = run({"render", "cornell", "--method", "patch", "--patches", "300", "--ff-rays", "16",
+                     "--cache-dir", "none", "--solver", "jacobi", "--shading", "flat", "--width", "32",
+                     "--height", "32", "-o", png});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(png));
+  // The scene's "solver" keys choose the same settings; a bad value names its key.
+  const fs::path obj = writeFile(dir / "room.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  auto scene = [&](const std::string& solver) {
+    return writeFile(dir / "s.json", R"({"geometry": [{"file": "room.obj"}],
+      "materials": {"default": {"rho": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
+      "solver": )" + solver + "}").string();
+  };
+  const std::string stats = (dir / "s.stats.json").string();
+  r = run({"solve", scene(R"({"method": "patch", "patch_size": 0.25, "solver": "progressive",
+            "cache_dir": "none", "ff_rays": 16, "max_iterations": 50, "shading": "flat"})"),
+           "--stats", stats, "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(stats);
+  EXPECT_EQ(nlohmann::json::parse(in)["counts"]["patches"].get<int>(), 16);
+  r = run({"solve", scene(R"({"method": "patch", "solver": "bogus"})")});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("/solver/solver"), std::string::npos) << r.err;
+}
+
 TEST(Cli, SolveRejectsUnknownExportFormat) {
   const fs::path dir = freshDir("voxel_badexport");
   const CliResult r = run({"solve", "cornell", "--export", (dir / "v.obj").string()});

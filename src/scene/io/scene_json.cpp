@@ -256,7 +256,8 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
   const std::string ptr = "/solver";
   r.checkKeys(j, ptr, {"method", "spp", "max_depth", "seed", "voxel_size", "voxels", "sphere_radius",
                        "iterations", "tolerance", "tangent_correction", "first_shot",
-                       "direct_samples"});
+                       "direct_samples", "patch_size", "patches", "ff_estimator", "ff_rays",
+                       "ff_threshold", "cache_dir", "solver", "max_iterations", "shading"});
   SolverSettings s;
   if (j.contains("method")) {
     s.method = r.string(j["method"], ptr + "/method");
@@ -284,6 +285,30 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
     s.tangentCorrection = r.boolean(j["tangent_correction"], ptr + "/tangent_correction");
   if (j.contains("first_shot")) s.firstShot = r.boolean(j["first_shot"], ptr + "/first_shot");
   if (j.contains("direct_samples")) s.directSamples = int(integer("direct_samples", 1, 1 << 20));
+  auto choice = [&](const char* key, std::initializer_list<const char*> allowed) {
+    const std::string v = r.string(j[key], ptr + "/" + key);
+    for (const char* a : allowed)
+      if (v == a) return v;
+    r.fail(ptr + "/" + key,
+           fmt::format("unknown value '{}' (expected {})", v, fmt::join(allowed, ", ")));
+    return v;
+  };
+  if (j.contains("patch_size")) s.patchSize = float(positive("patch_size"));
+  if (j.contains("patches")) s.patches = size_t(integer("patches", 1, int64_t(1) << 32));
+  if (j.contains("ff_estimator"))
+    s.ffEstimator = choice("ff_estimator", {"hemisphere", "pairwise", "exact"});
+  if (j.contains("ff_rays")) s.ffRays = int(integer("ff_rays", 1, 1 << 24));
+  if (j.contains("ff_threshold")) {
+    const double v = r.number(j["ff_threshold"], ptr + "/ff_threshold");
+    if (!(v >= 0.0 && v < 1.0))
+      r.fail(ptr + "/ff_threshold", fmt::format("{} out of range [0, 1)", v));
+    s.ffThreshold = v;
+  }
+  if (j.contains("cache_dir")) s.cacheDir = r.string(j["cache_dir"], ptr + "/cache_dir");
+  if (j.contains("solver"))
+    s.patchSolver = choice("solver", {"jacobi", "gauss-seidel", "progressive"});
+  if (j.contains("max_iterations")) s.maxIterations = int(integer("max_iterations", 1, 100000000));
+  if (j.contains("shading")) s.shading = choice("shading", {"smooth", "flat"});
   return s;
 }
 

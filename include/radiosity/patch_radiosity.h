@@ -1,0 +1,91 @@
+#pragma once
+// Patch radiosity: the classical finite-element method. Every planar face is subdivided into
+// patches (a quadtree per face), the form factors between patches are estimated (by ray casting
+// by default) into a sparse table that is cached on disk, and the linear system
+// B = E + rho F B is solved by Jacobi, Gauss-Seidel or progressive refinement.
+// Based on: C. Goral, K. Torrance, D. Greenberg and B. Battaile, "Modeling the interaction of
+// light between diffuse surfaces", SIGGRAPH 1984; M. Cohen and J. Wallace, "Radiosity and
+// Realistic Image Synthesis", Academic Press 1993.
+
+#include <radiosity/object_radiometry.h>
+#include <radiosity/progress.h>
+#include <radiosity/scene.h>
+#include <radiosity/surface_radiance.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rad {
+
+enum class PatchFormFactorEstimator { Hemisphere, Pairwise, Exact };
+enum class PatchSolverKind { Jacobi, GaussSeidel, Progressive };
+enum class PatchShading { Smooth, Flat };
+
+struct PatchRadiositySettings {
+  float patchSize = 0.0f;       ///< longest patch edge in scene units; 0: from targetPatches
+  size_t targetPatches = 4000;  ///< approximate patch count when patchSize is 0
+  PatchFormFactorEstimator estimator = PatchFormFactorEstimator::Hemisphere;
+  /// hemisphere: rays per patch; pairwise: point pairs per patch pair; exact: points per patch.
+  int formFactorRays = 256;
+  float formFactorThreshold = 0.0f;  ///< form factors below it are dropped from the table
+  std::string cacheDir;              ///< directory of the form-factor cache; empty: no cache
+  PatchSolverKind solver = PatchSolverKind::GaussSeidel;
+  int maxIterations = 1000;  ///< sweeps (progressive: shots / patches)
+  double tolerance = 1e-3;   ///< relative residual at which the solver stops
+  PatchShading shading = PatchShading::Smooth;
+  uint64_t seed = 1;
+};
+
+struct PatchRadiosityStats {
+  size_t patches = 0, nodes = 0, vertices = 0;
+  float patchSize = 0.0f;
+  uint64_t rays = 0;    ///< form-factor rays cast
+  size_t nonZeros = 0;  ///< entries of the form-factor table (or of the rows computed)
+  size_t tableBytes = 0;
+  double droppedEntryFraction = 0.0, droppedSumFraction = 0.0;  ///< by the threshold
+  double rowSumMin = 0.0, rowSumMean = 0.0, rowSumMax = 0.0;    ///< closure of the rows computed
+  bool cacheLoaded = false;
+  std::string cacheFile;  ///< empty without a cache
+  double meshSeconds = 0.0, formFactorSeconds = 0.0, cacheLoadSeconds = 0.0, solveSeconds = 0.0;
+  std::string solver;
+  int iterations = 0;
+  uint64_t shots = 0;
+  std::vector<double> residuals;      ///< relative residual per sweep
+  size_t memoryBytes = 0;             ///< mesh, table and solution arrays
+  std::vector<std::string> warnings;  ///< e.g. a cache file that could not be used
+};
+
+/// The solved scene; a SurfaceRadiance that interpolates irradiance smoothly across patches.
+class PatchRadiosity : public SurfaceRadiance {
+ public:
+  /// Meshes and solves `scene` (which must outlive the result). Throws InputError for bad
+  /// settings and rad::Cancelled if `progress` returns false. A bad cache file is a warning.
+  PatchRadiosity(const Scene& scene, const PatchRadiositySettings& settings,
+                 const ProgressCallback& progress = {});
+  ~PatchRadiosity() override;
+  PatchRadiosity(PatchRadiosity&&) noexcept;
+  PatchRadiosity& operator=(PatchRadiosity&&) noexcept;
+
+  /// Ke + rho H / pi at the hit: H interpolated from the vertex averages (smooth) or the
+  /// patch's own (flat); 0 from the back of a one-sided face.
+  Color radiance(const SurfaceHit& hit) const override;
+  /// Area-weighted means over the front-side patches of each scene object.
+  std::vector<ObjectRadiometry> objectRadiometry() const;
+  const PatchRadiosityStats& stats() const;
+  /// One row per patch (the CSV columns of docs/ARCHITECTURE.md), written atomically.
+  void exportCsv(const std::string& path) const;
+  /// A binary PLY point cloud of the patch centroids.
+  void exportPly(const std::string& path) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The cache directory the CLI uses by default: $XDG_CACHE_HOME/radiosity, else
+/// $HOME/.cache/radiosity, else empty.
+std::string defaultPatchCacheDir();
+
+}  // namespace rad

@@ -1,0 +1,105 @@
+// Form factors from the exact point-to-polygon factor (Lambert's contour integral, VALIDATION.md
+// 1(f)) integrated over patch i by the midpoint rule on its parameter square, each point's factor
+// scaled by the visibility of patch j along one jittered ray (the "ray-traced form factor" of
+// Wallace, Elmquist and Haines, SIGGRAPH 1989, with the analytic kernel of Cohen and Wallace,
+// "Radiosity and Realistic Image Synthesis" (1993), eq. 3.53).
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <cmath>
+
+#include "core/rng.h"
+#include "patch/form_factor_estimators.h"
+#include "patch/point_polygon_form_factor.h"
+#include "render/progress_ticker.h"
+
+namespace rad {
+
+namespace {
+
+struct QuadraturePoint {
+  Vec3 position;
+  double weight;  // sums to 1 over the patch
+};
+
+// The composite midpoint rule: a quad's parameter square in side x side cells (weighted by the
+// bilinear map's area density), a triangle in side^2 congruent sub-triangles (at their
+// centroids). Both are second-order accurate for smooth integrands.
+std::vector<QuadraturePoint> midpointRule(const PatchMesh& mesh, uint32_t patch, int points) {
+  const int side = std::max(1, int(std::ceil(std::sqrt(double(points)))));
+  std::vector<QuadraturePoint> q;
+  std::array<Vec3, 4> c;
+  if (mesh.corners(patch, c) == 3) {
+    auto at = [&](double a, double b) {
+      return Vec3((1.0 - a - b) * Vec3d(c[0]) + a * Vec3d(c[1]) + b * Vec3d(c[2]));
+    };
+    const double w = 1.0 / (double(side) * side);
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; i + j < side; ++j) {
+        q.push_back({at((i + 1.0 / 3.0) / side, (j + 1.0 / 3.0) / side), w});
+        if (i + j + 1 < side) q.push_back({at((i + 2.0 / 3.0) / side, (j + 2.0 / 3.0) / side), w});
+      }
+    return q;
+  }
+  double total = 0.0;
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
+      float w;
+      const Vec2 u((float(x) + 0.5f) / float(side), (float(y) + 0.5f) / float(side));
+      const Vec3 p = mesh.samplePoint(patch, u, w);
+      q.push_back({p, double(w)});
+      total += double(w);
+    }
+  for (QuadraturePoint& p : q) p.weight /= total;
+  return q;
+}
+
+}  // namespace
+
+FormFactorRows exactFormFactors(const PatchMesh& mesh, const RayCaster& caster,
+                                const FormFactorSettings& settings,
+                                const ProgressCallback& progress) {
+  const size_t n = mesh.size();
+  std::vector<std::vector<Vec3d>> polygons(n);
+  for (uint32_t j = 0; j < n; ++j) {
+    std::array<Vec3, 4> c;
+    const int k = mesh.corners(j, c);
+    for (int m = 0; m < k; ++m) polygons[j].push_back(Vec3d(c[m]));
+  }
+  const float offset = mesh.rayOffset();
+  FormFactorRows rows(n);
+  ProgressTicker ticker(progress, n);
+  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    if (ticker.cancelled()) return;
+    Rng rng(settings.seed, i);
+    const Patch& pi = mesh.patches()[i];
+    const std::vector<QuadraturePoint> points = midpointRule(mesh, uint32_t(i), settings.rays);
+    std::vector<Ray> rays(points.size());
+    std::vector<uint8_t> blocked(points.size());
+    std::vector<double> f(points.size());
+    for (uint32_t j = 0; j < n; ++j) {
+      if (j == i) continue;
+      const Patch& pj = mesh.patches()[j];
+      double any = 0.0;
+      for (size_t k = 0; k < points.size(); ++k) {
+        f[k] = pointPolygonFormFactor(Vec3d(points[k].position), Vec3d(pi.normal), polygons[j]);
+        any += f[k];
+        float w;
+        const Vec3 target =
+            mesh.samplePoint(j, Vec2(rng.uniform(), rng.uniform()), w) + offset * pj.normal;
+        const Vec3 origin = points[k].position + offset * pi.normal;
+        rays[k] = {origin, target - origin, 0.0f, 1.0f};
+      }
+      if (any <= 0.0) continue;
+      caster.occluded(rays, blocked);
+      double sum = 0.0;
+      for (size_t k = 0; k < points.size(); ++k) sum += blocked[k] ? 0.0 : points[k].weight * f[k];
+      if (sum > 0.0) rows[i].push_back({j, float(sum)});
+    }
+    ticker.tick();
+  });
+  ticker.throwIfCancelled();
+  return rows;
+}
+
+}  // namespace rad

@@ -1,0 +1,214 @@
+// The disk cache of form-factor tables. Hashes: FNV-1a (Fowler, Noll, Vo) for the key's high
+// word and a 64-bit multiply-xorshift (the SplitMix64 finalizer, Steele et al., OOPSLA 2014) for
+// its low word and for the file checksum.
+#include "patch/form_factor_cache.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+
+#include "core/atomic_file.h"
+
+namespace rad {
+
+namespace {
+
+constexpr char kMagic[8] = {'R', 'A', 'D', 'F', 'F', 'T', 'B', 'L'};
+constexpr uint32_t kVersion = 1;
+constexpr size_t kHeaderBytes = 8 + 4 + 4 + 16 + 16 + 16;
+
+uint64_t mix(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+class Hasher {
+ public:
+  void bytes(const void* data, size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t k = 0; k < size; ++k) {
+      fnv_ = (fnv_ ^ p[k]) * 0x100000001b3ULL;
+      word_ |= uint64_t(p[k]) << (8 * (count_++ % 8));
+      if (count_ % 8 == 0) {
+        mixed_ = mix(mixed_ ^ word_);
+        word_ = 0;
+      }
+    }
+  }
+  template <typename T>
+  void value(const T& v) {
+    bytes(&v, sizeof(T));
+  }
+  FormFactorCacheKey key() const { return {fnv_, mix(mixed_ ^ word_ ^ count_)}; }
+
+ private:
+  uint64_t fnv_ = 0xcbf29ce484222325ULL, mixed_ = 0x9e3779b97f4a7c15ULL, word_ = 0, count_ = 0;
+};
+
+// Checksum of a byte range, 8 bytes at a time.
+uint64_t checksum(const char* data, size_t size) {
+  uint64_t h = 0x2545f4914f6cdd1dULL ^ size;
+  size_t k = 0;
+  for (; k + 8 <= size; k += 8) {
+    uint64_t w;
+    std::memcpy(&w, data + k, 8);
+    h = mix(h ^ w) + k;
+  }
+  uint64_t tail = 0;
+  std::memcpy(&tail, data + k, size - k);
+  return mix(h ^ tail);
+}
+
+template <typename T>
+void put(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+template <typename T>
+void putArray(std::string& out, const std::vector<T>& v) {
+  out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+}
+template <typename T>
+T get(const std::string& in, size_t& at) {
+  T v;
+  std::memcpy(&v, in.data() + at, sizeof(T));
+  at += sizeof(T);
+  return v;
+}
+template <typename T>
+std::vector<T> getArray(const std::string& in, size_t& at, size_t count) {
+  std::vector<T> v(count);
+  std::memcpy(v.data(), in.data() + at, count * sizeof(T));
+  at += count * sizeof(T);
+  return v;
+}
+
+// The reason a table read from disk cannot be right for `patches` rows, or "".
+std::string checkTable(const std::vector<uint64_t>& offsets, const std::vector<uint32_t>& columns,
+                       const std::vector<float>& values, size_t patches) {
+  if (offsets.front() != 0 || offsets.back() != columns.size()) return "row offsets inconsistent";
+  for (size_t i = 0; i + 1 < offsets.size(); ++i)
+    if (offsets[i] > offsets[i + 1]) return "row offsets not increasing";
+  for (uint32_t c : columns)
+    if (c >= patches) return "column out of range";
+  for (float v : values)
+    if (!(v >= 0.0f && v <= 1.0f)) return "form factor out of [0, 1]";
+  return "";
+}
+
+}  // namespace
+
+std::string FormFactorCacheKey::hex() const {
+  return fmt::format("{:016x}{:016x}", high, low);
+}
+
+FormFactorCacheKey formFactorCacheKey(const Scene& scene, float patchSize,
+                                      const FormFactorSettings& settings, float threshold,
+                                      bool symmetrized) {
+  Hasher h;
+  h.value(kVersion);
+  h.value(uint64_t(scene.positions.size()));
+  h.bytes(scene.positions.data(), scene.positions.size() * sizeof(Vec3));
+  h.value(uint64_t(scene.triangles.size()));
+  h.bytes(scene.triangles.data(), scene.triangles.size() * sizeof(UVec3));
+  h.value(uint64_t(scene.faces.size()));
+  for (const Face& f : scene.faces) {
+    h.value(f.firstTriangle);
+    h.value(f.triangleCount);
+    h.value(uint8_t(scene.materials[f.material].twoSided));
+    h.value(uint64_t(f.corners.size()));
+    h.bytes(f.corners.data(), f.corners.size() * sizeof(uint32_t));
+  }
+  h.value(patchSize);
+  h.value(int(settings.estimator));
+  h.value(settings.rays);
+  h.value(settings.seed);
+  h.value(threshold);
+  h.value(uint8_t(symmetrized));
+  return h.key();
+}
+
+std::filesystem::path defaultFormFactorCacheDir() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return std::filesystem::path(xdg) / "radiosity";
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return std::filesystem::path(home) / ".cache" / "radiosity";
+  return {};
+}
+
+std::filesystem::path formFactorCacheFile(const std::filesystem::path& dir,
+                                          const FormFactorCacheKey& key) {
+  return dir / ("formfactors-" + key.hex() + ".bin");
+}
+
+FormFactorCacheLoad loadFormFactorTable(const std::filesystem::path& file,
+                                        const FormFactorCacheKey& key, size_t patches) {
+  FormFactorCacheLoad result;
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return result;
+  auto reject = [&](const std::string& why) {
+    result.warning =
+        fmt::format("form-factor cache {} not used ({}); recomputing", file.string(), why);
+    return result;
+  };
+  std::ifstream in(file, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) return reject("unreadable");
+  if (bytes.size() < kHeaderBytes + 8) return reject("truncated");
+  if (std::memcmp(bytes.data(), kMagic, 8) != 0) return reject("not a form-factor cache file");
+  size_t at = 8;
+  const uint32_t version = get<uint32_t>(bytes, at);
+  if (version != kVersion)
+    return reject(fmt::format("format version {}, expected {}", version, kVersion));
+  at += 4;
+  const FormFactorCacheKey stored{get<uint64_t>(bytes, at), get<uint64_t>(bytes, at)};
+  const uint64_t rows = get<uint64_t>(bytes, at), nnz = get<uint64_t>(bytes, at);
+  const double droppedEntries = get<double>(bytes, at), droppedSum = get<double>(bytes, at);
+  if (rows > bytes.size() || nnz > bytes.size()) return reject("corrupt header");
+  const uint64_t expected = kHeaderBytes + (rows + 1) * 8 + nnz * 8 + 8;
+  if (bytes.size() != expected)
+    return reject(bytes.size() < expected ? "truncated" : "trailing bytes");
+  uint64_t sum;
+  std::memcpy(&sum, bytes.data() + bytes.size() - 8, 8);
+  if (sum != checksum(bytes.data(), bytes.size() - 8)) return reject("checksum mismatch: corrupt");
+  if (!(stored == key) || rows != patches) return reject("computed for other geometry or settings");
+  auto offsets = getArray<uint64_t>(bytes, at, rows + 1);
+  auto columns = getArray<uint32_t>(bytes, at, nnz);
+  auto values = getArray<float>(bytes, at, nnz);
+  if (const std::string bad = checkTable(offsets, columns, values, patches); !bad.empty())
+    return reject(bad);
+  result.table = FormFactorTable::fromArrays(std::move(offsets), std::move(columns),
+                                             std::move(values), droppedEntries, droppedSum);
+  return result;
+}
+
+std::string saveFormFactorTable(const std::filesystem::path& file, const FormFactorCacheKey& key,
+                                const FormFactorTable& table) {
+  std::string out;
+  out.reserve(kHeaderBytes + table.memoryBytes() + 8);
+  out.append(kMagic, 8);
+  put(out, kVersion);
+  put(out, uint32_t(0));
+  put(out, key.high);
+  put(out, key.low);
+  put(out, uint64_t(table.rows()));
+  put(out, uint64_t(table.nonZeros()));
+  put(out, table.droppedEntryFraction());
+  put(out, table.droppedSumFraction());
+  putArray(out, table.offsetArray());
+  putArray(out, table.columnArray());
+  putArray(out, table.valueArray());
+  put(out, checksum(out.data(), out.size()));
+  try {
+    std::filesystem::create_directories(file.parent_path());
+    writeBytesAtomically(file, out);
+  } catch (const std::exception& e) {
+    return fmt::format("form-factor cache not written: {}", e.what());
+  }
+  return "";
+}
+
+}  // namespace rad

@@ -1,0 +1,124 @@
+// Compressed sparse rows of form factors. Reciprocity averaging as in Cohen and Wallace,
+// "Radiosity and Realistic Image Synthesis" (1993), section 4.9: A_i F_ij and A_j F_ji estimate
+// the same quantity, so their mean has half the variance of either, and the averaged table
+// satisfies reciprocity exactly, which shooting (which uses F_ij A_i / A_j for F_ji) and
+// gathering then agree on.
+#include "patch/form_factor_table.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace rad {
+
+FormFactorTable FormFactorTable::fromRows(std::vector<std::vector<FormFactorEntry>> rows,
+                                          float threshold) {
+  FormFactorTable t;
+  std::vector<double> kept(rows.size()), total(rows.size());
+  std::vector<size_t> estimated(rows.size());
+  tbb::parallel_for(size_t(0), rows.size(), [&](size_t i) {
+    auto& row = rows[i];
+    std::sort(row.begin(), row.end(), [](const FormFactorEntry& a, const FormFactorEntry& b) {
+      return a.column < b.column;
+    });
+    size_t out = 0;
+    for (size_t k = 0; k < row.size();) {  // merge repeated columns
+      FormFactorEntry e = row[k++];
+      while (k < row.size() && row[k].column == e.column) e.value += row[k++].value;
+      row[out++] = e;
+    }
+    row.resize(out);
+    estimated[i] = out;
+    for (const FormFactorEntry& e : row) total[i] += e.value;
+    std::erase_if(row, [threshold](const FormFactorEntry& e) {
+      return !(e.value >= threshold) || e.value <= 0.0f;
+    });
+    for (const FormFactorEntry& e : row) kept[i] += e.value;
+  });
+  t.offsets_.assign(rows.size() + 1, 0);
+  for (size_t i = 0; i < rows.size(); ++i) t.offsets_[i + 1] = t.offsets_[i] + rows[i].size();
+  t.columns_.resize(t.offsets_.back());
+  t.values_.resize(t.offsets_.back());
+  tbb::parallel_for(size_t(0), rows.size(), [&](size_t i) {
+    for (size_t k = 0; k < rows[i].size(); ++k) {
+      t.columns_[t.offsets_[i] + k] = rows[i][k].column;
+      t.values_[t.offsets_[i] + k] = rows[i][k].value;
+    }
+    std::vector<FormFactorEntry>().swap(rows[i]);
+  });
+  const double est = double(std::accumulate(estimated.begin(), estimated.end(), size_t(0)));
+  const double sum = std::accumulate(total.begin(), total.end(), 0.0);
+  t.droppedEntries_ = est > 0.0 ? 1.0 - double(t.values_.size()) / est : 0.0;
+  t.droppedSum_ = sum > 0.0 ? 1.0 - std::accumulate(kept.begin(), kept.end(), 0.0) / sum : 0.0;
+  return t;
+}
+
+FormFactorTable FormFactorTable::fromArrays(std::vector<uint64_t> offsets,
+                                            std::vector<uint32_t> columns,
+                                            std::vector<float> values, double droppedEntries,
+                                            double droppedSum) {
+  FormFactorTable t;
+  t.offsets_ = std::move(offsets);
+  t.columns_ = std::move(columns);
+  t.values_ = std::move(values);
+  t.droppedEntries_ = droppedEntries;
+  t.droppedSum_ = droppedSum;
+  return t;
+}
+
+float FormFactorTable::at(size_t i, uint32_t j) const {
+  const auto cols = columns(i);
+  const auto it = std::lower_bound(cols.begin(), cols.end(), j);
+  return it != cols.end() && *it == j ? values(i)[size_t(it - cols.begin())] : 0.0f;
+}
+
+double FormFactorTable::rowSum(size_t row) const {
+  double s = 0.0;
+  for (float v : values(row)) s += v;
+  return s;
+}
+
+void FormFactorTable::symmetrize(std::span<const float> area, float threshold) {
+  // The transpose by counting sort: its rows list, in increasing order, who sees each patch.
+  const size_t n = rows();
+  std::vector<uint64_t> tOffsets(n + 1, 0);
+  for (uint32_t c : columns_) ++tOffsets[c + 1];
+  for (size_t i = 0; i < n; ++i) tOffsets[i + 1] += tOffsets[i];
+  std::vector<uint32_t> tColumns(columns_.size());
+  std::vector<float> tValues(values_.size());  // A_k F_ki
+  std::vector<uint64_t> fill(tOffsets.begin(), tOffsets.end() - 1);
+  for (size_t k = 0; k < n; ++k)
+    for (uint64_t e = offsets_[k]; e < offsets_[k + 1]; ++e) {
+      const uint64_t at = fill[columns_[e]]++;
+      tColumns[at] = uint32_t(k);
+      tValues[at] = area[k] * values_[e];
+    }
+  // Row i of the result: the union of row i and transposed row i, G_ij = (A_i F_ij + A_j F_ji) / 2
+  // over A_i; an entry estimated from one side only is averaged with that side's zero.
+  std::vector<std::vector<FormFactorEntry>> merged(n);
+  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    uint64_t a = offsets_[i], b = tOffsets[i];
+    auto& row = merged[i];
+    while (a < offsets_[i + 1] || b < tOffsets[i + 1]) {
+      const uint32_t ca = a < offsets_[i + 1] ? columns_[a] : ~0u;
+      const uint32_t cb = b < tOffsets[i + 1] ? tColumns[b] : ~0u;
+      const uint32_t c = std::min(ca, cb);
+      double flux = 0.0;
+      if (ca == c) flux += double(area[i]) * values_[a++];
+      if (cb == c) flux += tValues[b++];
+      row.push_back({c, float(0.5 * flux / area[i])});
+    }
+  });
+  const double droppedEntries = droppedEntries_, droppedSum = droppedSum_;
+  *this = fromRows(std::move(merged), threshold);
+  droppedEntries_ = 1.0 - (1.0 - droppedEntries) * (1.0 - droppedEntries_);
+  droppedSum_ = 1.0 - (1.0 - droppedSum) * (1.0 - droppedSum_);
+}
+
+size_t FormFactorTable::memoryBytes() const {
+  return offsets_.size() * sizeof(uint64_t) + columns_.size() * sizeof(uint32_t) +
+         values_.size() * sizeof(float);
+}
+
+}  // namespace rad

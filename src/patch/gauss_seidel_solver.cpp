@@ -1,0 +1,39 @@
+// Gauss-Seidel iteration for the radiosity equation (Cohen and Wallace, "Radiosity and Realistic
+// Image Synthesis" (1993), section 5.3.2): each patch gathers the newest radiosities, in place,
+// which roughly halves the sweeps Jacobi needs on diagonally dominant systems.
+#include <radiosity/error.h>
+
+#include <chrono>
+
+#include "patch/patch_solver_terms.h"
+#include "patch/patch_solvers.h"
+
+namespace rad {
+
+PatchSolution solveGaussSeidel(const FormFactorTable& table, const PatchSystem& s,
+                               const PatchSolverControl& control,
+                               const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  PatchSolution out;
+  const double norm = emittedNorm(s);
+  out.radiosity = s.emitted;
+  out.irradiance.assign(s.size(), Color(0.0f));
+  while (norm > 0.0 && out.iterations < control.maxIterations) {
+    double change = 0.0;
+    for (size_t i = 0; i < s.size(); ++i) {
+      out.irradiance[i] = gather(table, i, out.radiosity);
+      const Color b = s.emitted[i] + s.rho[i] * out.irradiance[i];
+      change += double(s.area[i]) * absSum(b - out.radiosity[i]);
+      out.radiosity[i] = b;
+    }
+    ++out.iterations;
+    out.residuals.push_back(change / norm);
+    if (progress && !progress(double(out.iterations) / control.maxIterations)) throw Cancelled();
+    if (out.residuals.back() < control.tolerance) break;
+  }
+  finishSolution(s, out);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace rad

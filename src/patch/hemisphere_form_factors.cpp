@@ -1,0 +1,78 @@
+// Form factors by ray casting from the patch (the "hemisphere" or Monte Carlo ray-shooting
+// estimator): Cohen and Wallace, "Radiosity and Realistic Image Synthesis" (1993), section
+// 4.9.4; P. Shirley, "Radiosity via ray tracing", Graphics Gems II (1991). A cosine-weighted
+// direction from a uniform point of patch i lands on patch j with probability F_ij. Points and
+// directions are each stratified (jittered grids), their strata paired by a random permutation.
+#include <radiosity/error.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/rng.h"
+#include "geometry/sampling.h"
+#include "patch/form_factor_estimators.h"
+#include "render/progress_ticker.h"
+
+namespace rad {
+
+std::vector<FormFactorEntry> hemisphereRow(const PatchMesh& mesh, const RayCaster& caster,
+                                           uint32_t patch, int rays, uint64_t seed) {
+  const int side = std::max(1, int(std::ceil(std::sqrt(double(rays)))));
+  const int n = side * side;
+  Rng rng(seed, patch);
+  std::vector<int> pointStratum(static_cast<size_t>(n));
+  std::iota(pointStratum.begin(), pointStratum.end(), 0);
+  for (int k = n - 1; k > 0; --k)
+    std::swap(pointStratum[k], pointStratum[rng.next() % uint32_t(k + 1)]);
+
+  const Patch& p = mesh.patches()[patch];
+  const float offset = mesh.rayOffset();
+  std::vector<Ray> batch(static_cast<size_t>(n));
+  std::vector<float> weight(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const int s = pointStratum[k];
+    const Vec2 up((float(s % side) + rng.uniform()) / float(side),
+                  (float(s / side) + rng.uniform()) / float(side));
+    const Vec2 ud((float(k % side) + rng.uniform()) / float(side),
+                  (float(k / side) + rng.uniform()) / float(side));
+    const Vec3 origin = mesh.samplePoint(patch, up, weight[k]);
+    batch[k] = {origin + offset * p.normal, toWorld(sampleCosineHemisphere(ud), p.normal)};
+  }
+  std::vector<Hit> hits(static_cast<size_t>(n));
+  caster.intersect(batch, hits);
+  std::vector<FormFactorEntry> row;
+  row.reserve(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    if (!hits[k].valid()) continue;
+    const Vec3 at = batch[k].origin + hits[k].distance * batch[k].direction;
+    const uint32_t j = mesh.locate(hits[k].triangle, hits[k].frontFace, at).patch;
+    if (j != kNoPatch && j != patch) row.push_back({j, weight[k] / float(n)});
+  }
+  std::sort(row.begin(), row.end(), [](auto& a, auto& b) { return a.column < b.column; });
+  size_t out = 0;
+  for (size_t k = 0; k < row.size();) {
+    FormFactorEntry e = row[k++];
+    while (k < row.size() && row[k].column == e.column) e.value += row[k++].value;
+    row[out++] = e;
+  }
+  row.resize(out);
+  return row;
+}
+
+FormFactorRows hemisphereFormFactors(const PatchMesh& mesh, const RayCaster& caster,
+                                     const FormFactorSettings& settings,
+                                     const ProgressCallback& progress) {
+  FormFactorRows rows(mesh.size());
+  ProgressTicker ticker(progress, rows.size());
+  tbb::parallel_for(size_t(0), rows.size(), [&](size_t i) {
+    if (ticker.cancelled()) return;
+    rows[i] = hemisphereRow(mesh, caster, uint32_t(i), settings.rays, settings.seed);
+    ticker.tick();
+  });
+  ticker.throwIfCancelled();
+  return rows;
+}
+
+}  // namespace rad

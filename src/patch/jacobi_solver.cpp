@@ -1,0 +1,56 @@
+// Jacobi iteration for the radiosity equation (Cohen and Wallace, "Radiosity and Realistic Image
+// Synthesis" (1993), section 5.3.1): B^(k+1) = E + rho F B^(k). Converges because rho F has
+// spectral radius below 1 (rho < 1, rows of F sum to at most 1).
+#include <radiosity/error.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <chrono>
+
+#include "patch/patch_solver_terms.h"
+#include "patch/patch_solvers.h"
+
+namespace rad {
+
+double relativeResidual(const FormFactorTable& table, const PatchSystem& system,
+                        std::span<const Color> radiosity) {
+  const double norm = emittedNorm(system);
+  double sum = 0.0;
+  for (size_t i = 0; i < system.size(); ++i)
+    sum += double(system.area[i]) *
+           absSum(system.emitted[i] + system.rho[i] * gather(table, i, radiosity) - radiosity[i]);
+  return norm > 0.0 ? sum / norm : 0.0;
+}
+
+PatchSolution solveJacobi(const FormFactorTable& table, const PatchSystem& s,
+                          const PatchSolverControl& control, const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  PatchSolution out;
+  const double norm = emittedNorm(s);
+  out.radiosity = s.emitted;
+  out.irradiance.assign(s.size(), Color(0.0f));
+  std::vector<Color> next(s.size());
+  while (norm > 0.0 && out.iterations < control.maxIterations) {
+    const double change = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, s.size(), 1024), 0.0,
+        [&](const tbb::blocked_range<size_t>& r, double acc) {
+          for (size_t i = r.begin(); i < r.end(); ++i) {
+            out.irradiance[i] = gather(table, i, out.radiosity);
+            next[i] = s.emitted[i] + s.rho[i] * out.irradiance[i];
+            acc += double(s.area[i]) * absSum(next[i] - out.radiosity[i]);
+          }
+          return acc;
+        },
+        std::plus<double>());
+    out.radiosity.swap(next);
+    ++out.iterations;
+    out.residuals.push_back(change / norm);
+    if (progress && !progress(double(out.iterations) / control.maxIterations)) throw Cancelled();
+    if (out.residuals.back() < control.tolerance) break;
+  }
+  finishSolution(s, out);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace rad

@@ -1,0 +1,299 @@
+// Quadtree patch meshing. Quads are split by their bilinear map (the children of a planar quad
+// are the bilinear map restricted to the four quadrants of its parameter square), triangles by
+// their edge midpoints (Loop-style 1-to-4 split); point location descends the tree by the
+// parameter (u, v) or the barycentrics of the point. Inverse bilinear map: I. Quilez, "Inverse
+// bilinear interpolation" (2010).
+#include "patch/patch_mesh.h"
+
+#include <fmt/format.h>
+#include <radiosity/error.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/sampling.h"
+
+namespace rad {
+
+namespace {
+
+constexpr int kMaxDepth = 12;
+constexpr float kCreaseCos = 0.8f;  // about 37 degrees: a box's walls stay apart, a sphere smooth
+
+// The corners (indices into Scene::positions) of each quadtree root of a face: the face itself
+// when it is a convex quad, else each of its triangles.
+std::vector<std::vector<uint32_t>> rootCorners(const Scene& scene, const Face& face) {
+  std::vector<std::vector<uint32_t>> roots;
+  if (face.corners.size() == 4 && face.triangleCount == 2) {
+    bool convex = true;
+    for (int k = 0; k < 4; ++k) {
+      const Vec3& a = scene.positions[face.corners[k]];
+      const Vec3& b = scene.positions[face.corners[(k + 1) % 4]];
+      const Vec3& c = scene.positions[face.corners[(k + 2) % 4]];
+      convex = convex && glm::dot(glm::cross(b - a, c - b), face.normal) > 0.0f;
+    }
+    if (convex) return {face.corners};
+  }
+  for (uint32_t t = face.firstTriangle; t < face.firstTriangle + face.triangleCount; ++t)
+    roots.push_back({scene.triangles[t].x, scene.triangles[t].y, scene.triangles[t].z});
+  return roots;
+}
+
+float longestEdge(const Scene& scene, const std::vector<uint32_t>& corners) {
+  float longest = 0.0f;
+  for (size_t k = 0; k < corners.size(); ++k)
+    longest = std::max(longest, glm::distance(scene.positions[corners[k]],
+                                              scene.positions[corners[(k + 1) % corners.size()]]));
+  return longest;
+}
+
+int depthFor(float edge, float patchSize) {
+  if (edge <= patchSize) return 0;
+  return std::min(kMaxDepth, int(std::ceil(std::log2(double(edge) / double(patchSize)) - 1e-9)));
+}
+
+float cross2(Vec2 a, Vec2 b) {
+  return a.x * b.y - a.y * b.x;
+}
+
+// (u, v) with p = bilinear(c0, c1, c2, c3; u, v), in 2D coordinates of the quad's plane.
+Vec2 inverseBilinear(Vec2 p, Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const Vec2 e = b - a, f = d - a, g = a - b + c - d, h = p - a;
+  const float k2 = cross2(g, f), k1 = cross2(e, f) + cross2(h, g), k0 = cross2(h, e);
+  auto uFor = [&](float v) {
+    const Vec2 den = e + g * v;
+    return std::abs(den.x) > std::abs(den.y) ? (h.x - f.x * v) / den.x : (h.y - f.y * v) / den.y;
+  };
+  float v;
+  if (std::abs(k2) < 1e-6f * std::abs(k1)) {
+    v = -k0 / k1;
+  } else {
+    const float w = std::sqrt(std::max(0.0f, k1 * k1 - 4.0f * k0 * k2));
+    v = (-k1 - w) / (2.0f * k2);
+    const float u = uFor(v);
+    if (v < -0.01f || v > 1.01f || u < -0.01f || u > 1.01f) v = (-k1 + w) / (2.0f * k2);
+  }
+  return glm::clamp(Vec2(uFor(v), v), Vec2(0.0f), Vec2(1.0f));
+}
+
+}  // namespace
+
+float PatchMesh::patchSizeFor(const Scene& scene, size_t target) {
+  std::vector<std::pair<float, int>> roots;  // longest edge, sides
+  for (const Face& face : scene.faces) {
+    const int sides = scene.materials[face.material].twoSided ? 2 : 1;
+    for (const auto& corners : rootCorners(scene, face))
+      roots.push_back({longestEdge(scene, corners), sides});
+  }
+  auto count = [&](float size) {
+    double n = 0.0;
+    for (const auto& [edge, sides] : roots)
+      n += double(sides) * std::pow(4.0, depthFor(edge, size));
+    return n;
+  };
+  // The largest size that still gives at least `target` patches (count falls as size grows).
+  double lo = std::log(std::max(scene.bounds().diagonal(), 1e-30f) * 1e-5), hi = lo + std::log(2e5);
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (count(float(std::exp(mid))) >= double(target) ? lo : hi) = mid;
+  }
+  return float(std::exp(lo));
+}
+
+PatchMesh::PatchMesh(const Scene& scene, const PatchMeshSettings& settings) : scene_(&scene) {
+  if (!(settings.patchSize >= 0.0f) || !std::isfinite(settings.patchSize))
+    throw InputError("patch settings",
+                     fmt::format("patch size {} must be positive", settings.patchSize));
+  if (settings.patchSize == 0.0f && settings.targetPatches < 1)
+    throw InputError("patch settings", "patch count must be at least 1");
+  patchSize_ =
+      settings.patchSize > 0.0f ? settings.patchSize : patchSizeFor(scene, settings.targetPatches);
+  weldCell_ = std::max(scene.bounds().diagonal(), 1e-30f) * 1e-6f;
+  triangleRoot_.assign(2 * scene.triangles.size(), kNoNode);
+  for (uint32_t f = 0; f < scene.faces.size(); ++f) {
+    const Face& face = scene.faces[f];
+    for (auto corners : rootCorners(scene, face)) {
+      addRoot(f, false, corners);
+      if (!scene.materials[face.material].twoSided) continue;
+      std::reverse(corners.begin(), corners.end());
+      addRoot(f, true, corners);
+    }
+  }
+  weld_.clear();
+}
+
+void PatchMesh::addRoot(uint32_t face, bool back, std::span<const uint32_t> corners) {
+  const Face& f = scene_->faces[face];
+  const Vec3 normal = back ? -f.normal : f.normal;
+  PatchNode node;
+  node.quad = corners.size() == 4;
+  node.root = uint32_t(roots_.size());
+  for (size_t k = 0; k < corners.size(); ++k)
+    node.corners[k] = weldedVertex(scene_->positions[corners[k]], normal);
+  roots_.push_back({face, uint32_t(nodes_.size()), back});
+  nodes_.push_back(node);
+  // A quad root serves both triangles of its face; a triangle root the one it was made from.
+  for (uint32_t t = f.firstTriangle; t < f.firstTriangle + f.triangleCount; ++t) {
+    const UVec3& tri = scene_->triangles[t];
+    const bool mine =
+        node.quad || (std::find(corners.begin(), corners.end(), tri.x) != corners.end() &&
+                      std::find(corners.begin(), corners.end(), tri.y) != corners.end() &&
+                      std::find(corners.begin(), corners.end(), tri.z) != corners.end());
+    if (mine) triangleRoot_[2 * t + (back ? 1 : 0)] = roots_.back().node;
+  }
+  float edge = 0.0f;
+  for (size_t k = 0; k < corners.size(); ++k)
+    edge = std::max(edge, glm::distance(scene_->positions[corners[k]],
+                                        scene_->positions[corners[(k + 1) % corners.size()]]));
+  subdivide(roots_.back().node, depthFor(edge, patchSize_), normal);
+}
+
+void PatchMesh::subdivide(uint32_t index, int depth, const Vec3& normal) {
+  if (depth == 0) return finishPatch(index);
+  const PatchNode parent = nodes_[index];
+  auto mid = [&](uint32_t a, uint32_t b) {
+    return weldedVertex(0.5f * (vertices_[a] + vertices_[b]), normal);
+  };
+  const auto& c = parent.corners;
+  std::array<std::array<uint32_t, 4>, 4> kids;
+  if (parent.quad) {
+    const uint32_t e01 = mid(c[0], c[1]), e12 = mid(c[1], c[2]), e23 = mid(c[2], c[3]),
+                   e30 = mid(c[3], c[0]);
+    const uint32_t m = weldedVertex(
+        0.25f * (vertices_[c[0]] + vertices_[c[1]] + vertices_[c[2]] + vertices_[c[3]]), normal);
+    kids = {{{c[0], e01, m, e30}, {e01, c[1], e12, m}, {m, e12, c[2], e23}, {e30, m, e23, c[3]}}};
+  } else {
+    const uint32_t m01 = mid(c[0], c[1]), m12 = mid(c[1], c[2]), m20 = mid(c[2], c[0]);
+    kids = {{{c[0], m01, m20, 0}, {m01, c[1], m12, 0}, {m20, m12, c[2], 0}, {m12, m20, m01, 0}}};
+  }
+  const uint32_t first = uint32_t(nodes_.size());
+  nodes_[index].firstChild = first;
+  for (int k = 0; k < 4; ++k) {
+    PatchNode child;
+    child.corners = kids[k];
+    child.parent = index;
+    child.root = parent.root;
+    child.depth = uint8_t(parent.depth + 1);
+    child.quad = parent.quad;
+    nodes_.push_back(child);
+  }
+  for (uint32_t k = 0; k < 4; ++k) subdivide(first + k, depth - 1, normal);
+}
+
+void PatchMesh::finishPatch(uint32_t index) {
+  PatchNode& node = nodes_[index];
+  const PatchRoot& root = roots_[node.root];
+  const Face& face = scene_->faces[root.face];
+  Patch p;
+  p.node = index;
+  p.face = root.face;
+  p.object = face.object;
+  p.material = face.material;
+  p.normal = root.back ? -face.normal : face.normal;
+  const Vec3 a = vertices_[node.corners[0]], b = vertices_[node.corners[1]],
+             c = vertices_[node.corners[2]];
+  const float a1 = 0.5f * glm::length(glm::cross(b - a, c - a));
+  p.area = a1;
+  Vec3 weighted = a1 * (a + b + c) / 3.0f;
+  if (node.quad) {
+    const Vec3 d = vertices_[node.corners[3]];
+    const float a2 = 0.5f * glm::length(glm::cross(c - a, d - a));
+    p.area += a2;
+    weighted += a2 * (a + c + d) / 3.0f;
+  }
+  p.centroid = p.area > 0.0f ? weighted / p.area : a;
+  node.patch = uint32_t(patches_.size());
+  patches_.push_back(p);
+}
+
+uint32_t PatchMesh::weldedVertex(const Vec3& p, const Vec3& normal) {
+  auto cell = [&](int k) { return uint64_t(std::llround(double(p[k]) / double(weldCell_))); };
+  const uint64_t key = (cell(0) * 73856093u) ^ (cell(1) * 19349663u) ^ (cell(2) * 83492791u);
+  std::vector<uint32_t>& bucket = weld_[key];
+  for (uint32_t v : bucket)
+    if (glm::distance(vertices_[v], p) <= weldCell_ &&
+        glm::dot(vertexNormals_[v], normal) > kCreaseCos)
+      return v;
+  bucket.push_back(uint32_t(vertices_.size()));
+  vertices_.push_back(p);
+  vertexNormals_.push_back(normal);
+  return bucket.back();
+}
+
+int PatchMesh::corners(uint32_t patch, std::array<Vec3, 4>& out) const {
+  const PatchNode& node = nodeOf(patch);
+  for (int k = 0; k < node.cornerCount(); ++k) out[k] = vertices_[node.corners[k]];
+  return node.cornerCount();
+}
+
+PatchMesh::Location PatchMesh::locate(uint32_t triangle, bool frontFace, const Vec3& point) const {
+  Location loc;
+  uint32_t index = triangleRoot_[2 * size_t(triangle) + (frontFace ? 0 : 1)];
+  if (index == kNoNode) return loc;
+  const PatchNode* node = &nodes_[index];
+  const Vec3 n = roots_[node->root].back ? -scene_->faces[roots_[node->root].face].normal
+                                         : scene_->faces[roots_[node->root].face].normal;
+  if (node->quad) {
+    Vec3 t, b;
+    orthonormalBasis(n, t, b);
+    auto flat = [&](uint32_t v) {
+      return Vec2(glm::dot(vertices_[v], t), glm::dot(vertices_[v], b));
+    };
+    Vec2 uv =
+        inverseBilinear(Vec2(glm::dot(point, t), glm::dot(point, b)), flat(node->corners[0]),
+                        flat(node->corners[1]), flat(node->corners[2]), flat(node->corners[3]));
+    while (!node->leaf()) {
+      const int bu = uv.x >= 0.5f ? 1 : 0, bv = uv.y >= 0.5f ? 1 : 0;
+      static constexpr int kChild[2][2] = {{0, 3}, {1, 2}};  // [bu][bv]
+      node = &nodes_[node->firstChild + kChild[bu][bv]];
+      uv = glm::clamp(2.0f * uv - Vec2(float(bu), float(bv)), Vec2(0.0f), Vec2(1.0f));
+    }
+    loc.weights = {(1 - uv.x) * (1 - uv.y), uv.x * (1 - uv.y), uv.x * uv.y, (1 - uv.x) * uv.y};
+  } else {
+    const Vec3 a = vertices_[node->corners[0]], e1 = vertices_[node->corners[1]] - a,
+               e2 = vertices_[node->corners[2]] - a, d = point - a;
+    const float d00 = glm::dot(e1, e1), d01 = glm::dot(e1, e2), d11 = glm::dot(e2, e2);
+    const float d20 = glm::dot(d, e1), d21 = glm::dot(d, e2);
+    const float den = d00 * d11 - d01 * d01;
+    Vec3 w(0.0f, (d11 * d20 - d01 * d21) / den, (d00 * d21 - d01 * d20) / den);
+    w = glm::max(Vec3(1.0f - w.y - w.z, w.y, w.z), Vec3(0.0f));
+    w /= std::max(w.x + w.y + w.z, 1e-30f);
+    while (!node->leaf()) {
+      int k = w.x >= 0.5f ? 0 : w.y >= 0.5f ? 1 : w.z >= 0.5f ? 2 : 3;
+      if (k < 3) {
+        w *= 2.0f;
+        w[k] -= 1.0f;
+      } else {
+        w = Vec3(1.0f) - 2.0f * w;  // the middle child's corners are the opposite midpoints
+      }
+      w = glm::max(w, Vec3(0.0f));
+      w /= std::max(w.x + w.y + w.z, 1e-30f);
+      node = &nodes_[node->firstChild + uint32_t(k)];
+    }
+    loc.weights = {w.x, w.y, w.z, 0.0f};
+  }
+  loc.patch = node->patch;
+  return loc;
+}
+
+Vec3 PatchMesh::samplePoint(uint32_t patch, Vec2 u, float& weight) const {
+  std::array<Vec3, 4> c;
+  if (corners(patch, c) == 3) {
+    const float s = std::sqrt(u.x);  // area-uniform (Osada et al.)
+    weight = 1.0f;
+    return (1.0f - s) * c[0] + (s * (1.0f - u.y)) * c[1] + (s * u.y) * c[2];
+  }
+  const Vec3 du = (1 - u.y) * (c[1] - c[0]) + u.y * (c[2] - c[3]);
+  const Vec3 dv = (1 - u.x) * (c[3] - c[0]) + u.x * (c[2] - c[1]);
+  weight = glm::length(glm::cross(du, dv)) / std::max(patches_[patch].area, 1e-30f);
+  return (1 - u.x) * (1 - u.y) * c[0] + u.x * (1 - u.y) * c[1] + u.x * u.y * c[2] +
+         (1 - u.x) * u.y * c[3];
+}
+
+size_t PatchMesh::memoryBytes() const {
+  return vertices_.size() * 2 * sizeof(Vec3) + nodes_.size() * sizeof(PatchNode) +
+         roots_.size() * sizeof(PatchRoot) + patches_.size() * sizeof(Patch) +
+         triangleRoot_.size() * sizeof(uint32_t);
+}
+
+}  // namespace rad

@@ -1,0 +1,115 @@
+#pragma once
+// The patches of the patch method: every planar face of the scene subdivided by a quadtree
+// (quads into 4 quads by their bilinear map, triangles into 4 by their edge midpoints) until each
+// patch's longest edge is at most the patch size. Every node keeps its parent, children and a
+// unique id (its index) so that adaptive refinement can split leaves later. Corners are welded
+// across patches (same position, normals within the crease angle) so that values averaged at
+// vertices shade smoothly. Two-sided faces get a second, mirrored set of patches for their back.
+
+#include <radiosity/scene.h>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+namespace rad {
+
+inline constexpr uint32_t kNoPatch = ~0u;
+inline constexpr uint32_t kNoNode = ~0u;
+
+struct PatchNode {
+  std::array<uint32_t, 4> corners{};  ///< welded vertex ids, CCW about the side's normal
+  uint32_t parent = kNoNode;
+  uint32_t firstChild = kNoNode;  ///< children are the 4 nodes from here on
+  uint32_t root = 0;              ///< the PatchRoot this node descends from
+  uint32_t patch = kNoPatch;      ///< leaf: its patch index
+  uint8_t depth = 0;
+  bool quad = true;  ///< 4 corners (bilinear) or 3 (corners[3] unused)
+
+  bool leaf() const { return firstChild == kNoNode; }
+  int cornerCount() const { return quad ? 4 : 3; }
+};
+
+/// A quadtree's top: a whole convex quad face, or one triangle of any other face; one per side.
+struct PatchRoot {
+  uint32_t face = 0;
+  uint32_t node = 0;
+  bool back = false;  ///< the mirrored back side of a two-sided face
+};
+
+/// A leaf of the quadtree: the unit the radiosity equation is solved on.
+struct Patch {
+  uint32_t node = 0;
+  uint32_t face = 0;
+  uint32_t object = 0;
+  uint32_t material = 0;
+  float area = 0.0f;
+  Vec3 centroid{0.0f};
+  Vec3 normal{0.0f};  ///< unit normal of the side the patch emits and receives on
+};
+
+struct PatchMeshSettings {
+  float patchSize = 0.0f;       ///< longest patch edge in scene units; 0: from targetPatches
+  size_t targetPatches = 4000;  ///< approximate patch count when patchSize is 0
+};
+
+class PatchMesh {
+ public:
+  /// Throws InputError for a negative or non-finite patch size.
+  PatchMesh(const Scene& scene, const PatchMeshSettings& settings);
+
+  /// The longest-edge limit that gives about `target` patches (never more than 4x it).
+  static float patchSizeFor(const Scene& scene, size_t target);
+
+  float patchSize() const { return patchSize_; }
+  const std::vector<Vec3>& vertices() const { return vertices_; }
+  const std::vector<Vec3>& vertexNormals() const { return vertexNormals_; }
+  const std::vector<PatchNode>& nodes() const { return nodes_; }
+  const std::vector<PatchRoot>& roots() const { return roots_; }
+  const std::vector<Patch>& patches() const { return patches_; }
+  size_t size() const { return patches_.size(); }
+  const PatchNode& nodeOf(uint32_t patch) const { return nodes_[patches_[patch].node]; }
+
+  /// The corner positions of a patch (3 or 4), CCW about its normal.
+  int corners(uint32_t patch, std::array<Vec3, 4>& out) const;
+
+  /// Where a surface point lies: its patch and the interpolation weights of that patch's corners
+  /// (bilinear in a quad, barycentric in a triangle). patch is kNoPatch on the back of a
+  /// one-sided face.
+  struct Location {
+    uint32_t patch = kNoPatch;
+    std::array<float, 4> weights{};
+  };
+  Location locate(uint32_t triangle, bool frontFace, const Vec3& point) const;
+
+  /// A point of the patch for u in [0,1)^2, and its weight (the bilinear map's area density over
+  /// its mean; 1 for triangles, whose map is area-preserving): average weight x f estimates the
+  /// area mean of f.
+  Vec3 samplePoint(uint32_t patch, Vec2 u, float& weight) const;
+
+  /// Distance by which sample points are lifted off their surface before a ray leaves them.
+  float rayOffset() const { return weldCell_ * 20.0f; }
+
+  /// Bytes held by the mesh arrays.
+  size_t memoryBytes() const;
+
+ private:
+  void addRoot(uint32_t face, bool back, std::span<const uint32_t> corners);
+  void subdivide(uint32_t node, int depth, const Vec3& normal);
+  uint32_t weldedVertex(const Vec3& p, const Vec3& normal);
+  void finishPatch(uint32_t node);
+
+  const Scene* scene_;
+  float patchSize_ = 0.0f;
+  float weldCell_ = 0.0f;
+  std::vector<Vec3> vertices_, vertexNormals_;
+  std::vector<PatchNode> nodes_;
+  std::vector<PatchRoot> roots_;
+  std::vector<Patch> patches_;
+  std::vector<uint32_t> triangleRoot_;  ///< per scene triangle and side: 2 t + back
+  std::unordered_map<uint64_t, std::vector<uint32_t>> weld_;  ///< cleared once built
+};
+
+}  // namespace rad

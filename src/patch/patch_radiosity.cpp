@@ -1,0 +1,315 @@
+// The public face of the patch method: mesh, form factors (cached), solve, then answer radiance
+// queries by interpolating the irradiance averaged at the welded patch corners.
+#include <fmt/format.h>
+#include <radiosity/error.h>
+#include <radiosity/patch_radiosity.h>
+
+#include <chrono>
+#include <cmath>
+#include <glm/gtc/constants.hpp>
+
+#include "geometry/ray_caster.h"
+#include "output/surface_samples.h"
+#include "patch/form_factor_cache.h"
+#include "patch/form_factor_estimators.h"
+#include "patch/patch_mesh.h"
+#include "patch/patch_solvers.h"
+
+namespace rad {
+
+struct PatchRadiosity::Impl {
+  const Scene* scene = nullptr;
+  PatchRadiositySettings settings;
+  std::unique_ptr<PatchMesh> mesh;
+  PatchSolution solution;
+  std::vector<Color> vertexIrradiance;
+  PatchRadiosityStats stats;
+
+  FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);
+  FormFactorTable computeTable(const RayCaster& caster, const ProgressCallback& progress);
+  void solve(const RayCaster& caster, const ProgressCallback& progress);
+  void solveLazily(const RayCaster& caster, const PatchSystem& system,
+                   const ProgressCallback& progress);
+  void averageAtVertices();
+  std::vector<SurfaceSample> samples() const;
+};
+
+namespace {
+
+void validate(const PatchRadiositySettings& s) {
+  auto fail = [](const std::string& what) { throw InputError("patch settings", what); };
+  if (!(s.patchSize >= 0.0f) || !std::isfinite(s.patchSize))
+    fail(fmt::format("patch size {} must be positive", s.patchSize));
+  if (s.patchSize == 0.0f && s.targetPatches < 1) fail("patch count must be at least 1");
+  if (s.formFactorRays < 1)
+    fail(fmt::format("form-factor rays {} must be at least 1", s.formFactorRays));
+  if (!(s.formFactorThreshold >= 0.0f && s.formFactorThreshold < 1.0f))
+    fail(fmt::format("form-factor threshold {} out of range [0, 1)", s.formFactorThreshold));
+  if (s.maxIterations < 1)
+    fail(fmt::format("max iterations {} must be at least 1", s.maxIterations));
+  if (!(s.tolerance >= 0.0)) fail(fmt::format("tolerance {} must not be negative", s.tolerance));
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+const char* solverName(PatchSolverKind s) {
+  switch (s) {
+    case PatchSolverKind::Jacobi:
+      return "jacobi";
+    case PatchSolverKind::GaussSeidel:
+      return "gauss-seidel";
+    case PatchSolverKind::Progressive:
+      return "progressive";
+  }
+  return "";
+}
+
+PatchSystem systemOf(const Scene& scene, const PatchMesh& mesh) {
+  PatchSystem s;
+  for (const Patch& p : mesh.patches()) {
+    const Material& m = scene.materials[p.material];
+    s.emitted.push_back(glm::pi<float>() * m.emission);
+    s.rho.push_back(m.rho);
+    s.area.push_back(p.area);
+  }
+  return s;
+}
+
+void recordRowSums(const std::vector<double>& sums, PatchRadiosityStats& stats) {
+  if (sums.empty()) return;
+  stats.rowSumMin = *std::min_element(sums.begin(), sums.end());
+  stats.rowSumMax = *std::max_element(sums.begin(), sums.end());
+  double total = 0.0;
+  for (double s : sums) total += s;
+  stats.rowSumMean = total / double(sums.size());
+}
+
+}  // namespace
+
+FormFactorTable PatchRadiosity::Impl::computeTable(const RayCaster& caster,
+                                                   const ProgressCallback& progress) {
+  FormFactorSettings ff{settings.estimator, settings.formFactorRays, settings.seed};
+  FormFactorRows rows = settings.estimator == PatchFormFactorEstimator::Hemisphere
+                            ? hemisphereFormFactors(*mesh, caster, ff, progress)
+                        : settings.estimator == PatchFormFactorEstimator::Pairwise
+                            ? pairwiseFormFactors(*mesh, caster, ff, progress)
+                            : exactFormFactors(*mesh, caster, ff, progress);
+  // Pairwise estimates are reciprocal by construction; the others average both directions,
+  // then drop what falls below the threshold.
+  if (settings.estimator == PatchFormFactorEstimator::Pairwise)
+    return FormFactorTable::fromRows(std::move(rows), settings.formFactorThreshold);
+  FormFactorTable table = FormFactorTable::fromRows(std::move(rows), 0.0f);
+  std::vector<float> area;
+  for (const Patch& p : mesh->patches()) area.push_back(p.area);
+  table.symmetrize(area, settings.formFactorThreshold);
+  return table;
+}
+
+FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
+                                                  const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const FormFactorSettings ff{settings.estimator, settings.formFactorRays, settings.seed};
+  const FormFactorCacheKey key =
+      formFactorCacheKey(*scene, mesh->patchSize(), ff, settings.formFactorThreshold, true);
+  std::filesystem::path file;
+  if (!settings.cacheDir.empty()) {
+    file = formFactorCacheFile(settings.cacheDir, key);
+    stats.cacheFile = file.string();
+    FormFactorCacheLoad load = loadFormFactorTable(file, key, mesh->size());
+    if (!load.warning.empty()) stats.warnings.push_back(load.warning);
+    if (load.table) {
+      stats.cacheLoaded = true;
+      stats.cacheLoadSeconds = secondsSince(start);
+      return std::move(*load.table);
+    }
+  }
+  FormFactorTable table = computeTable(caster, progress);
+  stats.formFactorSeconds = secondsSince(start);
+  if (!file.empty())
+    if (std::string w = saveFormFactorTable(file, key, table); !w.empty())
+      stats.warnings.push_back(w);
+  return table;
+}
+
+void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSystem& system,
+                                       const ProgressCallback& progress) {
+  std::vector<std::vector<uint32_t>> columns(mesh->size());
+  std::vector<std::vector<float>> values(mesh->size());
+  std::vector<double> sums;
+  auto row = [&](uint32_t i) {
+    const auto start = std::chrono::steady_clock::now();
+    for (const FormFactorEntry& e :
+         hemisphereRow(*mesh, caster, i, settings.formFactorRays, settings.seed)) {
+      if (!(e.value >= settings.formFactorThreshold)) continue;
+      columns[i].push_back(e.column);
+      values[i].push_back(e.value);
+    }
+    double sum = 0.0;
+    for (float v : values[i]) sum += v;
+    sums.push_back(sum);
+    stats.nonZeros += values[i].size();
+    stats.tableBytes += values[i].size() * (sizeof(uint32_t) + sizeof(float));
+    stats.formFactorSeconds += secondsSince(start);
+    return FormFactorRowView{columns[i], values[i]};
+  };
+  std::vector<uint8_t> done(mesh->size(), 0);
+  solution = solveProgressive(
+      [&](uint32_t i) {
+        if (!done[i]) {
+          done[i] = 1;
+          return row(i);
+        }
+        return FormFactorRowView{columns[i], values[i]};
+      },
+      system, {settings.tolerance, settings.maxIterations}, progress);
+  recordRowSums(sums, stats);
+  solution.seconds -= stats.formFactorSeconds;  // the solver's time, without the rows' rays
+}
+
+void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback& progress) {
+  const PatchSystem system = systemOf(*scene, *mesh);
+  const PatchSolverControl control{settings.tolerance, settings.maxIterations};
+  const bool lazy = settings.solver == PatchSolverKind::Progressive &&
+                    settings.estimator == PatchFormFactorEstimator::Hemisphere &&
+                    settings.cacheDir.empty();
+  if (lazy) return solveLazily(caster, system, progress);
+  const FormFactorTable table = formFactors(caster, progress);
+  stats.nonZeros = table.nonZeros();
+  stats.tableBytes = table.memoryBytes();
+  stats.droppedEntryFraction = table.droppedEntryFraction();
+  stats.droppedSumFraction = table.droppedSumFraction();
+  std::vector<double> sums(table.rows());
+  for (size_t i = 0; i < sums.size(); ++i) sums[i] = table.rowSum(i);
+  recordRowSums(sums, stats);
+  switch (settings.solver) {
+    case PatchSolverKind::Jacobi:
+      solution = solveJacobi(table, system, control, progress);
+      break;
+    case PatchSolverKind::GaussSeidel:
+      solution = solveGaussSeidel(table, system, control, progress);
+      break;
+    case PatchSolverKind::Progressive:
+      solution = solveProgressive(
+          [&](uint32_t i) {
+            return FormFactorRowView{table.columns(i), table.values(i)};
+          },
+          system, control, progress);
+      break;
+  }
+}
+
+void PatchRadiosity::Impl::averageAtVertices() {
+  vertexIrradiance.assign(mesh->vertices().size(), Color(0.0f));
+  std::vector<float> weight(mesh->vertices().size(), 0.0f);
+  for (uint32_t p = 0; p < mesh->size(); ++p) {
+    const PatchNode& node = mesh->nodeOf(p);
+    const float a = mesh->patches()[p].area;
+    for (int k = 0; k < node.cornerCount(); ++k) {
+      vertexIrradiance[node.corners[k]] += a * solution.irradiance[p];
+      weight[node.corners[k]] += a;
+    }
+  }
+  for (size_t v = 0; v < weight.size(); ++v)
+    if (weight[v] > 0.0f) vertexIrradiance[v] /= weight[v];
+}
+
+PatchRadiosity::PatchRadiosity(const Scene& scene, const PatchRadiositySettings& settings,
+                               const ProgressCallback& progress)
+    : impl_(std::make_unique<Impl>()) {
+  validate(settings);
+  Impl& m = *impl_;
+  m.scene = &scene;
+  m.settings = settings;
+  auto start = std::chrono::steady_clock::now();
+  m.mesh = std::make_unique<PatchMesh>(
+      scene, PatchMeshSettings{settings.patchSize, settings.targetPatches});
+  m.stats.meshSeconds = secondsSince(start);
+  const RayCaster caster(scene);
+  m.solve(caster, progress);
+  m.averageAtVertices();
+  PatchRadiosityStats& s = m.stats;
+  s.solveSeconds = m.solution.seconds;
+  s.patches = m.mesh->size();
+  s.nodes = m.mesh->nodes().size();
+  s.vertices = m.mesh->vertices().size();
+  s.patchSize = m.mesh->patchSize();
+  s.rays = caster.raysCast();
+  s.solver = solverName(settings.solver);
+  s.iterations = m.solution.iterations;
+  s.shots = m.solution.shots;
+  s.residuals = m.solution.residuals;
+  s.memoryBytes =
+      m.mesh->memoryBytes() + s.tableBytes + m.solution.radiosity.size() * 4 * sizeof(Color);
+}
+
+PatchRadiosity::~PatchRadiosity() = default;
+PatchRadiosity::PatchRadiosity(PatchRadiosity&&) noexcept = default;
+PatchRadiosity& PatchRadiosity::operator=(PatchRadiosity&&) noexcept = default;
+
+Color PatchRadiosity::radiance(const SurfaceHit& hit) const {
+  const Material& m = impl_->scene->materialOf(hit.triangle);
+  if (!hit.frontFace && !m.twoSided) return Color(0.0f);
+  const PatchMesh::Location loc = impl_->mesh->locate(hit.triangle, hit.frontFace, hit.point);
+  if (loc.patch == kNoPatch) return Color(0.0f);
+  Color h = impl_->solution.irradiance[loc.patch];
+  if (impl_->settings.shading == PatchShading::Smooth) {
+    const PatchNode& node = impl_->mesh->nodeOf(loc.patch);
+    h = Color(0.0f);
+    for (int k = 0; k < node.cornerCount(); ++k)
+      h += loc.weights[k] * impl_->vertexIrradiance[node.corners[k]];
+  }
+  // The hit's own material: colour edges and emitters stay sharp.
+  return m.emission + m.rho * h / glm::pi<float>();
+}
+
+std::vector<ObjectRadiometry> PatchRadiosity::objectRadiometry() const {
+  const Scene& scene = *impl_->scene;
+  const PatchMesh& mesh = *impl_->mesh;
+  std::vector<ObjectRadiometry> objects(scene.objects.size());
+  std::vector<Vec3d> h(objects.size(), Vec3d(0.0)), b(objects.size(), Vec3d(0.0));
+  for (uint32_t p = 0; p < mesh.size(); ++p) {
+    if (mesh.roots()[mesh.nodeOf(p).root].back) continue;
+    const Patch& patch = mesh.patches()[p];
+    objects[patch.object].area += patch.area;
+    h[patch.object] += double(patch.area) * Vec3d(impl_->solution.irradiance[p]);
+    b[patch.object] += double(patch.area) * Vec3d(impl_->solution.radiosity[p]);
+  }
+  for (size_t o = 0; o < objects.size(); ++o) {
+    objects[o].name = scene.objects[o].name;
+    if (objects[o].area <= 0.0) continue;
+    objects[o].meanIrradiance = Color(h[o] / objects[o].area);
+    objects[o].meanRadiosity = Color(b[o] / objects[o].area);
+  }
+  return objects;
+}
+
+const PatchRadiosityStats& PatchRadiosity::stats() const {
+  return impl_->stats;
+}
+
+std::vector<SurfaceSample> PatchRadiosity::Impl::samples() const {
+  std::vector<SurfaceSample> out(mesh->size());
+  for (uint32_t p = 0; p < mesh->size(); ++p) {
+    const Patch& patch = mesh->patches()[p];
+    out[p] = {patch.object,           patch.area,           patch.centroid,
+              patch.normal,           solution.emitted[p],  scene->materials[patch.material].rho,
+              solution.irradiance[p], solution.radiosity[p]};
+  }
+  return out;
+}
+
+void PatchRadiosity::exportCsv(const std::string& path) const {
+  writeSurfaceSamplesCsv(path, *impl_->scene, impl_->samples());
+}
+
+void PatchRadiosity::exportPly(const std::string& path) const {
+  writeSurfaceSamplesPly(path, impl_->samples());
+}
+
+std::string defaultPatchCacheDir() {
+  return defaultFormFactorCacheDir().string();
+}
+
+}  // namespace rad

@@ -1,0 +1,70 @@
+#pragma once
+// Solvers of the radiosity equation on patches, B_i = E_i + rho_i sum_j F_ij B_j, per RGB
+// channel. Each stops once the relative residual, sum_i A_i |r_i| / sum_i A_i E_i (summed over
+// the channels; r_i = E_i + rho_i H_i - B_i: the power not yet accounted for, relative to what is
+// emitted) is below the tolerance, or after maxIterations sweeps, and records it per sweep.
+
+#include <radiosity/progress.h>
+#include <radiosity/types.h>
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "patch/form_factor_table.h"
+
+namespace rad {
+
+/// The patches' terms of the equation: E (emitted radiosity, pi Ke), rho and area.
+struct PatchSystem {
+  std::vector<Color> emitted;
+  std::vector<Color> rho;
+  std::vector<float> area;
+  size_t size() const { return area.size(); }
+};
+
+struct PatchSolverControl {
+  double tolerance = 1e-3;
+  int maxIterations = 1000;  ///< sweeps; progressive refinement: shots / patches
+};
+
+struct PatchSolution {
+  std::vector<Color> emitted;     ///< E
+  std::vector<Color> irradiance;  ///< H, incident power per area
+  std::vector<Color> radiosity;   ///< B = E + rho H, excident power per area
+  std::vector<Color> deposit;     ///< (1 - rho) H, absorbed power per area
+  std::vector<double> residuals;  ///< relative residual after each sweep
+  int iterations = 0;
+  uint64_t shots = 0;   ///< progressive refinement: patches shot
+  Color ambient{0.0f};  ///< progressive refinement: the ambient term added at the end
+  double seconds = 0.0;
+};
+
+/// Jacobi gathering: every patch gathers from the previous sweep's B (parallel).
+PatchSolution solveJacobi(const FormFactorTable& table, const PatchSystem& system,
+                          const PatchSolverControl& control, const ProgressCallback& progress = {});
+/// Gauss-Seidel gathering: in place, each patch gathers the newest B (serial).
+PatchSolution solveGaussSeidel(const FormFactorTable& table, const PatchSystem& system,
+                               const PatchSolverControl& control,
+                               const ProgressCallback& progress = {});
+
+/// One row of F, as the progressive solver asks for it.
+struct FormFactorRowView {
+  std::span<const uint32_t> columns;
+  std::span<const float> values;
+};
+/// Gives row i; called from one thread; the view must stay valid until the solver returns.
+using FormFactorRowSource = std::function<FormFactorRowView(uint32_t patch)>;
+
+/// Progressive refinement: shoots the patch with the most unshot power (Southwell iteration),
+/// asking for each row when its patch first shoots; adds the ambient term at the end.
+PatchSolution solveProgressive(const FormFactorRowSource& rows, const PatchSystem& system,
+                               const PatchSolverControl& control,
+                               const ProgressCallback& progress = {});
+
+/// Relative residual of B for the system (for tests and reports).
+double relativeResidual(const FormFactorTable& table, const PatchSystem& system,
+                        std::span<const Color> radiosity);
+
+}  // namespace rad

@@ -1,0 +1,110 @@
+// Progressive refinement radiosity: M. Cohen, S. Chen, J. Wallace and D. Greenberg, "A
+// progressive refinement approach to fast radiosity image generation", SIGGRAPH 1988. The patch
+// with the most unshot power shoots it to every patch it sees (Southwell iteration; the unshot
+// radiosity is exactly the residual of the gathering form). Shooting from i needs row i only,
+// F_ji following from reciprocity F_ji = F_ij A_i / A_j, so rows are computed when first needed.
+// The ambient term (their section 3.2) stands in for the power not yet shot.
+#include <radiosity/error.h>
+
+#include <chrono>
+#include <queue>
+
+#include "patch/patch_solver_terms.h"
+#include "patch/patch_solvers.h"
+
+namespace rad {
+
+namespace {
+
+struct Shooter {
+  double power;
+  uint32_t patch;
+  bool operator<(const Shooter& o) const { return power < o.power; }
+};
+
+// The ambient radiosity: unshot power spread over the total area, times the interreflection
+// factor 1 / (1 - mean rho).
+Color ambientTerm(const PatchSystem& s, const std::vector<Color>& unshot) {
+  Vec3d shot(0.0), rho(0.0);
+  double area = 0.0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    shot += double(s.area[i]) * Vec3d(unshot[i]);
+    rho += double(s.area[i]) * Vec3d(s.rho[i]);
+    area += s.area[i];
+  }
+  if (area <= 0.0) return Color(0.0f);
+  return Color(shot / area / (Vec3d(1.0) - rho / area));
+}
+
+}  // namespace
+
+PatchSolution solveProgressive(const FormFactorRowSource& rows, const PatchSystem& s,
+                               const PatchSolverControl& control,
+                               const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  PatchSolution out;
+  const size_t n = s.size();
+  const double norm = emittedNorm(s);
+  out.radiosity = s.emitted;
+  out.irradiance.assign(n, Color(0.0f));
+  std::vector<Color> unshot = s.emitted;
+  std::vector<double> power(n);
+  std::priority_queue<Shooter> queue;
+  double total = 0.0;
+  auto rebuild = [&] {  // also removes the drift of the running total
+    queue = {};
+    total = 0.0;
+    for (uint32_t i = 0; i < n; ++i) {
+      power[i] = double(s.area[i]) * absSum(unshot[i]);
+      total += power[i];
+      if (power[i] > 0.0) queue.push({power[i], i});
+    }
+  };
+  rebuild();
+  const uint64_t maxShots = uint64_t(std::max(control.maxIterations, 1)) * std::max<uint64_t>(n, 1);
+  while (norm > 0.0 && out.shots < maxShots && total / norm >= control.tolerance &&
+         !queue.empty()) {
+    const Shooter top = queue.top();
+    queue.pop();
+    if (top.power != power[top.patch]) continue;  // stale: the patch received since
+    const uint32_t i = top.patch;
+    const Color shot = unshot[i];
+    unshot[i] = Color(0.0f);
+    total -= power[i];
+    power[i] = 0.0;
+    const FormFactorRowView row = rows(i);
+    for (size_t k = 0; k < row.columns.size(); ++k) {
+      const uint32_t j = row.columns[k];
+      const Color h = shot * (row.values[k] * s.area[i] / s.area[j]);
+      out.irradiance[j] += h;
+      const Color b = s.rho[j] * h;
+      out.radiosity[j] += b;
+      unshot[j] += b;
+      const double p = double(s.area[j]) * absSum(unshot[j]);
+      total += p - power[j];
+      power[j] = p;
+      if (p > 0.0) queue.push({p, j});
+    }
+    if (++out.shots % std::max<uint64_t>(n, 1) == 0) {
+      rebuild();
+      out.residuals.push_back(total / norm);
+      ++out.iterations;
+      if (progress && !progress(double(out.shots) / double(maxShots))) throw Cancelled();
+    }
+    if (queue.size() > 8 * n + 1024) rebuild();
+  }
+  if (out.residuals.empty() || out.shots % std::max<uint64_t>(n, 1) != 0) {
+    out.residuals.push_back(norm > 0.0 ? total / norm : 0.0);
+    ++out.iterations;
+  }
+  out.ambient = ambientTerm(s, unshot);
+  for (size_t i = 0; i < n; ++i) {
+    out.irradiance[i] += out.ambient;
+    out.radiosity[i] += s.rho[i] * out.ambient;
+  }
+  finishSolution(s, out);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace rad

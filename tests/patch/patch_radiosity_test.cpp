@@ -1,0 +1,144 @@
+// The patch method end to end: the Cornell box against the path tracer, the disk cache, and
+// radiance queries.
+#include <gtest/gtest.h>
+#include <radiosity/patch_radiosity.h>
+#include <radiosity/path_tracer.h>
+#include <radiosity/scene_loader.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "patch_test_scenes.h"
+
+namespace fs = std::filesystem;
+
+namespace rad {
+namespace {
+
+// Each wall, the floor, the ceiling and both blocks: the area-weighted mean radiosity within 3%
+// of the path tracer's. The reference's noise is dominated by where its points fall (shadows
+// make the irradiance discontinuous): 400 points per object left the floor 5-7% off between
+// seeds, so it takes 20000 points x 16 paths (measured: floor 0.5% between seeds, the others
+// less).
+TEST(PatchCornell, SurfaceMeansMatchThePathTracer) {
+  const Scene scene = loadScene("cornell");
+  PathTracerSettings reference;
+  reference.samplesPerPixel = 16;
+  reference.seed = 5;
+  std::map<std::string, ObjectRadiometry> expected;
+  for (const ObjectRadiometry& o : estimateObjectRadiometry(scene, 20000, reference))
+    expected[o.name] = o;
+
+  PatchRadiositySettings settings;  // the defaults: ~4000 patches, 256 rays each, Gauss-Seidel
+  const PatchRadiosity solution(scene, settings);
+  EXPECT_GE(solution.stats().patches, 4000u);
+  int compared = 0;
+  for (const ObjectRadiometry& o : solution.objectRadiometry()) {
+    if (o.name == "light") continue;  // its radiosity is its emission, an input
+    const ObjectRadiometry& ref = expected.at(o.name);
+    EXPECT_NEAR(o.area, ref.area, 1e-3 * ref.area) << o.name;
+    for (int c = 0; c < 3; ++c) {
+      if (ref.meanRadiosity[c] < 0.02f) continue;  // a channel the paint absorbs almost fully
+      EXPECT_NEAR(o.meanRadiosity[c], ref.meanRadiosity[c], 0.03 * ref.meanRadiosity[c])
+          << o.name << " channel " << c;
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 15);
+}
+
+Scene smallRoom() {
+  SceneBuilder b("cube");
+  const uint32_t wall = b.addMaterial({"wall", Color(0.6f), Color(0.0f), false});
+  const uint32_t lamp = b.addMaterial({"lamp", Color(0.3f), Color(1.0f), false});
+  test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : wall; });
+  return b.build();
+}
+
+std::vector<ObjectRadiometry> solveWith(const Scene& scene, const fs::path& cache,
+                                        PatchRadiosityStats& stats) {
+  PatchRadiositySettings settings;
+  settings.patchSize = 0.125f;
+  settings.cacheDir = cache.string();
+  const PatchRadiosity solution(scene, settings);
+  stats = solution.stats();
+  return solution.objectRadiometry();
+}
+
+void expectSame(const std::vector<ObjectRadiometry>& a, const std::vector<ObjectRadiometry>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t o = 0; o < a.size(); ++o)
+    EXPECT_EQ(a[o].meanRadiosity, b[o].meanRadiosity) << a[o].name;
+}
+
+TEST(PatchCache, SecondRunLoadsAndBadFilesAreRecomputed) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "radiosity_patch_cache";
+  fs::remove_all(dir);
+  const Scene scene = smallRoom();
+  PatchRadiosityStats first, again;
+  const auto reference = solveWith(scene, dir, first);
+  EXPECT_FALSE(first.cacheLoaded);
+  EXPECT_TRUE(first.warnings.empty());
+  ASSERT_TRUE(fs::exists(first.cacheFile));
+  expectSame(solveWith(scene, dir, again), reference);
+  EXPECT_TRUE(again.cacheLoaded);
+  EXPECT_EQ(again.rays, 0u);  // nothing recomputed
+
+  // Each damage: one warning, the table recomputed (and rewritten), the same answer.
+  const std::string file = first.cacheFile;
+  auto damageAndCheck = [&](const std::string& what,
+                            const std::function<void(std::string&)>& damage,
+                            const std::string& expectedReason) {
+    SCOPED_TRACE(what);
+    std::string bytes;
+    {
+      std::ifstream in(file, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    damage(bytes);
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+    PatchRadiosityStats s;
+    expectSame(solveWith(scene, dir, s), reference);
+    EXPECT_FALSE(s.cacheLoaded);
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_NE(s.warnings[0].find(expectedReason), std::string::npos) << s.warnings[0];
+    PatchRadiosityStats repaired;
+    solveWith(scene, dir, repaired);
+    EXPECT_TRUE(repaired.cacheLoaded);
+  };
+  damageAndCheck(
+      "truncated", [](std::string& b) { b.resize(b.size() / 2); }, "truncated");
+  damageAndCheck(
+      "byte flipped", [](std::string& b) { b[b.size() / 2] ^= 0x5a; }, "corrupt");
+  damageAndCheck(
+      "old version", [](std::string& b) { b[8] = 0; }, "version");
+  damageAndCheck(
+      "foreign", [](std::string& b) { b.replace(0, 8, "NOTOURS!"); }, "not a form-factor");
+  fs::remove_all(dir);
+}
+
+// Smooth shading: radiance is continuous across patch boundaries (a point just either side of an
+// edge gives nearly the same), and flat shading gives each patch its own value.
+TEST(PatchRadiance, SmoothAcrossPatchEdges) {
+  const Scene scene = smallRoom();
+  PatchRadiositySettings settings;
+  settings.patchSize = 0.125f;
+  const PatchRadiosity smooth(scene, settings);
+  settings.shading = PatchShading::Flat;
+  const PatchRadiosity flat(scene, settings);
+  // The floor (face 2, y = 0, facing +y): an edge of the 8 x 8 grid at x = 0.5.
+  uint32_t triangle = 0;
+  while (scene.triangleFace[triangle] != 2) ++triangle;
+  auto at = [&](const PatchRadiosity& r, float x) {
+    return r.radiance({Vec3(x, 0.0f, 0.3f), Vec3(0, 1, 0), triangle, true});
+  };
+  const float eps = 1e-4f;
+  EXPECT_NEAR(at(smooth, 0.5f - eps).g, at(smooth, 0.5f + eps).g, 1e-3f * at(smooth, 0.5f).g);
+  EXPECT_GT(std::abs(at(flat, 0.5f - eps).g - at(flat, 0.5f + eps).g), 1e-3f * at(flat, 0.5f).g);
+  EXPECT_EQ(smooth.radiance({Vec3(0.5f, 0.0f, 0.3f), Vec3(0, 1, 0), triangle, false}), Color(0.0f));
+}
+
+}  // namespace
+}  // namespace rad
