@@ -23,11 +23,13 @@ run: build
 		-o $(OUT)/cornell_pathtrace.png --stats $(OUT)/cornell_pathtrace.json
 	@$(BUILD)/radiosity render cornell --method pathtrace --width 256 --height 256 --spp 64 \
 		-o $(OUT)/cornell_pathtrace.exr --quiet
+	@$(BUILD)/radiosity render cornell --method patch --width 256 --height 256 \
+		-o $(OUT)/cornell_patch.png --stats $(OUT)/cornell_patch.json
 	@$(BUILD)/radiosity render cornell --method voxel --voxels 50000 --sphere-radius 16 \
 		--width 256 --height 256 -o $(OUT)/cornell_voxel.png --stats $(OUT)/cornell_voxel.json
-	@echo "images: $(OUT)/cornell_pathtrace.png, $(OUT)/cornell_voxel.png (tone mapped),"
-	@echo "        $(OUT)/cornell_pathtrace.exr (linear radiance)"
-	@echo "stats:  $(OUT)/cornell_pathtrace.json, $(OUT)/cornell_voxel.json"
+	@echo "images: $(OUT)/cornell_pathtrace.png, $(OUT)/cornell_patch.png, $(OUT)/cornell_voxel.png"
+	@echo "        (tone mapped), $(OUT)/cornell_pathtrace.exr (linear radiance)"
+	@echo "stats:  $(OUT)/cornell_pathtrace.json, $(OUT)/cornell_patch.json, $(OUT)/cornell_voxel.json"
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
