@@ -1,5 +1,6 @@
 // `radiosity solve SCENE --method voxel|patch`: computes the radiosity solution and exports it
-// (per-element CSV, PLY point cloud) with its numbers in the stats file.
+// (per-element CSV, PLY point cloud, or for the patch method the lit mesh as binary glTF) with
+// its numbers in the stats file.
 #include "command_support.h"
 #include "commands.h"
 #include "method_options.h"
@@ -39,6 +40,7 @@ int solveWithPatches(const SolveOptions& o, const Scene& scene, const std::strin
   addPatchStats(solution, stats);
   if (ext == ".csv") solution.exportCsv(o.exportPath);
   if (ext == ".ply") solution.exportPly(o.exportPath);
+  if (ext == ".glb") solution.exportGlb(o.exportPath);
   if (!o.stats.empty())
     writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
   const PatchRadiosityStats& p = solution.stats();
@@ -59,11 +61,15 @@ int solveWithPatches(const SolveOptions& o, const Scene& scene, const std::strin
 int runSolve(SolveOptions& o, Console& console) {
   Stopwatch total;
   const std::string ext = o.exportPath.empty() ? "" : lowerExtension(o.exportPath);
-  if (!o.exportPath.empty() && ext != ".csv" && ext != ".ply")
-    throw InputError("--export " + o.exportPath, "unsupported export format (supported: .csv, .ply)");
+  if (!o.exportPath.empty() && ext != ".csv" && ext != ".ply" && ext != ".glb")
+    throw InputError("--export " + o.exportPath,
+                     "unsupported export format (supported: .csv, .ply, .glb)");
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, console, stats);
   o.method.resolve(scene);
+  // The method can come from the scene file, so this is known only now; refuse before solving.
+  if (ext == ".glb" && o.method.method() != "patch")
+    throw InputError("--export " + o.exportPath, ".glb export needs --method patch");
   InterruptGuard interruptible;
   if (o.method.method() == "patch") return solveWithPatches(o, scene, ext, total, stats, console);
   const VoxelRadiosity solution(scene, o.method.voxel(), console.progress("voxel solve"));
@@ -92,7 +98,8 @@ void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("scene", o->scene, "Scene file (.json .obj .gltf .glb) or built-in: cornell, "
                                      "cornell-spot, room:N")->required();
   sub->add_option("--export", o->exportPath,
-                  "Per-element results: .csv (a row per voxel side or patch) or .ply (a point cloud)");
+                  "Per-element results: .csv (a row per voxel side or patch), .ply (a point cloud) "
+                  "or, with --method patch, .glb (the lit mesh, vertex colours = radiance)");
   sub->add_option("--stats", o->stats, "Write the run's numbers to this JSON file");
   sub->callback([o, &console, &action] { action = [o, &console] { return runSolve(*o, console); }; });
 }

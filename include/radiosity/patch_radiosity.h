@@ -78,6 +78,10 @@ class PatchRadiosity : public SurfaceRadiance {
   void exportCsv(const std::string& path) const;
   /// A binary PLY point cloud of the patch centroids.
   void exportPly(const std::string& path) const;
+  /// The lit patch mesh as binary glTF 2.0 (.glb), written atomically: one node per scene
+  /// object (named after it), the front sides of the patches, COLOR_0 = Ke + rho H / pi per
+  /// vertex clamped to [0, 1] (H as radiance() interpolates it), under an unlit white material.
+  void exportGlb(const std::string& path) const;
 
  private:
   struct Impl;

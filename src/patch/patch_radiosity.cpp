@@ -4,11 +4,14 @@
 #include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <unordered_map>
 #include <glm/gtc/constants.hpp>
 
 #include "geometry/ray_caster.h"
+#include "output/gltf_export.h"
 #include "output/surface_samples.h"
 #include "patch/form_factor_cache.h"
 #include "patch/form_factor_estimators.h"
@@ -32,6 +35,7 @@ struct PatchRadiosity::Impl {
                    const ProgressCallback& progress);
   void averageAtVertices();
   std::vector<SurfaceSample> samples() const;
+  LitMesh litMesh() const;
 };
 
 namespace {
@@ -306,6 +310,58 @@ void PatchRadiosity::exportCsv(const std::string& path) const {
 
 void PatchRadiosity::exportPly(const std::string& path) const {
   writeSurfaceSamplesPly(path, impl_->samples());
+}
+
+// The mesh a viewer sees: what radiance() returns, baked into vertex colours. Smooth shading
+// shares a vertex between the patches welded there, but only within one object and material
+// (radiance() uses the hit's own material, so colour edges and emitters stay sharp); flat shading
+// gives every patch its own corners. Only front sides are written: a two-sided face's mirrored
+// patches would coincide with its front and flicker, so its material is doubleSided instead.
+LitMesh PatchRadiosity::Impl::litMesh() const {
+  const bool smooth = settings.shading == PatchShading::Smooth;
+  std::vector<std::vector<uint32_t>> byObject(scene->objects.size());
+  for (uint32_t p = 0; p < mesh->size(); ++p)
+    if (!mesh->roots()[mesh->nodeOf(p).root].back)
+      byObject[mesh->patches()[p].object].push_back(p);
+
+  LitMesh out;
+  std::unordered_map<uint64_t, uint32_t> vertexOf;  // (vertex, material) -> index; per object
+  for (uint32_t o = 0; o < byObject.size(); ++o) {
+    vertexOf.clear();
+    const uint32_t firstTriangle = uint32_t(out.indices.size() / 3);
+    for (uint32_t p : byObject[o]) {
+      const Patch& patch = mesh->patches()[p];
+      const PatchNode& node = mesh->nodeOf(p);
+      const Material& material = scene->materials[patch.material];
+      std::array<uint32_t, 4> corner{};
+      for (int k = 0; k < node.cornerCount(); ++k) {
+        const uint32_t v = node.corners[k];
+        corner[k] = uint32_t(out.positions.size());
+        if (smooth) {
+          const auto [it, added] =
+              vertexOf.try_emplace((uint64_t(v) << 32) | patch.material, corner[k]);
+          corner[k] = it->second;
+          if (!added) continue;
+        }
+        const Color h = smooth ? vertexIrradiance[v] : solution.irradiance[p];
+        out.positions.push_back(mesh->vertices()[v]);
+        out.normals.push_back(smooth ? mesh->vertexNormals()[v] : patch.normal);
+        out.colors.push_back(material.emission + material.rho * h / glm::pi<float>());
+      }
+      // Corners are CCW about the side's normal, so the fans keep the front facing out.
+      for (int t = 0; t + 2 < node.cornerCount(); ++t) {
+        out.indices.insert(out.indices.end(), {corner[0], corner[t + 1], corner[t + 2]});
+        out.doubleSided.push_back(material.twoSided ? 1 : 0);
+      }
+    }
+    out.groups.push_back(
+        {scene->objects[o].name, firstTriangle, uint32_t(out.indices.size() / 3) - firstTriangle});
+  }
+  return out;
+}
+
+void PatchRadiosity::exportGlb(const std::string& path) const {
+  writeLitMeshGlb(path, impl_->litMesh());
 }
 
 std::string defaultPatchCacheDir() {

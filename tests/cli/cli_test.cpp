@@ -258,11 +258,31 @@ TEST(Cli, RendersWithPatchesAndSceneSolverKeys) {
   EXPECT_NE(r.err.find("/solver/solver"), std::string::npos) << r.err;
 }
 
+// The lit patch mesh as a .glb that viewers open (the content is checked in tests/patch); the
+// voxel method has no mesh to export and says so before solving.
+TEST(Cli, SolveExportsPatchMeshAsGlb) {
+  const fs::path dir = freshDir("patch_glb");
+  const std::string glb = (dir / "x.glb").string();
+  const CliResult r = run({"solve", "cornell", "--method", "patch", "--patches", "300",
+                           "--ff-rays", "16", "--export", glb, "--cache-dir", "none", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(glb, std::ios::binary);
+  char magic[4] = {};
+  in.read(magic, 4);
+  EXPECT_EQ(std::string(magic, 4), "glTF");
+  const CliResult voxel = run({"solve", "cornell", "--method", "voxel", "--export",
+                               (dir / "v.glb").string()});
+  EXPECT_EQ(voxel.status, 2);
+  EXPECT_NE(voxel.err.find("--method patch"), std::string::npos) << voxel.err;
+  EXPECT_FALSE(fs::exists(dir / "v.glb"));
+}
+
 TEST(Cli, SolveRejectsUnknownExportFormat) {
   const fs::path dir = freshDir("voxel_badexport");
   const CliResult r = run({"solve", "cornell", "--export", (dir / "v.obj").string()});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find(".csv"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(".glb"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "v.obj"));
 }
 

@@ -1,0 +1,220 @@
+#include "output/gltf_export.h"
+
+// Only tinygltf's declarations: the implementation is compiled once, in
+// src/scene/io/gltf_loader.cpp. These switches must match it there, because TinyGLTF's inline
+// constructor takes the addresses of the stb image callbacks unless they are switched off.
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include "core/atomic_file.h"
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+
+namespace rad {
+
+namespace {
+
+constexpr const char* kUnlit = "KHR_materials_unlit";
+
+// glTF COLOR_0 must be in [0, 1]; NaN (which std::clamp would keep) becomes black.
+float unitColor(float c) {
+  return c > 0.0f ? std::min(c, 1.0f) : 0.0f;
+}
+
+Vec3 unitNormal(const Vec3& n) {
+  const float length = glm::length(n);
+  // The material is unlit, so a stand-in only matters to validators, which demand unit length.
+  return length > 0.0f && std::isfinite(length) ? n / length : Vec3(0.0f, 0.0f, 1.0f);
+}
+
+class ModelBuilder {
+ public:
+  ModelBuilder() {
+    model_.asset.version = "2.0";
+    model_.asset.generator = "radiosity";
+    model_.buffers.emplace_back();  // uri left empty: it becomes the .glb's BIN chunk
+    model_.scenes.emplace_back();
+    model_.defaultScene = 0;
+  }
+
+  /// Appends a tightly packed array and an accessor over it; returns the accessor's index.
+  template <typename T>
+  int accessor(const std::vector<T>& values, int componentType, int type, int target) {
+    std::vector<unsigned char>& data = model_.buffers[0].data;
+    // Every component here is 4 bytes, so offsets stay aligned as glTF requires.
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = data.size();
+    view.byteLength = values.size() * sizeof(T);
+    view.target = target;
+    const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
+    data.insert(data.end(), bytes, bytes + view.byteLength);
+    model_.bufferViews.push_back(view);
+    tinygltf::Accessor a;
+    a.bufferView = int(model_.bufferViews.size()) - 1;
+    a.componentType = componentType;
+    a.type = type;
+    a.count = values.size();
+    model_.accessors.push_back(a);
+    return int(model_.accessors.size()) - 1;
+  }
+
+  int positions(const std::vector<Vec3>& p) {
+    const int index = accessor(p, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                               TINYGLTF_TARGET_ARRAY_BUFFER);
+    // POSITION accessors must carry their bounds (glTF 2.0, 3.7.2.1).
+    Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const Vec3& v : p) {
+      lo = glm::min(lo, v);
+      hi = glm::max(hi, v);
+    }
+    model_.accessors[index].minValues = {lo.x, lo.y, lo.z};
+    model_.accessors[index].maxValues = {hi.x, hi.y, hi.z};
+    return index;
+  }
+
+  /// The white unlit material, one-sided or double-sided, made on first use.
+  int material(bool doubleSided) {
+    int& index = materials_[doubleSided ? 1 : 0];
+    if (index >= 0) return index;
+    tinygltf::Material m;
+    m.name = doubleSided ? "radiosity_double_sided" : "radiosity";
+    m.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
+    // What viewers without KHR_materials_unlit fall back to: a rough dielectric, the closest
+    // lit look to the baked colours (the extension's own recommendation).
+    m.pbrMetallicRoughness.metallicFactor = 0.0;
+    m.pbrMetallicRoughness.roughnessFactor = 1.0;
+    m.doubleSided = doubleSided;
+    m.extensions[kUnlit] = tinygltf::Value(tinygltf::Value::Object());
+    model_.materials.push_back(m);
+    if (model_.extensionsUsed.empty()) model_.extensionsUsed.push_back(kUnlit);
+    return index = int(model_.materials.size()) - 1;
+  }
+
+  void addNode(const std::string& name, tinygltf::Mesh mesh) {
+    mesh.name = name;
+    model_.meshes.push_back(std::move(mesh));
+    tinygltf::Node node;
+    node.name = name;
+    node.mesh = int(model_.meshes.size()) - 1;
+    model_.nodes.push_back(node);
+    model_.scenes[0].nodes.push_back(int(model_.nodes.size()) - 1);
+  }
+
+  const tinygltf::Model& model() const { return model_; }
+
+ private:
+  tinygltf::Model model_;
+  std::array<int, 2> materials_{-1, -1};
+};
+
+void validate(const LitMesh& mesh) {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("lit mesh: " + what); };
+  const size_t vertices = mesh.positions.size();
+  if (mesh.normals.size() != vertices || mesh.colors.size() != vertices)
+    fail(fmt::format("{} positions, {} normals and {} colours differ", vertices,
+                     mesh.normals.size(), mesh.colors.size()));
+  if (mesh.indices.size() % 3 != 0) fail("index count is not a multiple of 3");
+  const size_t triangles = mesh.indices.size() / 3;
+  if (!mesh.doubleSided.empty() && mesh.doubleSided.size() != triangles)
+    fail("doubleSided needs one flag per triangle");
+  for (uint32_t i : mesh.indices)
+    if (i >= vertices) fail(fmt::format("index {} out of range ({} vertices)", i, vertices));
+  for (const Vec3& p : mesh.positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      fail("a position is not finite");
+  for (const LitMeshGroup& g : mesh.groups)
+    if (size_t(g.firstTriangle) + g.triangleCount > triangles)
+      fail(fmt::format("group '{}' runs past the {} triangles", g.name, triangles));
+}
+
+// Each group becomes a mesh of its own vertices (so that a node stands alone, e.g. when Blender
+// splits the import into objects) with a primitive per sidedness sharing them.
+void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& group,
+              std::vector<uint32_t>& local) {
+  std::vector<Vec3> positions, normals, colors;
+  std::array<std::vector<uint32_t>, 2> indices;  // one-sided, double-sided
+  std::vector<uint32_t> touched;
+  for (uint32_t t = group.firstTriangle; t < group.firstTriangle + group.triangleCount; ++t) {
+    const bool twoSided = !mesh.doubleSided.empty() && mesh.doubleSided[t] != 0;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = mesh.indices[3 * size_t(t) + k];
+      if (local[v] == ~0u) {
+        local[v] = uint32_t(positions.size());
+        touched.push_back(v);
+        positions.push_back(mesh.positions[v]);
+        normals.push_back(unitNormal(mesh.normals[v]));
+        const Color& c = mesh.colors[v];
+        colors.emplace_back(unitColor(c.r), unitColor(c.g), unitColor(c.b));
+      }
+      indices[twoSided ? 1 : 0].push_back(local[v]);
+    }
+  }
+  for (uint32_t v : touched) local[v] = ~0u;  // ready for the next group without an O(V) reset
+  if (positions.empty()) return;  // a glTF mesh needs at least one primitive
+
+  tinygltf::Mesh gltfMesh;
+  const int position = builder.positions(positions);
+  const int normal = builder.accessor(normals, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                                      TINYGLTF_TARGET_ARRAY_BUFFER);
+  const int color = builder.accessor(colors, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                                     TINYGLTF_TARGET_ARRAY_BUFFER);
+  for (int side = 0; side < 2; ++side) {
+    if (indices[side].empty()) continue;
+    tinygltf::Primitive p;
+    p.attributes = {{"POSITION", position}, {"NORMAL", normal}, {"COLOR_0", color}};
+    p.indices = builder.accessor(indices[side], TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                                 TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    p.material = builder.material(side == 1);
+    p.mode = TINYGLTF_MODE_TRIANGLES;
+    gltfMesh.primitives.push_back(p);
+  }
+  builder.addNode(group.name, std::move(gltfMesh));
+}
+
+// tinygltf's binary writer does not check its stream, so a short write (a full disk) would pass
+// unnoticed: the header's total length must match what reached the file.
+void checkWritten(const std::filesystem::path& file, const std::string& target) {
+  std::ifstream in(file, std::ios::binary);
+  std::array<char, 12> header{};
+  uint32_t length = 0;
+  if (in.read(header.data(), header.size())) std::memcpy(&length, header.data() + 8, 4);
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(file, ec);
+  if (!in || std::memcmp(header.data(), "glTF", 4) != 0 || ec || size != length)
+    throw std::runtime_error(fmt::format("{}: the glTF file was not written completely", target));
+}
+
+}  // namespace
+
+void writeLitMeshGlb(const std::string& path, const LitMesh& mesh) {
+  validate(mesh);
+  ModelBuilder builder;
+  std::vector<uint32_t> local(mesh.positions.size(), ~0u);
+  if (mesh.groups.empty()) {
+    addGroup(builder, mesh, {"radiosity", 0, uint32_t(mesh.indices.size() / 3)}, local);
+  } else {
+    for (const LitMeshGroup& group : mesh.groups) addGroup(builder, mesh, group, local);
+  }
+  writeFileAtomically(path, [&](const std::filesystem::path& temporary) {
+    tinygltf::TinyGLTF writer;
+    // No images to embed; the buffer goes into the .glb's BIN chunk; compact JSON; binary.
+    if (!writer.WriteGltfSceneToFile(&builder.model(), temporary.string(), false, true, false,
+                                     true))
+      throw std::runtime_error(fmt::format("{}: cannot write the glTF file", path));
+    checkWritten(temporary, path);
+  });
+}
+
+}  // namespace rad

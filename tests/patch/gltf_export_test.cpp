@@ -1,0 +1,196 @@
+// The lit patch mesh as binary glTF: read back with tinygltf, it must be the patch mesh (triangle
+// count, area, one node per object), carry the radiance the renderer shows as vertex colours, and
+// be written atomically like every other output.
+#include <gtest/gtest.h>
+#include <radiosity/patch_radiosity.h>
+
+// Declarations only, with the switches of the one implementation in src/scene/io/gltf_loader.cpp.
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+
+#include "output/gltf_export.h"
+#include "patch_test_scenes.h"
+
+namespace fs = std::filesystem;
+
+namespace rad {
+namespace {
+
+// The unit cube seen from inside: a lamp ceiling (radiance above 1, so its colours clamp), a red
+// two-sided wall (face 0, x = 0) and grey one-sided walls.
+Scene litRoom() {
+  SceneBuilder b("room");
+  const uint32_t wall = b.addMaterial({"wall", Color(0.6f), Color(0.0f), false});
+  const uint32_t red = b.addMaterial({"red", Color(0.7f, 0.1f, 0.1f), Color(0.0f), true});
+  const uint32_t lamp = b.addMaterial({"lamp", Color(0.3f), Color(1.5f), false});
+  test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : face == 0 ? red : wall; });
+  return b.build();
+}
+
+fs::path freshDir(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Tightly packed accessor data (the exporter writes no strides) as `count x components` values.
+template <typename T>
+std::vector<T> readAccessor(const tinygltf::Model& model, int index, int components) {
+  const tinygltf::Accessor& a = model.accessors.at(index);
+  const tinygltf::BufferView& view = model.bufferViews.at(a.bufferView);
+  const std::vector<unsigned char>& data = model.buffers.at(view.buffer).data;
+  std::vector<T> out(a.count * components);
+  const size_t offset = view.byteOffset + a.byteOffset;
+  EXPECT_LE(offset + out.size() * sizeof(T), data.size());
+  std::memcpy(out.data(), data.data() + offset, out.size() * sizeof(T));
+  return out;
+}
+
+tinygltf::Model loadGlb(const fs::path& path) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, path.string())) << err;
+  EXPECT_TRUE(err.empty()) << err;
+  return model;
+}
+
+std::vector<std::string> filesIn(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir))
+    names.push_back(entry.path().filename().string());
+  return names;
+}
+
+TEST(PatchGlbExport, IsTheLitPatchMesh) {
+  const Scene scene = litRoom();
+  PatchRadiositySettings settings;
+  settings.patchSize = 0.125f;
+  const PatchRadiosity solution(scene, settings);
+  const fs::path dir = freshDir("radiosity_glb_export");
+  const fs::path file = dir / "room.glb";
+  solution.exportGlb(file.string());
+  // The temporary was renamed, not left beside it.
+  EXPECT_EQ(filesIn(dir), std::vector<std::string>{"room.glb"});
+  const tinygltf::Model model = loadGlb(file);
+
+  // The same mesh the solver built: front sides only (the two-sided wall's mirrored patches are
+  // its material's doubleSided instead), a quad patch being 2 triangles.
+  const PatchMesh mesh(scene, {settings.patchSize, settings.targetPatches});
+  size_t expectedTriangles = 0;
+  for (uint32_t p = 0; p < mesh.size(); ++p)
+    if (!mesh.roots()[mesh.nodeOf(p).root].back)
+      expectedTriangles += mesh.nodeOf(p).cornerCount() - 2;
+  double sceneArea = 0.0;
+  for (const Face& f : scene.faces) sceneArea += f.area;
+
+  ASSERT_EQ(model.scenes.size(), 1u);
+  ASSERT_EQ(model.nodes.size(), scene.objects.size());
+  EXPECT_NE(std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
+                      "KHR_materials_unlit"),
+            model.extensionsUsed.end());
+  size_t triangles = 0, probes = 0;
+  double area = 0.0;
+  for (size_t o = 0; o < model.nodes.size(); ++o) {
+    const tinygltf::Node& node = model.nodes[o];
+    EXPECT_EQ(node.name, scene.objects[o].name);
+    // The scene triangle of this object's (single, planar) face, for radiance queries.
+    const Face& face = *std::find_if(scene.faces.begin(), scene.faces.end(),
+                                     [&](const Face& f) { return f.object == o; });
+    for (const tinygltf::Primitive& prim : model.meshes.at(node.mesh).primitives) {
+      EXPECT_EQ(prim.mode, TINYGLTF_MODE_TRIANGLES);
+      const tinygltf::Material& material = model.materials.at(prim.material);
+      EXPECT_EQ(material.doubleSided, o == 0) << node.name;
+      EXPECT_EQ(material.extensions.count("KHR_materials_unlit"), 1u);
+      EXPECT_EQ(material.pbrMetallicRoughness.baseColorFactor,
+                (std::vector<double>{1.0, 1.0, 1.0, 1.0}));
+      const auto positions = readAccessor<float>(model, prim.attributes.at("POSITION"), 3);
+      const auto normals = readAccessor<float>(model, prim.attributes.at("NORMAL"), 3);
+      const auto colors = readAccessor<float>(model, prim.attributes.at("COLOR_0"), 3);
+      const auto indices = readAccessor<uint32_t>(model, prim.indices, 1);
+      ASSERT_EQ(colors.size(), positions.size());
+      ASSERT_EQ(normals.size(), positions.size());
+      for (float c : colors) {
+        EXPECT_GE(c, 0.0f);
+        EXPECT_LE(c, 1.0f);
+      }
+      auto at = [&](const std::vector<float>& v, uint32_t i) {
+        return Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+      };
+      triangles += indices.size() / 3;
+      for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const Vec3 a = at(positions, indices[t]), b = at(positions, indices[t + 1]);
+        const Vec3 c = at(positions, indices[t + 2]);
+        const Vec3 n = glm::cross(b - a, c - a);
+        area += 0.5 * glm::length(n);
+        EXPECT_GT(glm::dot(n, face.normal), 0.0f) << "triangle wound against the front side";
+      }
+      // Probes: the colour is what radiance() gives at the vertex (Ke + rho H / pi, H the
+      // average at the welded vertex), clamped to [0, 1].
+      const uint32_t vertices = uint32_t(positions.size() / 3);
+      for (uint32_t v = 0; v < vertices; v += 13, ++probes) {
+        const Color expected = solution.radiance({at(positions, v), face.normal,
+                                                  face.firstTriangle, true});
+        const Color clamped = glm::clamp(expected, Color(0.0f), Color(1.0f));
+        for (int ch = 0; ch < 3; ++ch)
+          EXPECT_NEAR(at(colors, v)[ch], clamped[ch], 1e-5f)
+              << node.name << " vertex " << v << " channel " << ch;
+        EXPECT_NEAR(glm::length(at(normals, v)), 1.0f, 1e-5f);
+        EXPECT_GT(glm::dot(at(normals, v), face.normal), 0.99f);
+      }
+    }
+  }
+  EXPECT_EQ(triangles, expectedTriangles);
+  EXPECT_NEAR(area, sceneArea, 1e-4 * sceneArea);
+  EXPECT_GE(probes, 30u);
+}
+
+TEST(PatchGlbExport, MissingDirectoryThrowsAndLeavesNothing) {
+  const Scene scene = litRoom();
+  PatchRadiositySettings settings;
+  settings.patchSize = 0.25f;
+  const PatchRadiosity solution(scene, settings);
+  const fs::path dir = freshDir("radiosity_glb_missing");
+  EXPECT_THROW(solution.exportGlb((dir / "missing" / "room.glb").string()), std::runtime_error);
+  EXPECT_FALSE(fs::exists(dir / "missing"));
+  EXPECT_TRUE(filesIn(dir).empty());
+}
+
+// The neutral writer on its own: colours outside [0, 1] (or NaN) are clamped, a mesh without
+// groups is one node, and an inconsistent description is refused before anything is written.
+TEST(LitMeshGlb, ClampsColoursAndRefusesBadInput) {
+  const fs::path dir = freshDir("radiosity_glb_writer");
+  LitMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  mesh.normals = {Vec3(0, 0, 2), Vec3(0, 0, 1), Vec3(0, 0, 1)};
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  mesh.colors = {Color(2.0f, -1.0f, nan), Color(0.25f), Color(1.0f)};
+  mesh.indices = {0, 1, 2};
+  writeLitMeshGlb((dir / "t.glb").string(), mesh);
+  const tinygltf::Model model = loadGlb(dir / "t.glb");
+  ASSERT_EQ(model.nodes.size(), 1u);
+  EXPECT_EQ(model.nodes[0].name, "radiosity");
+  const tinygltf::Primitive& prim = model.meshes.at(0).primitives.at(0);
+  EXPECT_FALSE(model.materials.at(prim.material).doubleSided);
+  const auto colors = readAccessor<float>(model, prim.attributes.at("COLOR_0"), 3);
+  EXPECT_EQ(std::vector<float>(colors.begin(), colors.begin() + 6),
+            (std::vector<float>{1.0f, 0.0f, 0.0f, 0.25f, 0.25f, 0.25f}));
+  const auto normals = readAccessor<float>(model, prim.attributes.at("NORMAL"), 3);
+  EXPECT_EQ(normals[2], 1.0f);
+
+  mesh.indices = {0, 1, 3};
+  EXPECT_THROW(writeLitMeshGlb((dir / "bad.glb").string(), mesh), std::invalid_argument);
+  EXPECT_FALSE(fs::exists(dir / "bad.glb"));
+}
+
+}  // namespace
+}  // namespace rad
