@@ -30,6 +30,24 @@ void append(std::string& out, const T& value) {
 
 }  // namespace
 
+std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, std::span<const SurfaceSample> samples) {
+  std::vector<ObjectRadiometry> objects(scene.objects.size());
+  std::vector<Vec3d> h(objects.size(), Vec3d(0.0)), b(objects.size(), Vec3d(0.0));
+  for (const SurfaceSample& s : samples) {
+    if (s.backSide) continue;
+    objects[s.object].area += s.area;
+    h[s.object] += double(s.area) * Vec3d(s.irradiance);
+    b[s.object] += double(s.area) * Vec3d(s.radiosity);
+  }
+  for (size_t o = 0; o < objects.size(); ++o) {
+    objects[o].name = scene.objects[o].name;
+    if (objects[o].area <= 0.0) continue;
+    objects[o].meanIrradiance = Color(h[o] / objects[o].area);
+    objects[o].meanRadiosity = Color(b[o] / objects[o].area);
+  }
+  return objects;
+}
+
 void writeSurfaceSamplesCsv(const std::string& path, const Scene& scene,
                             std::span<const SurfaceSample> samples) {
   std::string text =

@@ -2,10 +2,12 @@
 // Per-element results of a radiosity method (a patch or a voxel side) and the files they go to:
 // CSV (one row per element, the columns of docs/ARCHITECTURE.md) and a binary PLY point cloud.
 
+#include <radiosity/object_radiometry.h>
 #include <radiosity/scene.h>
 
 #include <span>
 #include <string>
+#include <vector>
 
 namespace rad {
 
@@ -18,7 +20,12 @@ struct SurfaceSample {
   Color rho{0.0f};
   Color irradiance{0.0f};  ///< H
   Color radiosity{0.0f};   ///< B = E + rho H
+  bool backSide = false;   ///< the back of a two-sided face
 };
+
+/// Area-weighted mean irradiance and radiosity of each scene object over its elements' front
+/// sides (the `objects` table of the stats file).
+std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, std::span<const SurfaceSample> samples);
 
 /// Writes `id,object,area,cx,cy,cz,nx,ny,nz,E_r,...,B_b` rows; object names from `scene`.
 void writeSurfaceSamplesCsv(const std::string& path, const Scene& scene,

@@ -269,24 +269,7 @@ Color PatchRadiosity::radiance(const SurfaceHit& hit) const {
 }
 
 std::vector<ObjectRadiometry> PatchRadiosity::objectRadiometry() const {
-  const Scene& scene = *impl_->scene;
-  const PatchMesh& mesh = *impl_->mesh;
-  std::vector<ObjectRadiometry> objects(scene.objects.size());
-  std::vector<Vec3d> h(objects.size(), Vec3d(0.0)), b(objects.size(), Vec3d(0.0));
-  for (uint32_t p = 0; p < mesh.size(); ++p) {
-    if (mesh.roots()[mesh.nodeOf(p).root].back) continue;
-    const Patch& patch = mesh.patches()[p];
-    objects[patch.object].area += patch.area;
-    h[patch.object] += double(patch.area) * Vec3d(impl_->solution.irradiance[p]);
-    b[patch.object] += double(patch.area) * Vec3d(impl_->solution.radiosity[p]);
-  }
-  for (size_t o = 0; o < objects.size(); ++o) {
-    objects[o].name = scene.objects[o].name;
-    if (objects[o].area <= 0.0) continue;
-    objects[o].meanIrradiance = Color(h[o] / objects[o].area);
-    objects[o].meanRadiosity = Color(b[o] / objects[o].area);
-  }
-  return objects;
+  return meanPerObject(*impl_->scene, impl_->samples());
 }
 
 const PatchRadiosityStats& PatchRadiosity::stats() const {
@@ -299,7 +282,7 @@ std::vector<SurfaceSample> PatchRadiosity::Impl::samples() const {
     const Patch& patch = mesh->patches()[p];
     out[p] = {patch.object,           patch.area,           patch.centroid,
               patch.normal,           solution.emitted[p],  scene->materials[patch.material].rho,
-              solution.irradiance[p], solution.radiosity[p]};
+              solution.irradiance[p], solution.radiosity[p], mesh->roots()[mesh->nodeOf(p).root].back};
   }
   return out;
 }

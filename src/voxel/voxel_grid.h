@@ -45,6 +45,8 @@ struct VoxelGrid {
   /// True when the entry has the orientation of the entry before it in the same cell: the
   /// pieces of several objects in one plane (a lamp in a ceiling), which light sees as one.
   std::vector<uint8_t> sharesOrientation;
+  /// True for the back side of a two-sided material (results per object count front sides).
+  std::vector<uint8_t> backSide;
   std::vector<VoxelMaterial> materials;
 
   size_t cellCount() const { return cellZ.size(); }

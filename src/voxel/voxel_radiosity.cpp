@@ -95,23 +95,7 @@ Color VoxelRadiosity::radiance(const SurfaceHit& hit) const {
 }
 
 std::vector<ObjectRadiometry> VoxelRadiosity::objectRadiometry() const {
-  const Scene& scene = *impl_->scene;
-  std::vector<ObjectRadiometry> objects(scene.objects.size());
-  std::vector<Vec3d> h(objects.size(), Vec3d(0.0)), b(objects.size(), Vec3d(0.0));
-  const VoxelGrid& grid = impl_->grid;
-  for (size_t e = 0; e < grid.entryCount(); ++e) {
-    const uint32_t o = grid.object[e];
-    objects[o].area += grid.area[e];
-    h[o] += double(grid.area[e]) * Vec3d(impl_->solution.irradiance[e]);
-    b[o] += double(grid.area[e]) * Vec3d(impl_->solution.radiosity[e]);
-  }
-  for (size_t o = 0; o < objects.size(); ++o) {
-    objects[o].name = scene.objects[o].name;
-    if (objects[o].area <= 0.0) continue;
-    objects[o].meanIrradiance = Color(h[o] / objects[o].area);
-    objects[o].meanRadiosity = Color(b[o] / objects[o].area);
-  }
-  return objects;
+  return meanPerObject(*impl_->scene, impl_->samples());
 }
 
 const VoxelRadiosityStats& VoxelRadiosity::stats() const { return impl_->stats; }
@@ -120,8 +104,9 @@ std::vector<SurfaceSample> VoxelRadiosity::Impl::samples() const {
   std::vector<SurfaceSample> out(grid.entryCount());
   for (size_t e = 0; e < out.size(); ++e) {
     const VoxelMaterial& m = grid.materials[grid.material[e]];
-    out[e] = {grid.object[e], grid.area[e], grid.centroid[e], grid.normal[e],
-              glm::pi<float>() * m.emission, m.rho, solution.irradiance[e], solution.radiosity[e]};
+    out[e] = {grid.object[e],          grid.area[e],           grid.centroid[e],
+              grid.normal[e],          glm::pi<float>() * m.emission, m.rho,
+              solution.irradiance[e], solution.radiosity[e], bool(grid.backSide[e])};
   }
   return out;
 }

@@ -131,7 +131,7 @@ void fragmentTriangle(const Scene& scene, const VoxelGrid& grid, uint32_t t, boo
 struct Side {
   uint32_t orientation = 0, object = 0;
   Vec3d normalSum{0.0}, centroidSum{0.0}, rhoArea{0.0}, keArea{0.0};
-  double weight = 0.0, area = 0.0;
+  double weight = 0.0, area = 0.0, backArea = 0.0;
 };
 
 void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orientations,
@@ -154,6 +154,7 @@ void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orien
   side->centroidSum += w * Vec3d(f.centroid);
   side->weight += w;
   side->area += f.area;
+  if (f.backSide) side->backArea += f.area;
   side->rhoArea += w * Vec3d(m.rho);
   side->keArea += w * Vec3d(m.emission);
 }
@@ -174,6 +175,7 @@ void appendSide(VoxelGrid& grid, std::map<std::array<float, 6>, uint32_t>& mater
   const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};
   grid.material.push_back(internMaterial(grid, materialIndex, m));
   grid.object.push_back(side.object);
+  grid.backSide.push_back(side.backArea > 0.5 * side.area);
 }
 
 // Fills the grid's cells, rows, slabs and entries from fragments sorted by cell.
