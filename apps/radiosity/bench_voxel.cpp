@@ -1,5 +1,6 @@
 #include "bench_workloads.h"
 
+#include <radiosity/scene.h>
 #include <radiosity/scene_loader.h>
 #include <radiosity/voxel_radiosity.h>
 
@@ -26,10 +27,13 @@ struct SweepMeasurement {
   double secondsPerIteration = 0.0, visitsPerSecond = 0.0, bytesPerSide = 0.0;
 };
 
-// One sweep iteration (no first shot, so the time is the sweep's alone).
-SweepMeasurement measureSweep(const Scene& scene, size_t voxels, int sphereRadius, Console& console) {
+// One sweep iteration (no first shot, so the time is the sweep's alone), at a voxel count or,
+// when voxelSize > 0, at a voxel size.
+SweepMeasurement measureSweep(const Scene& scene, size_t voxels, int sphereRadius, Console& console,
+                              float voxelSize = 0.0f) {
   VoxelRadiositySettings settings;
   settings.targetVoxels = voxels;
+  settings.voxelSize = voxelSize;
   settings.sphereRadius = sphereRadius;
   settings.iterations = 1;
   settings.directFirstShot = false;
@@ -96,10 +100,19 @@ nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius) {
 
 nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxVoxels,
                                  const std::string& outputDirectory) {
-  const Scene scene = loadScene(kScene);
+  // Larger rooms at one voxel size (2.5 cm): the scene grows with N, surfaces and furniture alike,
+  // so the mix of voxels (flat, edge, corner) stays the same and only N changes.
+  constexpr float kVoxelSize = 0.025f;
   std::vector<SweepMeasurement> points;
-  for (size_t n : {100000, 200000, 500000, 1000000, 2000000, 4000000})
-    if (n <= maxVoxels) points.push_back(measureSweep(scene, n, sphereRadius, console));
+  std::vector<int> rooms;
+  for (int n : {2, 4, 8, 16, 32, 64, 128, 192, 256}) {
+    const Scene scene = loadScene(fmt::format("room:{}", n));
+    double area = 0.0;
+    for (const Face& f : scene.faces) area += f.area;
+    if (area / (kVoxelSize * kVoxelSize) > 1.3 * double(maxVoxels)) break;
+    points.push_back(measureSweep(scene, 0, sphereRadius, console, kVoxelSize));
+    rooms.push_back(n);
+  }
   // Least-squares slope of log(time) against log(voxels).
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (const auto& p : points) {
@@ -109,12 +122,14 @@ nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxV
   const double k = double(points.size());
   const double slope = points.size() > 1 ? (k * sxy - sx * sy) / (k * sxx - sx * sx) : 0.0;
 
-  std::string csv = "voxels,sides,directions,seconds_per_iteration,visits_per_s,bytes_per_side\n";
+  std::string csv = "scene,voxels,sides,directions,seconds_per_iteration,visits_per_s,bytes_per_side\n";
   nlohmann::json rows = nlohmann::json::array();
-  for (const auto& p : points) {
-    csv += fmt::format("{},{},{},{:.4f},{:.0f},{:.1f}\n", p.voxels, p.sides, p.directions,
-                       p.secondsPerIteration, p.visitsPerSecond, p.bytesPerSide);
-    rows.push_back({{"voxels", p.voxels}, {"seconds_per_iteration", p.secondsPerIteration},
+  for (size_t i = 0; i < points.size(); ++i) {
+    const SweepMeasurement& p = points[i];
+    csv += fmt::format("room:{},{},{},{},{:.4f},{:.0f},{:.1f}\n", rooms[i], p.voxels, p.sides,
+                       p.directions, p.secondsPerIteration, p.visitsPerSecond, p.bytesPerSide);
+    rows.push_back({{"scene", fmt::format("room:{}", rooms[i])}, {"voxels", p.voxels},
+                    {"seconds_per_iteration", p.secondsPerIteration},
                     {"visits_per_s", p.visitsPerSecond}, {"bytes_per_side", p.bytesPerSide}});
   }
   std::filesystem::create_directories(outputDirectory);
@@ -122,13 +137,13 @@ nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxV
   const std::string plot = (std::filesystem::path(outputDirectory) / "voxel_scaling.svg").string();
   writeTextAtomically(table, csv);
   writeTextAtomically(plot, svgPlot(points, slope));
-  return {{"scene", kScene},
+  return {{"scene", "room:N at 2.5 cm voxels"},
           {"sphere_radius", sphereRadius},
           {"points", rows},
           {"loglog_slope", slope},
           {"table", table},
           {"plot", plot},
-          {"summary", fmt::format("log-log slope {:.3f} over {} sizes ({} to {} voxels, R {}); table {}, plot {}",
+          {"summary", fmt::format("log-log slope {:.3f} over {} rooms ({} to {} voxels, R {}); table {}, plot {}",
                                   slope, points.size(), points.front().voxels, points.back().voxels,
                                   sphereRadius, table, plot)}};
 }

@@ -17,8 +17,8 @@ nlohmann::json benchPathTracer(Console& console);
 /// the paper's workload (2e6 voxels, R = 38, 6 iterations) extrapolated from the rate.
 nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius);
 
-/// Time per sweep iteration against the voxel count (1e5 .. 4e6), its log-log slope, and a
-/// table (CSV) and plot (SVG) of it written to `outputDirectory`.
+/// Time per sweep iteration against the voxel count (room:N at one voxel size, about 1e5 up to
+/// `maxVoxels`), its log-log slope, and a table (CSV) and plot (SVG) written to `outputDirectory`.
 nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxVoxels,
                                  const std::string& outputDirectory);
 
