@@ -90,18 +90,37 @@ uint32_t slotCell(float offset) {
 
 }  // namespace
 
-void DiscreteLineSweep::packSides(const VoxelGrid& grid, std::span<const Color> radiosity,
+void DiscreteLineSweep::packSides(const VoxelGrid& grid, const std::function<Color(size_t)>& sends,
                                   std::span<Slot> slots) {
-  for (size_t e = 0; e < slots.size(); ++e) {
-    Slot& slot = slots[e];
-    const Vec3 n = grid.normal[e];
-    for (int k = 0; k < 3; ++k) {
-      slot.normal[k] = int16_t(std::lround(n[k] * kSnorm16));
-      slot.radiosity[k] = _cvtss_sh(radiosity[e][k], _MM_FROUND_TO_NEAREST_INT);
+  for (size_t begin = 0; begin < slots.size();) {
+    size_t end = begin + 1;
+    while (end < slots.size() && grid.sharesOrientation[end]) ++end;
+    Color b = sends(begin);
+    if (end - begin > 1) {
+      Vec3d sum(0.0);
+      double area = 0.0;
+      for (size_t e = begin; e < end; ++e) {
+        sum += double(grid.area[e]) * Vec3d(e == begin ? b : sends(e));
+        area += grid.area[e];
+      }
+      if (area > 0.0) b = Color(sum / area);
     }
-    // A unit normal has a component of at least 0.57: it never packs to the cell marker.
-    slot.offset = glm::dot(slotNormal(slot.normal), grid.centroid[e]);
+    for (size_t e = begin; e < end; ++e) {
+      Slot& slot = slots[e];
+      const Vec3 n = grid.normal[e];
+      for (int k = 0; k < 3; ++k) {
+        slot.normal[k] = int16_t(std::lround(n[k] * kSnorm16));
+        slot.radiosity[k] = _cvtss_sh(b[k], _MM_FROUND_TO_NEAREST_INT);
+      }
+      // A unit normal has a component of at least 0.57: it never packs to the cell marker.
+      slot.offset = glm::dot(slotNormal(slot.normal), grid.centroid[e]);
+    }
+    begin = end;
   }
+}
+
+Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
+  return Color(_cvtsh_ss(s.radiosity[0]), _cvtsh_ss(s.radiosity[1]), _cvtsh_ss(s.radiosity[2]));
 }
 
 Sight DiscreteLineSweep::look(uint32_t e, const Slot& s, const Vec3& unit,
@@ -109,7 +128,7 @@ Sight DiscreteLineSweep::look(uint32_t e, const Slot& s, const Vec3& unit,
   if (holdsCell(s.normal)) {
     uint32_t side = 0;
     const Sight sight = visibility_.look(e, slotCell(s.offset), unit, side);
-    if (sight == Sight::Source) light = source.radiosity[side];
+    if (sight == Sight::Source) light = sentRadiosity(source[side]);
     return sight;
   }
   const Vec3 n = slotNormal(s.normal);
@@ -118,7 +137,7 @@ Sight DiscreteLineSweep::look(uint32_t e, const Slot& s, const Vec3& unit,
   if (std::abs(height) <= visibility_.planeTolerance() || height * approach <= 0.0f)
     return Sight::Through;
   if (height < 0.0f) return Sight::Blocked;
-  light = Color(_cvtsh_ss(s.radiosity[0]), _cvtsh_ss(s.radiosity[1]), _cvtsh_ss(s.radiosity[2]));
+  light = sentRadiosity(s);
   return Sight::Source;
 }
 
@@ -129,7 +148,7 @@ void DiscreteLineSweep::remember(LineState& state, uint32_t cell, int32_t domina
   const bool single = grid_.cellEntryBegin[cell + 1] - first == 1;
   Slot slot;
   if (single) {
-    slot = source.slots[first];
+    slot = source[first];
   } else {
     slot.normal[0] = slot.normal[1] = slot.normal[2] = 0;
     std::memcpy(&slot.offset, &cell, sizeof cell);
@@ -170,7 +189,7 @@ void DiscreteLineSweep::visitCell(uint32_t cell, LineState& state, int32_t domin
     // The cell's own other sides first (the faces of an inner edge see each other).
     uint32_t own = 0;
     if (end - begin > 1 && visibility_.lookWithinCell(e, cell, unit, own)) {
-      gathered[e] += glm::vec4(source.radiosity[own] * w, 0.0f);
+      gathered[e] += glm::vec4(sentRadiosity(source[own]) * w, 0.0f);
       continue;
     }
     for (uint32_t i = 0; i < depth; ++i) {

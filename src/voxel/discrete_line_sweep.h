@@ -26,6 +26,7 @@
 
 #include <glm/vec4.hpp>
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -54,14 +55,15 @@ class DiscreteLineSweep {
     uint16_t radiosity[3];
     float offset;
   };
-  /// What the sweeps read of each side, prepared once per iteration (B changes between).
-  struct Source {
-    std::span<const Color> radiosity;  ///< B per entry
-    std::span<const Slot> slots;       ///< per entry: its plane and B packed (packSides)
-  };
-  /// Packs every entry's plane and radiosity into its line-history form.
-  static void packSides(const VoxelGrid& grid, std::span<const Color> radiosity,
+  /// Packs every entry's plane and the radiosity it sends, `sends(e)`, into its line-history
+  /// form: what the sweeps read of each side, prepared once per iteration (B changes between).
+  /// Sides of several objects sharing one orientation in a cell (a lamp set in a ceiling) send
+  /// light as one surface: their area-weighted mean, whichever of them a line happens to meet.
+  static void packSides(const VoxelGrid& grid, const std::function<Color(size_t)>& sends,
                         std::span<Slot> slots);
+  /// The radiosity a packed side sends.
+  static Color sentRadiosity(const Slot& slot);
+  using Source = std::span<const Slot>;
 
   /// Sweeps the direction and its opposite. For each entry e facing back along a pass direction s
   /// (cos = -n_e . s > 0): gathered[e].w += cos * w and gathered[e].rgb += B(source) * cos * w,

@@ -76,23 +76,6 @@ void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLin
     for (size_t e = 0; e < slots[0].size(); ++e) slots[0][e] += slots[slot][e];
 }
 
-// Pieces of several objects sharing one orientation in a cell (a lamp set in a ceiling) send
-// light as one surface: their area-weighted mean, whichever of them a line happens to meet.
-void blendSharedOrientations(const VoxelGrid& grid, std::vector<Color>& source) {
-  for (size_t begin = 0; begin < source.size();) {
-    size_t end = begin + 1;
-    while (end < source.size() && grid.sharesOrientation[end]) ++end;
-    if (end - begin > 1) {
-      Vec3d sum(0.0);
-      double area = 0.0;
-      for (size_t e = begin; e < end; ++e) sum += double(grid.area[e]) * Vec3d(source[e]), area += grid.area[e];
-      if (area > 0.0)
-        for (size_t e = begin; e < end; ++e) source[e] = Color(sum / area);
-    }
-    begin = end;
-  }
-}
-
 }  // namespace
 
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
@@ -117,41 +100,43 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   std::vector<std::vector<glm::vec4>> slots(slotCount, std::vector<glm::vec4>(n));
 
   // The sweeps carry what surfaces send: all of B, or only its reflected part when the first
-  // shot has already delivered the emitters' light.
-  std::vector<Color> source(n), radiosity(n), irradiance(n);
-  for (size_t e = 0; e < n; ++e) {
-    irradiance[e] = directAt(e);
-    radiosity[e] = emitted(e) + rho(e) * irradiance[e];
-    source[e] = settings.directFirstShot ? rho(e) * irradiance[e] : emitted(e);
-  }
+  // shot has already delivered the emitters' light. H starts as the direct light (or none).
+  std::vector<Color> irradiance(n);
+  for (size_t e = 0; e < n; ++e) irradiance[e] = directAt(e);
+  auto radiosityOf = [&](size_t e) { return emitted(e) + rho(e) * irradiance[e]; };
+  auto sends = [&](size_t e) {
+    return settings.directFirstShot ? rho(e) * irradiance[e] : radiosityOf(e);
+  };
   std::vector<DiscreteLineSweep::Slot> packed(n);
   ProgressTicker ticker(progress, directions.pairCount() * size_t(std::max(settings.iterations, 1)));
   const auto start = std::chrono::steady_clock::now();
   for (int iteration = 0; iteration < settings.iterations; ++iteration) {
-    blendSharedOrientations(grid, source);
-    DiscreteLineSweep::packSides(grid, source, packed);
-    gatherAllDirections(directions, sweeps, slots, {source, packed}, settings, iteration, ticker);
+    DiscreteLineSweep::packSides(grid, sends, packed);
+    gatherAllDirections(directions, sweeps, slots, packed, settings, iteration, ticker);
     const std::vector<glm::vec4>& gathered = slots[0];
     double change = 0.0, total = 0.0;
     for (size_t e = 0; e < n; ++e) {
+      const Color before = radiosityOf(e);
       const float norm = settings.normalize && gathered[e].w > 0.0f ? gathered[e].w : 1.0f;
       irradiance[e] = directAt(e) + Color(gathered[e]) / norm;
-      const Color next = emitted(e) + rho(e) * irradiance[e];
-      change += grid.area[e] * std::abs(luminance(next) - luminance(radiosity[e]));
-      total += grid.area[e] * std::abs(luminance(next));
-      radiosity[e] = next;
-      source[e] = settings.directFirstShot ? next - emitted(e) : next;
+      const Color after = radiosityOf(e);
+      change += grid.area[e] * std::abs(luminance(after) - luminance(before));
+      total += grid.area[e] * std::abs(luminance(after));
     }
     solution.residuals.push_back(total > 0.0 ? change / total : 0.0);
     solution.cellVisits += uint64_t(grid.cellCount()) * directions.size();
     if (settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance) break;
   }
   solution.sweepSeconds = secondsSince(start);
-  solution.workingBytes = slotCount * n * sizeof(glm::vec4) +
-                          (direct.size() + source.size() + 2 * n) * sizeof(Color) +
+  solution.workingBytes = slotCount * n * sizeof(glm::vec4) + (direct.size() + n) * sizeof(Color) +
                           n * sizeof(DiscreteLineSweep::Slot);
   for (const DiscreteLineSweep& s : sweeps) solution.workingBytes += s.lineTableBytes();
-  solution.radiosity = std::move(radiosity);
+  // The working arrays go before the result's B is made, so they never coexist.
+  slots = {};
+  sweeps.clear();
+  packed = {};
+  solution.radiosity.resize(n);
+  for (size_t e = 0; e < n; ++e) solution.radiosity[e] = radiosityOf(e);
   solution.irradiance = std::move(irradiance);
   return solution;
 }

@@ -128,10 +128,11 @@ TEST(VoxelSolver, DeterministicForAThreadCount) {
   const std::vector<Color> first = solve(2), second = solve(2);
   ASSERT_EQ(first.size(), second.size());
   for (size_t e = 0; e < first.size(); ++e) ASSERT_EQ(first[e], second[e]) << e;
-  // Another thread count sums the directions in another order: equal up to rounding.
+  // Another thread count sums the directions in another order: equal up to rounding, where B
+  // travels between iterations as half floats (a rounding flip is 2^-11 of the value).
   const std::vector<Color> serial = solve(1);
   for (size_t e = 0; e < first.size(); ++e)
-    for (int c = 0; c < 3; ++c) ASSERT_NEAR(serial[e][c], first[e][c], 1e-4f * (1.0f + first[e][c]));
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(serial[e][c], first[e][c], 1e-3f * (1.0f + first[e][c]));
 }
 
 }  // namespace
