@@ -154,8 +154,8 @@ void DiscreteLineSweep::remember(LineState& state, uint32_t cell, int32_t domina
     std::memcpy(&slot.offset, &cell, sizeof cell);
   }
   bool continues = false;
-  if (kTangentCorrection && state.count > 0 && std::abs(dominant - state.lastDominant) == 1) {
-    const Slot& last = state.recent(0);
+  if (kTangentCorrection && state.recentRef != kNoVoxel && std::abs(dominant - state.lastDominant) == 1) {
+    const Slot& last = state.recent;
     if (single && !holdsCell(last.normal)) {
       const Vec3 n = slotNormal(last.normal);
       continues = glm::dot(n, grid_.normal[first]) > kSamePlaneCos &&
@@ -166,21 +166,26 @@ void DiscreteLineSweep::remember(LineState& state, uint32_t cell, int32_t domina
     }
   }
   if (!continues) {
-    state.head = (state.head + kHistory - 1) % kHistory;  // the oldest slot becomes the newest
-    state.count = std::min<uint32_t>(state.count + 1, kHistory);
+    state.olderRef[1] = state.olderRef[0];
+    state.olderRef[0] = state.recentRef;
   }
-  state.slots[state.head] = slot;  // a run along the same planes stays one slot: its nearest voxel
-  state.lastDominant = dominant;
+  // A run along the same planes stays one voxel: its nearest.
+  state.recent = slot;
+  state.recentRef = single ? first : (kCellRef | cell);
+  state.lastDominant = int16_t(dominant);
 }
 
 template <bool kTangentCorrection>
 void DiscreteLineSweep::visitCell(uint32_t cell, LineState& state, int32_t dominant,
                                   const Vec3& unit, float weight, const Source& source,
                                   std::span<glm::vec4> gathered) {
-  if (state.stamp != stamp_) state.stamp = stamp_, state.count = 0;
+  if (state.stamp != stamp_) {
+    state.stamp = stamp_;
+    state.recentRef = state.olderRef[0] = state.olderRef[1] = kNoVoxel;
+  }
   const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
   // Without tangent correction the first voxel behind hides the rest, as in the plain method.
-  const uint32_t depth = kTangentCorrection ? state.count : std::min<uint32_t>(state.count, 1);
+  const uint32_t depth = kTangentCorrection ? 3 : 1;
   for (uint32_t e = begin; e < end; ++e) {
     const float cosine = -glm::dot(grid_.normal[e], unit);
     if (cosine <= 0.0f) continue;
@@ -193,8 +198,21 @@ void DiscreteLineSweep::visitCell(uint32_t cell, LineState& state, int32_t domin
       continue;
     }
     for (uint32_t i = 0; i < depth; ++i) {
+      const uint32_t ref = i == 0 ? state.recentRef : state.olderRef[i - 1];
+      if (ref == kNoVoxel) break;
       Color light;
-      const Sight sight = look(e, state.recent(i), unit, source, light);
+      Sight sight;
+      if (i == 0) {
+        sight = look(e, state.recent, unit, source, light);
+      } else if (ref & kCellRef) {
+        Slot older;
+        older.normal[0] = older.normal[1] = older.normal[2] = 0;
+        const uint32_t olderCell = ref & ~kCellRef;
+        std::memcpy(&older.offset, &olderCell, sizeof olderCell);
+        sight = look(e, older, unit, source, light);
+      } else {
+        sight = look(e, source[ref], unit, source, light);
+      }
       if (kTangentCorrection && sight == Sight::Through) continue;
       if (sight == Sight::Source) gathered[e] += glm::vec4(light * w, 0.0f);
       break;
@@ -223,7 +241,12 @@ void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, F&& f) const {
 template <bool kTangentCorrection>
 void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
                              const Source& source, std::span<glm::vec4> gathered) {
-  ++stamp_;
+  // The 16-bit pass stamp tells this pass's line records from older ones; when it wraps, all
+  // records are cleared once (every 65,535 passes).
+  if (++stamp_ == 0) {
+    for (LineState& line : lines_) line.stamp = 0;
+    stamp_ = 1;
+  }
   // Line records are scattered over a table the size of the scene's cross-section, and the
   // cells' own data is read in an order that jumps back row by row: fetch both a few cells
   // ahead of the visit so that the misses overlap instead of queueing.

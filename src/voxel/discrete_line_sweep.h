@@ -80,18 +80,19 @@ class DiscreteLineSweep {
   size_t lineTableBytes() const { return lines_.capacity() * sizeof(LineState); }
 
  private:
-  static constexpr int kHistory = 3;
-  /// One cache line per line: the last voxels (runs along the same planes collapsed), most
-  /// recent first, so that a visit touches this record and the visited cell's own data only.
-  struct alignas(64) LineState {
-    uint32_t stamp = 0;
-    uint32_t count = 0;
-    int32_t lastDominant = 0;
-    uint32_t head = 0;  ///< slots[head] is the most recent, then head + 1, ... (mod kHistory)
-    Slot slots[kHistory];
-    const Slot& recent(uint32_t i) const { return slots[(head + i) % kHistory]; }
+  static constexpr uint32_t kCellRef = 0x80000000u;
+  static constexpr uint32_t kNoVoxel = 0xffffffffu;
+  /// Half a cache line per line: its last voxel (runs along the same planes collapsed to their
+  /// nearest voxel) inline, and the two voxels before it by reference (an entry, kCellRef | cell,
+  /// or kNoVoxel), so that a visit touches this record and the visited cell's own data only.
+  struct alignas(32) LineState {
+    uint16_t stamp = 0;
+    int16_t lastDominant = 0;
+    uint32_t recentRef = kNoVoxel;
+    uint32_t olderRef[2] = {kNoVoxel, kNoVoxel};
+    Slot recent;
   };
-  static_assert(sizeof(LineState) == 64);
+  static_assert(sizeof(LineState) == 32);
 
   void prepareLines(const IVec3& step, const LineOffset& offset = {});
   template <bool kTangentCorrection>
@@ -116,7 +117,7 @@ class DiscreteLineSweep {
   std::vector<int32_t> dominantTable_[3];  ///< per axis: contribution to the signed dominant coordinate
   std::vector<LineState> lines_;
   std::vector<int64_t> scratchU_[3], scratchV_[3];  ///< per-direction tables, reused
-  uint32_t stamp_ = 0;
+  uint16_t stamp_ = 0;
 };
 
 }  // namespace rad
