@@ -1,7 +1,6 @@
 // Gauss-Seidel iteration for the radiosity equation (Cohen and Wallace, "Radiosity and Realistic
 // Image Synthesis" (1993), section 5.3.2): each patch gathers the newest radiosities, in place,
 // which roughly halves the sweeps Jacobi needs on diagonally dominant systems.
-#include <radiosity/error.h>
 
 #include <chrono>
 
@@ -26,10 +25,7 @@ PatchSolution solveGaussSeidel(const FormFactorTable& table, const PatchSystem& 
       change += double(s.area[i]) * absSum(b - out.radiosity[i]);
       out.radiosity[i] = b;
     }
-    ++out.iterations;
-    out.residuals.push_back(change / norm);
-    if (progress && !progress(double(out.iterations) / control.maxIterations)) throw Cancelled();
-    if (out.residuals.back() < control.tolerance) break;
+    if (endSweep(out, change, norm, control, progress)) break;
   }
   finishSolution(s, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

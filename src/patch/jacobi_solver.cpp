@@ -1,7 +1,6 @@
 // Jacobi iteration for the radiosity equation (Cohen and Wallace, "Radiosity and Realistic Image
 // Synthesis" (1993), section 5.3.1): B^(k+1) = E + rho F B^(k). Converges because rho F has
 // spectral radius below 1 (rho < 1, rows of F sum to at most 1).
-#include <radiosity/error.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -43,10 +42,7 @@ PatchSolution solveJacobi(const FormFactorTable& table, const PatchSystem& s,
         },
         std::plus<double>());
     out.radiosity.swap(next);
-    ++out.iterations;
-    out.residuals.push_back(change / norm);
-    if (progress && !progress(double(out.iterations) / control.maxIterations)) throw Cancelled();
-    if (out.residuals.back() < control.tolerance) break;
+    if (endSweep(out, change, norm, control, progress)) break;
   }
   finishSolution(s, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

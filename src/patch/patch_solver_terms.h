@@ -1,6 +1,8 @@
 #pragma once
 // Terms the patch solvers share: the norm of the emission, a patch's gather, the final deposit.
 
+#include <radiosity/error.h>
+
 #include <cmath>
 
 #include "patch/patch_solvers.h"
@@ -26,6 +28,16 @@ inline Color gather(const FormFactorTable& table, size_t i, std::span<const Colo
   Vec3d h(0.0);
   for (size_t k = 0; k < cols.size(); ++k) h += double(vals[k]) * Vec3d(radiosity[cols[k]]);
   return Color(h);
+}
+
+/// Ends a sweep: records its relative residual and reports progress (throws Cancelled when the
+/// callback asks to stop). True when the tolerance is reached.
+inline bool endSweep(PatchSolution& out, double change, double norm, const PatchSolverControl& control,
+                     const ProgressCallback& progress) {
+  ++out.iterations;
+  out.residuals.push_back(change / norm);
+  if (progress && !progress(double(out.iterations) / control.maxIterations)) throw Cancelled();
+  return out.residuals.back() < control.tolerance;
 }
 
 /// Copies E and derives the absorbed power per area (1 - rho) H.
