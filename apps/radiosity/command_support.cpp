@@ -2,9 +2,16 @@
 
 #include <radiosity/scene_loader.h>
 
+#include <CLI/CLI.hpp>
+
 #include "core/memory_usage.h"
 
 namespace rad::cli {
+
+void addSceneArgument(CLI::App& command, std::string& scene) {
+  command.add_option("scene", scene, "Scene file (.json .obj .gltf .glb) or built-in: cornell, "
+                                     "cornell-spot, room:N")->required();
+}
 
 Scene loadSceneForCommand(const std::string& name, Console& console, RunStats& stats) {
   Stopwatch loadTime;

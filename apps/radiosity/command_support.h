@@ -9,7 +9,14 @@
 
 #include <string>
 
+namespace CLI {
+class App;
+}
+
 namespace rad::cli {
+
+/// The SCENE argument every command takes: a scene file or a built-in name.
+void addSceneArgument(CLI::App& command, std::string& scene);
 
 /// Loads the scene, prints its warnings, refuses a scene with nothing that emits (a black
 /// result), and records the load time and the triangle count.

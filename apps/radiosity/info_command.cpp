@@ -1,4 +1,5 @@
 // `radiosity info SCENE`: what a scene holds, and what is wrong with it.
+#include "command_support.h"
 #include "commands.h"
 
 #include <radiosity/scene_loader.h>
@@ -58,7 +59,7 @@ int runInfo(const std::string& sceneName, Console& console) {
 void addInfoCommand(CLI::App& app, Console& console, CommandAction& action) {
   auto scene = std::make_shared<std::string>();
   CLI::App* sub = app.add_subcommand("info", "Print what a scene holds: counts, bounds, power, warnings");
-  sub->add_option("scene", *scene, "Scene file or built-in name")->required();
+  addSceneArgument(*sub, *scene);
   sub->callback([scene, &console, &action] {
     action = [scene, &console] { return runInfo(*scene, console); };
   });

@@ -121,8 +121,7 @@ int runRender(RenderOptions& o, Console& console) {
 void addRenderCommand(CLI::App& app, Console& console, CommandAction& action) {
   CLI::App* sub = app.add_subcommand("render", "Render an image of a scene");
   auto o = std::make_shared<RenderOptions>(*sub);
-  sub->add_option("scene", o->scene, "Scene file (.json .obj .gltf .glb) or built-in: cornell, "
-                                     "cornell-spot, room:N")->required();
+  addSceneArgument(*sub, o->scene);
   sub->add_option("-o,--output", o->output,
                   "Output image: .png (tone mapped), .exr or .pfm (linear radiance)");
   sub->add_option("--width", o->width, "Image width in pixels (default: the scene camera's)")

@@ -95,8 +95,7 @@ int runSolve(SolveOptions& o, Console& console) {
 void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
   CLI::App* sub = app.add_subcommand("solve", "Compute a radiosity solution and export it");
   auto o = std::make_shared<SolveOptions>(*sub);
-  sub->add_option("scene", o->scene, "Scene file (.json .obj .gltf .glb) or built-in: cornell, "
-                                     "cornell-spot, room:N")->required();
+  addSceneArgument(*sub, o->scene);
   sub->add_option("--export", o->exportPath,
                   "Per-element results: .csv (a row per voxel side or patch), .ply (a point cloud) "
                   "or, with --method patch, .glb (the lit mesh, vertex colours = radiance)");

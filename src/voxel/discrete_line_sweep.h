@@ -13,8 +13,8 @@
 //
 // What a voxel side sees along its line: the light travelling along the pass direction s reaches
 // side e from the first voxel behind it whose surface the backward ray from e's centroid really
-// meets (side_visibility.h). Each line keeps its last few voxels, with the plane and radiosity of
-// single-sided ones inline so that the common case touches one line record and nothing else. A
+// meets (side_visibility.h). Each line keeps its last voxel (plane and radiosity) inline and the
+// two before it by reference, so that the common case touches one line record and nothing else. A
 // voxel is looked through when the ray only grazes its surface: this is the paper's tangent
 // correction made exact per side; the voxels of a floor do not hide each other from a wall at a
 // grazing angle, and the sides of a thin wall never see through it. Runs of voxels along the

@@ -11,6 +11,7 @@
 #include <map>
 
 #include "patch_test_scenes.h"
+#include "render/test_scenes.h"
 
 namespace fs = std::filesystem;
 
@@ -24,12 +25,7 @@ namespace {
 // less).
 TEST(PatchCornell, SurfaceMeansMatchThePathTracer) {
   const Scene scene = loadScene("cornell");
-  PathTracerSettings reference;
-  reference.samplesPerPixel = 16;
-  reference.seed = 5;
-  std::map<std::string, ObjectRadiometry> expected;
-  for (const ObjectRadiometry& o : estimateObjectRadiometry(scene, 20000, reference))
-    expected[o.name] = o;
+  const std::map<std::string, ObjectRadiometry> expected = test::tracedObjectMeans(scene, 20000, 16, 5);
 
   PatchRadiositySettings settings;  // the defaults: ~4000 patches, 256 rays each, Gauss-Seidel
   const PatchRadiosity solution(scene, settings);

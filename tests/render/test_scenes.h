@@ -1,9 +1,11 @@
 #pragma once
 // Hand-built scenes for the path tracer tests (independent of the scene loaders).
 
+#include <radiosity/path_tracer.h>
 #include <radiosity/scene_builder.h>
 
 #include <array>
+#include <map>
 #include <string>
 
 namespace rad::test {
@@ -47,6 +49,19 @@ void addInwardCube(SceneBuilder& b, MaterialOf materialOf) {
       const uint32_t object = b.addObject("face" + std::to_string(face));
       addQuadFacing(b, axisSquare(centre, axis, 1.0f), inward, materialOf(face), object);
     }
+}
+
+/// The path tracer's per-object means, by object name: the reference the radiosity methods are
+/// compared with. Where its points fall matters more than how many paths each gets (shadows make
+/// irradiance discontinuous), so callers ask for many points and few paths.
+inline std::map<std::string, ObjectRadiometry> tracedObjectMeans(const Scene& scene, int points,
+                                                                 int pathsPerPoint, uint64_t seed) {
+  PathTracerSettings settings;
+  settings.samplesPerPixel = pathsPerPoint;
+  settings.seed = seed;
+  std::map<std::string, ObjectRadiometry> means;
+  for (const ObjectRadiometry& o : estimateObjectRadiometry(scene, points, settings)) means[o.name] = o;
+  return means;
 }
 
 }  // namespace rad::test

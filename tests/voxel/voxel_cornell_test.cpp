@@ -8,6 +8,8 @@
 
 #include <map>
 
+#include "render/test_scenes.h"
+
 namespace rad {
 namespace {
 
@@ -16,11 +18,8 @@ TEST(VoxelCornell, SurfaceMeansMatchThePathTracerAndThePatchMethod) {
   // Reference: the path tracer's per-object means over 20000 stratified points x 16 irradiance
   // paths. Many points matter more than many paths: with 400 points the floor's mean moves
   // 5-7% between seeds (shadow edges), with 20000 under 0.5%.
-  PathTracerSettings reference;
-  reference.samplesPerPixel = 16;
-  reference.seed = 5;
-  std::map<std::string, ObjectRadiometry> traced, patches;
-  for (const ObjectRadiometry& o : estimateObjectRadiometry(scene, 20000, reference)) traced[o.name] = o;
+  const std::map<std::string, ObjectRadiometry> traced = test::tracedObjectMeans(scene, 20000, 16, 5);
+  std::map<std::string, ObjectRadiometry> patches;
   const PatchRadiosity patch(scene, PatchRadiositySettings{});
   for (const ObjectRadiometry& o : patch.objectRadiometry()) patches[o.name] = o;
 
@@ -36,7 +35,8 @@ TEST(VoxelCornell, SurfaceMeansMatchThePathTracerAndThePatchMethod) {
     EXPECT_NEAR(o.area, traced.at(o.name).area, 0.01 * traced.at(o.name).area) << o.name;
     for (int c = 0; c < 3; ++c) {
       if (traced.at(o.name).meanRadiosity[c] < 0.02f) continue;  // a channel the paint absorbs
-      for (const auto* expected : {&traced, &patches}) {
+      const std::map<std::string, ObjectRadiometry>* references[] = {&traced, &patches};
+      for (const auto* expected : references) {
         const float b = expected->at(o.name).meanRadiosity[c];
         EXPECT_NEAR(o.meanRadiosity[c], b, 0.05 * b)
             << o.name << " channel " << c << (expected == &traced ? " vs path tracer" : " vs patches");
@@ -53,10 +53,7 @@ namespace {
 
 TEST(VoxelCornell, SpotLightReachesVoxelsThroughTheFirstShot) {
   const Scene scene = loadScene("cornell-spot");
-  PathTracerSettings reference;
-  reference.samplesPerPixel = 8;
-  std::map<std::string, ObjectRadiometry> expected;
-  for (const ObjectRadiometry& o : estimateObjectRadiometry(scene, 10000, reference)) expected[o.name] = o;
+  const std::map<std::string, ObjectRadiometry> expected = test::tracedObjectMeans(scene, 10000, 8, 1);
 
   VoxelRadiositySettings settings;
   settings.targetVoxels = 8000;
