@@ -142,83 +142,125 @@ Sight DiscreteLineSweep::look(uint32_t e, const Slot& s, const Vec3& unit,
 }
 
 template <bool kTangentCorrection>
-void DiscreteLineSweep::remember(LineState& state, uint32_t cell, int32_t dominant,
-                                 const Source& source) const {
-  const uint32_t first = grid_.cellEntryBegin[cell];
-  const bool single = grid_.cellEntryBegin[cell + 1] - first == 1;
-  Slot slot;
-  if (single) {
-    slot = source[first];
-  } else {
-    slot.normal[0] = slot.normal[1] = slot.normal[2] = 0;
-    std::memcpy(&slot.offset, &cell, sizeof cell);
-  }
-  bool continues = false;
-  if (kTangentCorrection && state.recentRef != kNoVoxel && std::abs(dominant - state.lastDominant) == 1) {
-    const Slot& last = state.recent;
-    if (single && !holdsCell(last.normal)) {
-      const Vec3 n = slotNormal(last.normal);
-      continues = glm::dot(n, grid_.normal[first]) > kSamePlaneCos &&
-                  std::abs(glm::dot(n, grid_.centroid[first]) - last.offset) <=
-                      visibility_.planeTolerance();
-    } else if (!single && holdsCell(last.normal)) {
-      continues = visibility_.continuesPlanes(cell, slotCell(last.offset));
-    }
-  }
-  if (!continues) {
-    state.olderRef[1] = state.olderRef[0];
-    state.olderRef[0] = state.recentRef;
-  }
-  // A run along the same planes stays one voxel: its nearest.
-  state.recent = slot;
-  state.recentRef = single ? first : (kCellRef | cell);
-  state.lastDominant = int16_t(dominant);
-}
-
-template <bool kTangentCorrection>
 void DiscreteLineSweep::visitCell(uint32_t cell, LineState& state, int32_t dominant,
                                   const Vec3& unit, float weight, const Source& source,
-                                  std::span<glm::vec4> gathered) {
+                                  std::span<Color> gathered) {
   if (state.stamp != stamp_) {
     state.stamp = stamp_;
     state.recentRef = state.olderRef[0] = state.olderRef[1] = kNoVoxel;
   }
   const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
-  // Without tangent correction the first voxel behind hides the rest, as in the plain method.
-  const uint32_t depth = kTangentCorrection ? 3 : 1;
+  if (end - begin == 1)
+    visitSingleSide<kTangentCorrection>(begin, state, dominant, unit, weight, source, gathered);
+  else
+    visitSeveralSides<kTangentCorrection>(cell, state, dominant, unit, weight, source, gathered);
+}
+
+template <bool kTangentCorrection>
+void DiscreteLineSweep::visitSingleSide(uint32_t e, LineState& state, int32_t dominant,
+                                        const Vec3& unit, float weight, const Source& source,
+                                        std::span<Color> gathered) {
+  // Most cells hold one side and most recent voxels are one side: the plane test against the
+  // recent voxel serves both the look back and the run test, computed once.
+  const Vec3 n = grid_.normal[e];
+  const float cosine = -glm::dot(n, unit);
+  const Slot& recent = state.recent;
+  const bool hasRecent = state.recentRef != kNoVoxel;
+  const bool recentIsSide = hasRecent && !holdsCell(recent.normal);
+  Vec3 recentNormal(0.0f);
+  float height = 0.0f;
+  bool inRecentPlane = false;
+  if (recentIsSide) {
+    recentNormal = slotNormal(recent.normal);
+    height = glm::dot(recentNormal, grid_.centroid[e]) - recent.offset;
+    inRecentPlane = std::abs(height) <= visibility_.planeTolerance();
+  }
+  if (cosine > 0.0f && hasRecent) {
+    Color light(0.0f);
+    Sight sight;
+    if (recentIsSide) {
+      if (inRecentPlane || height * glm::dot(recentNormal, unit) <= 0.0f) {
+        sight = Sight::Through;
+      } else if (height < 0.0f) {
+        sight = Sight::Blocked;
+      } else {
+        sight = Sight::Source;
+        light = sentRadiosity(recent);
+      }
+    } else {
+      sight = look(e, recent, unit, source, light);
+    }
+    if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(e, state, unit, source, light);
+    if (sight == Sight::Source) gathered[e] += light * (cosine * weight);
+  }
+  // A run along the same plane stays one voxel: its nearest.
+  const bool continues = kTangentCorrection && inRecentPlane &&
+                         std::abs(dominant - state.lastDominant) == 1 &&
+                         glm::dot(recentNormal, n) > kSamePlaneCos;
+  if (!continues) {
+    state.olderRef[1] = state.olderRef[0];
+    state.olderRef[0] = state.recentRef;
+  }
+  state.recent = source[e];
+  state.recentRef = e;
+  state.lastDominant = int16_t(dominant);
+}
+
+template <bool kTangentCorrection>
+void DiscreteLineSweep::visitSeveralSides(uint32_t cell, LineState& state, int32_t dominant,
+                                          const Vec3& unit, float weight, const Source& source,
+                                          std::span<Color> gathered) {
+  const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
   for (uint32_t e = begin; e < end; ++e) {
     const float cosine = -glm::dot(grid_.normal[e], unit);
     if (cosine <= 0.0f) continue;
     const float w = cosine * weight;
-    gathered[e].w += w;
     // The cell's own other sides first (the faces of an inner edge see each other).
     uint32_t own = 0;
-    if (end - begin > 1 && visibility_.lookWithinCell(e, cell, unit, own)) {
-      gathered[e] += glm::vec4(sentRadiosity(source[own]) * w, 0.0f);
+    if (visibility_.lookWithinCell(e, cell, unit, own)) {
+      gathered[e] += sentRadiosity(source[own]) * w;
       continue;
     }
-    for (uint32_t i = 0; i < depth; ++i) {
-      const uint32_t ref = i == 0 ? state.recentRef : state.olderRef[i - 1];
-      if (ref == kNoVoxel) break;
-      Color light;
-      Sight sight;
-      if (i == 0) {
-        sight = look(e, state.recent, unit, source, light);
-      } else if (ref & kCellRef) {
-        Slot older;
-        older.normal[0] = older.normal[1] = older.normal[2] = 0;
-        const uint32_t olderCell = ref & ~kCellRef;
-        std::memcpy(&older.offset, &olderCell, sizeof olderCell);
-        sight = look(e, older, unit, source, light);
-      } else {
-        sight = look(e, source[ref], unit, source, light);
-      }
-      if (kTangentCorrection && sight == Sight::Through) continue;
-      if (sight == Sight::Source) gathered[e] += glm::vec4(light * w, 0.0f);
-      break;
-    }
+    if (state.recentRef == kNoVoxel) continue;
+    Color light(0.0f);
+    Sight sight = look(e, state.recent, unit, source, light);
+    if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(e, state, unit, source, light);
+    if (sight == Sight::Source) gathered[e] += light * w;
   }
-  remember<kTangentCorrection>(state, cell, dominant, source);
+  // The cell becomes the line's recent voxel; a run of cells holding the same planes stays one.
+  Slot slot;
+  slot.normal[0] = slot.normal[1] = slot.normal[2] = 0;
+  std::memcpy(&slot.offset, &cell, sizeof cell);
+  const bool continues = kTangentCorrection && state.recentRef != kNoVoxel &&
+                         std::abs(dominant - state.lastDominant) == 1 && holdsCell(state.recent.normal) &&
+                         visibility_.continuesPlanes(cell, slotCell(state.recent.offset));
+  if (!continues) {
+    state.olderRef[1] = state.olderRef[0];
+    state.olderRef[0] = state.recentRef;
+  }
+  state.recent = slot;
+  state.recentRef = kCellRef | cell;
+  state.lastDominant = int16_t(dominant);
+}
+
+Sight DiscreteLineSweep::lookOlder(uint32_t e, const LineState& state, const Vec3& unit,
+                                   const Source& source, Color& light) const {
+  // With the tangent correction a grazed voxel is looked through: the two voxels before it
+  // decide (a slot for a cell of several sides is made from its reference).
+  for (const uint32_t ref : state.olderRef) {
+    if (ref == kNoVoxel) break;
+    Slot older;
+    if (ref & kCellRef) {
+      older.normal[0] = older.normal[1] = older.normal[2] = 0;
+      const uint32_t olderCell = ref & ~kCellRef;
+      std::memcpy(&older.offset, &olderCell, sizeof olderCell);
+    } else {
+      older = source[ref];
+    }
+    const Sight sight = look(e, older, unit, source, light);
+    if (sight != Sight::Through) return sight;
+  }
+  return Sight::Through;
 }
 
 template <typename F>
@@ -240,7 +282,7 @@ void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, F&& f) const {
 
 template <bool kTangentCorrection>
 void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
-                             const Source& source, std::span<glm::vec4> gathered) {
+                             const Source& source, std::span<Color> gathered) {
   // The 16-bit pass stamp tells this pass's line records from older ones; when it wraps, all
   // records are cleared once (every 65,535 passes).
   if (++stamp_ == 0) {
@@ -262,10 +304,6 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
   };
   forEachCellInPassOrder(step, [&](uint32_t cell, uint32_t line, int32_t dominant) {
     __builtin_prefetch(&lines_[line], 1);
-    const uint32_t first = grid_.cellEntryBegin[cell];
-    __builtin_prefetch(&grid_.normal[first]);
-    __builtin_prefetch(&grid_.centroid[first]);
-    __builtin_prefetch(&gathered[first], 1);
     Visit& slot = ring[count++ % kAhead];
     if (count > kAhead) visit(slot);
     slot = {cell, line, dominant};
@@ -274,7 +312,7 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
 }
 
 void DiscreteLineSweep::sweepPair(const DiscreteDirection& direction, const Source& source,
-                                  std::span<glm::vec4> gathered, const LineOffset& offset) {
+                                  std::span<Color> gathered, const LineOffset& offset) {
   prepareLines(direction.step, offset);
   const float weight = float(direction.solidAngle / 3.14159265358979323846);
   const Vec3 unit(direction.unit);

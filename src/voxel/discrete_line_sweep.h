@@ -24,8 +24,6 @@
 #include "voxel/side_visibility.h"
 #include "voxel/voxel_grid.h"
 
-#include <glm/vec4.hpp>
-
 #include <functional>
 #include <span>
 #include <vector>
@@ -66,11 +64,10 @@ class DiscreteLineSweep {
   using Source = std::span<const Slot>;
 
   /// Sweeps the direction and its opposite. For each entry e facing back along a pass direction s
-  /// (cos = -n_e . s > 0): gathered[e].w += cos * w and gathered[e].rgb += B(source) * cos * w,
-  /// w = solidAngle / pi, where the source is the entry of the preceding voxel on e's line that
-  /// faces e.
+  /// (cos = -n_e . s > 0): gathered[e] += B(source) * cos * w, w = solidAngle / pi, where the
+  /// source is the entry of the preceding voxel on e's line that faces e.
   void sweepPair(const DiscreteDirection& direction, const Source& source,
-                 std::span<glm::vec4> gathered, const LineOffset& offset = {});
+                 std::span<Color> gathered, const LineOffset& offset = {});
 
   /// The naive line of every cell for a direction (for tests): lines[cell].
   std::vector<uint32_t> lineOfEachCell(const IVec3& step, const LineOffset& offset = {});
@@ -97,15 +94,23 @@ class DiscreteLineSweep {
   void prepareLines(const IVec3& step, const LineOffset& offset = {});
   template <bool kTangentCorrection>
   void pass(const IVec3& step, const Vec3& unit, float weight, const Source& source,
-            std::span<glm::vec4> gathered);
+            std::span<Color> gathered);
+  /// Lets the cell's sides look back along the line, then makes the cell the line's recent voxel.
   template <bool kTangentCorrection>
   void visitCell(uint32_t cell, LineState& state, int32_t dominant, const Vec3& unit, float weight,
-                 const Source& source, std::span<glm::vec4> gathered);
+                 const Source& source, std::span<Color> gathered);
+  template <bool kTangentCorrection>
+  void visitSingleSide(uint32_t e, LineState& state, int32_t dominant, const Vec3& unit,
+                       float weight, const Source& source, std::span<Color> gathered);
+  template <bool kTangentCorrection>
+  void visitSeveralSides(uint32_t cell, LineState& state, int32_t dominant, const Vec3& unit,
+                         float weight, const Source& source, std::span<Color> gathered);
   /// What entry e sees in slot s; `light` gets the source's radiosity when it is Source.
   Sight look(uint32_t e, const Slot& s, const Vec3& unit, const Source& source,
              Color& light) const;
-  template <bool kTangentCorrection>
-  void remember(LineState& state, uint32_t cell, int32_t dominant, const Source& source) const;
+  /// What entry e sees past the line's recent voxel (the two voxels before it).
+  Sight lookOlder(uint32_t e, const LineState& state, const Vec3& unit, const Source& source,
+                  Color& light) const;
   /// Calls f(cell, line, dominant) for every cell in the order of a pass along `step`.
   template <typename F>
   void forEachCellInPassOrder(const IVec3& step, F&& f) const;

@@ -11,7 +11,10 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cstring>
+#include <map>
 
 namespace rad {
 
@@ -40,6 +43,34 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
   return h;
 }
 
+// Sum of cos * w over the directions each entry faces: what a fully lit side gathers from a
+// surface of unit radiosity, which the normalization divides by. Depends on the normal only, so
+// it is computed once per distinct normal (a room's walls share a handful).
+std::vector<float> facingWeights(const VoxelGrid& grid, const DirectionSet& directions) {
+  std::map<std::array<uint32_t, 3>, uint32_t> index;
+  std::vector<Vec3> distinct;
+  std::vector<uint32_t> normalOf(grid.entryCount());
+  for (size_t e = 0; e < grid.entryCount(); ++e) {
+    std::array<uint32_t, 3> bits;
+    std::memcpy(bits.data(), &grid.normal[e], sizeof bits);
+    const auto [it, inserted] = index.try_emplace(bits, uint32_t(distinct.size()));
+    if (inserted) distinct.push_back(grid.normal[e]);
+    normalOf[e] = it->second;
+  }
+  std::vector<float> weightOf(distinct.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, distinct.size(), 16), [&](const auto& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      double sum = 0.0;
+      for (size_t d = 0; d < directions.size(); ++d)
+        sum += std::max(0.0, glm::dot(Vec3d(distinct[i]), directions[d].unit)) * directions[d].solidAngle;
+      weightOf[i] = float(sum / glm::pi<double>());
+    }
+  });
+  std::vector<float> weights(grid.entryCount());
+  for (size_t e = 0; e < weights.size(); ++e) weights[e] = weightOf[normalOf[e]];
+  return weights;
+}
+
 // One Jacobi step: every slot sweeps its share of the direction pairs (pair k goes to slot
 // k mod slots, so the sums do not depend on scheduling), then the slots are added in order.
 // The line shift of pair k in an iteration: fixed by the seed, so results are reproducible.
@@ -50,7 +81,7 @@ LineOffset lineOffset(const DiscreteDirection& d, uint64_t seed, int iteration, 
 }
 
 void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLineSweep>& sweeps,
-                         std::vector<std::vector<glm::vec4>>& slots,
+                         std::vector<std::vector<Color>>& slots,
                          const DiscreteLineSweep::Source& source, const VoxelSolverSettings& settings,
                          int iteration, ProgressTicker& ticker) {
   const size_t slotCount = slots.size();
@@ -59,7 +90,7 @@ void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLin
       tbb::blocked_range<size_t>(0, slotCount, 1),
       [&](const tbb::blocked_range<size_t>& range) {
         for (size_t slot = range.begin(); slot != range.end(); ++slot) {
-          std::fill(slots[slot].begin(), slots[slot].end(), glm::vec4(0.0f));
+          std::fill(slots[slot].begin(), slots[slot].end(), Color(0.0f));
           for (size_t k = slot; k < directions.pairCount(); k += slotCount) {
             if (ticker.cancelled()) return;
             const DiscreteDirection& d = directions.pairFirst(k);
@@ -97,7 +128,8 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   solution.directions = directions.size();
   const size_t slotCount = size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
   std::vector<DiscreteLineSweep> sweeps(slotCount, DiscreteLineSweep(grid, settings.sweep));
-  std::vector<std::vector<glm::vec4>> slots(slotCount, std::vector<glm::vec4>(n));
+  std::vector<std::vector<Color>> slots(slotCount, std::vector<Color>(n));
+  const std::vector<float> weights = settings.normalize ? facingWeights(grid, directions) : std::vector<float>{};
 
   // The sweeps carry what surfaces send: all of B, or only its reflected part when the first
   // shot has already delivered the emitters' light. H starts as the direct light (or none).
@@ -113,12 +145,12 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   for (int iteration = 0; iteration < settings.iterations; ++iteration) {
     DiscreteLineSweep::packSides(grid, sends, packed);
     gatherAllDirections(directions, sweeps, slots, packed, settings, iteration, ticker);
-    const std::vector<glm::vec4>& gathered = slots[0];
+    const std::vector<Color>& gathered = slots[0];
     double change = 0.0, total = 0.0;
     for (size_t e = 0; e < n; ++e) {
       const Color before = radiosityOf(e);
-      const float norm = settings.normalize && gathered[e].w > 0.0f ? gathered[e].w : 1.0f;
-      irradiance[e] = directAt(e) + Color(gathered[e]) / norm;
+      const float norm = settings.normalize && weights[e] > 0.0f ? weights[e] : 1.0f;
+      irradiance[e] = directAt(e) + gathered[e] / norm;
       const Color after = radiosityOf(e);
       change += grid.area[e] * std::abs(luminance(after) - luminance(before));
       total += grid.area[e] * std::abs(luminance(after));
@@ -128,7 +160,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     if (settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance) break;
   }
   solution.sweepSeconds = secondsSince(start);
-  solution.workingBytes = slotCount * n * sizeof(glm::vec4) + (direct.size() + n) * sizeof(Color) +
+  solution.workingBytes = slotCount * n * sizeof(Color) + weights.size() * sizeof(float) + (direct.size() + n) * sizeof(Color) +
                           n * sizeof(DiscreteLineSweep::Slot);
   for (const DiscreteLineSweep& s : sweeps) solution.workingBytes += s.lineTableBytes();
   // The working arrays go before the result's B is made, so they never coexist.
