@@ -119,11 +119,11 @@ void DiscreteLineSweep::packSides(const VoxelGrid& grid, const std::function<Col
   }
 }
 
-Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
+inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
   return Color(_cvtsh_ss(s.radiosity[0]), _cvtsh_ss(s.radiosity[1]), _cvtsh_ss(s.radiosity[2]));
 }
 
-Sight DiscreteLineSweep::look(uint32_t e, const Slot& s, const Vec3& unit,
+inline Sight DiscreteLineSweep::look(uint32_t e, const Slot& s, const Vec3& unit,
                               const Source& source, Color& light) const {
   if (holdsCell(s.normal)) {
     uint32_t side = 0;
@@ -142,28 +142,12 @@ Sight DiscreteLineSweep::look(uint32_t e, const Slot& s, const Vec3& unit,
 }
 
 template <bool kTangentCorrection>
-void DiscreteLineSweep::visitCell(uint32_t cell, LineState& state, int32_t dominant,
-                                  const Vec3& unit, float weight, const Source& source,
-                                  std::span<Color> gathered) {
-  if (state.stamp != stamp_) {
-    state.stamp = stamp_;
-    state.recentRef = state.olderRef[0] = state.olderRef[1] = kNoVoxel;
-  }
-  const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
-  if (end - begin == 1)
-    visitSingleSide<kTangentCorrection>(begin, state, dominant, unit, weight, source, gathered);
-  else
-    visitSeveralSides<kTangentCorrection>(cell, state, dominant, unit, weight, source, gathered);
-}
-
-template <bool kTangentCorrection>
-void DiscreteLineSweep::visitSingleSide(uint32_t e, LineState& state, int32_t dominant,
-                                        const Vec3& unit, float weight, const Source& source,
-                                        std::span<Color> gathered) {
+inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e, LineState& state,
+                                               int32_t dominant) const {
   // Most cells hold one side and most recent voxels are one side: the plane test against the
-  // recent voxel serves both the look back and the run test, computed once.
-  const Vec3 n = grid_.normal[e];
-  const float cosine = -glm::dot(n, unit);
+  // recent voxel serves the look back, the run test and the waiting sides, computed once.
+  const Vec3 n = view.normal[e];
+  const float facing = glm::dot(n, view.unit);  // < 0: e looks back along the line, > 0: ahead
   const Slot& recent = state.recent;
   const bool hasRecent = state.recentRef != kNoVoxel;
   const bool recentIsSide = hasRecent && !holdsCell(recent.normal);
@@ -172,14 +156,20 @@ void DiscreteLineSweep::visitSingleSide(uint32_t e, LineState& state, int32_t do
   bool inRecentPlane = false;
   if (recentIsSide) {
     recentNormal = slotNormal(recent.normal);
-    height = glm::dot(recentNormal, grid_.centroid[e]) - recent.offset;
-    inRecentPlane = std::abs(height) <= visibility_.planeTolerance();
+    height = glm::dot(recentNormal, view.centroid[e]) - recent.offset;
+    inRecentPlane = std::abs(height) <= view.tolerance;
   }
-  if (cosine > 0.0f && hasRecent) {
+  // A run along the same plane stays one voxel: its nearest.
+  const bool continues = kTangentCorrection && inRecentPlane &&
+                         std::abs(dominant - state.lastDominant) == 1 &&
+                         glm::dot(recentNormal, n) > kSamePlaneCos;
+  if (!continues && state.pending != kNoPending)
+    resolvePending<kTangentCorrection>(view, state, view.source[e]);
+  if (facing < 0.0f && hasRecent) {
     Color light(0.0f);
     Sight sight;
     if (recentIsSide) {
-      if (inRecentPlane || height * glm::dot(recentNormal, unit) <= 0.0f) {
+      if (inRecentPlane || height * glm::dot(recentNormal, view.unit) <= 0.0f) {
         sight = Sight::Through;
       } else if (height < 0.0f) {
         sight = Sight::Blocked;
@@ -188,52 +178,57 @@ void DiscreteLineSweep::visitSingleSide(uint32_t e, LineState& state, int32_t do
         light = sentRadiosity(recent);
       }
     } else {
-      sight = look(e, recent, unit, source, light);
+      sight = look(e, recent, view.unit, view.source, light);
     }
-    if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(e, state, unit, source, light);
-    if (sight == Sight::Source) gathered[e] += light * (cosine * weight);
+    if (kTangentCorrection && sight == Sight::Through)
+      sight = lookOlder(e, state, view.unit, view.source, light);
+    if (sight == Sight::Source) view.gathered[e] += light * (-facing * view.weight);
+  } else if (facing > 0.0f) {
+    view.pendingNext[e] = state.pending;
+    state.pending = e;
   }
-  // A run along the same plane stays one voxel: its nearest.
-  const bool continues = kTangentCorrection && inRecentPlane &&
-                         std::abs(dominant - state.lastDominant) == 1 &&
-                         glm::dot(recentNormal, n) > kSamePlaneCos;
   if (!continues) {
     state.olderRef[1] = state.olderRef[0];
     state.olderRef[0] = state.recentRef;
   }
-  state.recent = source[e];
+  state.recent = view.source[e];
   state.recentRef = e;
   state.lastDominant = int16_t(dominant);
 }
 
 template <bool kTangentCorrection>
-void DiscreteLineSweep::visitSeveralSides(uint32_t cell, LineState& state, int32_t dominant,
-                                          const Vec3& unit, float weight, const Source& source,
-                                          std::span<Color> gathered) {
-  const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
-  for (uint32_t e = begin; e < end; ++e) {
-    const float cosine = -glm::dot(grid_.normal[e], unit);
-    if (cosine <= 0.0f) continue;
-    const float w = cosine * weight;
-    // The cell's own other sides first (the faces of an inner edge see each other).
-    uint32_t own = 0;
-    if (visibility_.lookWithinCell(e, cell, unit, own)) {
-      gathered[e] += sentRadiosity(source[own]) * w;
-      continue;
-    }
-    if (state.recentRef == kNoVoxel) continue;
-    Color light(0.0f);
-    Sight sight = look(e, state.recent, unit, source, light);
-    if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(e, state, unit, source, light);
-    if (sight == Sight::Source) gathered[e] += light * w;
-  }
-  // The cell becomes the line's recent voxel; a run of cells holding the same planes stays one.
+void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, LineState& state,
+                                          int32_t dominant) const {
+  const Vec3& unit = view.unit;
+  const Source& source = view.source;
   Slot slot;
   slot.normal[0] = slot.normal[1] = slot.normal[2] = 0;
   std::memcpy(&slot.offset, &cell, sizeof cell);
+  // A run of cells holding the same planes stays one voxel.
   const bool continues = kTangentCorrection && state.recentRef != kNoVoxel &&
                          std::abs(dominant - state.lastDominant) == 1 && holdsCell(state.recent.normal) &&
                          visibility_.continuesPlanes(cell, slotCell(state.recent.offset));
+  if (!continues && state.pending != kNoPending) resolvePending<kTangentCorrection>(view, state, slot);
+  const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
+  for (uint32_t e = begin; e < end; ++e) {
+    const float facing = glm::dot(grid_.normal[e], unit);
+    if (facing == 0.0f) continue;
+    const float w = std::abs(facing) * view.weight;
+    // The cell's own other sides first (the faces of an inner edge see each other).
+    uint32_t own = 0;
+    if (visibility_.lookWithinCell(e, cell, facing < 0.0f ? unit : -unit, own)) {
+      view.gathered[e] += sentRadiosity(source[own]) * w;
+    } else if (facing > 0.0f) {
+      view.pendingNext[e] = state.pending;
+      state.pending = e;
+    } else if (state.recentRef != kNoVoxel) {
+      Color light(0.0f);
+      Sight sight = look(e, state.recent, unit, source, light);
+      if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(e, state, unit, source, light);
+      if (sight == Sight::Source) view.gathered[e] += light * w;
+    }
+  }
+  // The cell becomes the line's recent voxel.
   if (!continues) {
     state.olderRef[1] = state.olderRef[0];
     state.olderRef[0] = state.recentRef;
@@ -241,6 +236,28 @@ void DiscreteLineSweep::visitSeveralSides(uint32_t cell, LineState& state, int32
   state.recent = slot;
   state.recentRef = kCellRef | cell;
   state.lastDominant = int16_t(dominant);
+}
+
+template <bool kTangentCorrection>
+void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state, const Slot& slot) const {
+  // The sides waiting for light from ahead meet a new voxel (the nearest of its run): each sees
+  // its source, is blocked, or, grazing it, waits for the next one (with the tangent correction,
+  // up to kLookThrough voxels, as many as a look back passes).
+  const Vec3 back = -view.unit;
+  uint32_t m = state.pending, waiting = kNoPending;
+  while (m != kNoPending) {
+    const uint32_t link = view.pendingNext[m];
+    Color light(0.0f);
+    const Sight sight = look(m, slot, back, view.source, light);
+    if (sight == Sight::Source) {
+      view.gathered[m] += light * (glm::dot(view.normal[m], view.unit) * view.weight);
+    } else if (kTangentCorrection && sight == Sight::Through && (link >> kDepthShift) < kLookThrough) {
+      view.pendingNext[m] = waiting | (((link >> kDepthShift) + 1) << kDepthShift);
+      waiting = m;
+    }
+    m = link & kNoPending;
+  }
+  state.pending = waiting;
 }
 
 Sight DiscreteLineSweep::lookOlder(uint32_t e, const LineState& state, const Vec3& unit,
@@ -289,40 +306,54 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
     for (LineState& line : lines_) line.stamp = 0;
     stamp_ = 1;
   }
+  const PassView view{grid_.cellEntryBegin.data(), grid_.normal.data(), grid_.centroid.data(),
+                      source, gathered.data(), pendingNext_.data(), unit, weight,
+                      visibility_.planeTolerance()};
+  LineState* const lines = lines_.data();
+  const uint16_t stamp = stamp_;
   // Line records are scattered over a table the size of the scene's cross-section, and the
   // cells' own data is read in an order that jumps back row by row: fetch both a few cells
   // ahead of the visit so that the misses overlap instead of queueing.
   constexpr uint32_t kAhead = 16;
-  struct Visit {
-    uint32_t cell, line;
-    int32_t dominant;
-  };
-  Visit ring[kAhead];
+  uint32_t ringCell[kAhead], ringLine[kAhead];
+  int32_t ringDominant[kAhead];
   uint32_t count = 0;
-  auto visit = [&](const Visit& v) {
-    visitCell<kTangentCorrection>(v.cell, lines_[v.line], v.dominant, unit, weight, source, gathered);
+  auto visit = [&](uint32_t i) {
+    const uint32_t cell = ringCell[i], begin = view.entryBegin[cell];
+    LineState& state = lines[ringLine[i]];
+    if (state.stamp != stamp) {
+      state.stamp = stamp;
+      state.recentRef = state.olderRef[0] = state.olderRef[1] = kNoVoxel;
+      state.pending = kNoPending;
+    }
+    if (view.entryBegin[cell + 1] - begin == 1)
+      visitSingleSide<kTangentCorrection>(view, begin, state, ringDominant[i]);
+    else
+      visitSeveralSides<kTangentCorrection>(view, cell, state, ringDominant[i]);
   };
   forEachCellInPassOrder(step, [&](uint32_t cell, uint32_t line, int32_t dominant) {
-    __builtin_prefetch(&lines_[line], 1);
-    Visit& slot = ring[count++ % kAhead];
-    if (count > kAhead) visit(slot);
-    slot = {cell, line, dominant};
+    __builtin_prefetch(&lines[line], 1);
+    const uint32_t first = view.entryBegin[cell];
+    __builtin_prefetch(&view.normal[first]);
+    __builtin_prefetch(&view.centroid[first]);
+    __builtin_prefetch(&view.gathered[first], 1);
+    const uint32_t i = count++ % kAhead;
+    if (count > kAhead) visit(i);
+    ringCell[i] = cell, ringLine[i] = line, ringDominant[i] = dominant;
   });
-  for (uint32_t i = count > kAhead ? count - kAhead : 0; i < count; ++i) visit(ring[i % kAhead]);
+  for (uint32_t i = count > kAhead ? count - kAhead : 0; i < count; ++i) visit(i % kAhead);
 }
 
 void DiscreteLineSweep::sweepPair(const DiscreteDirection& direction, const Source& source,
                                   std::span<Color> gathered, const LineOffset& offset) {
   prepareLines(direction.step, offset);
+  pendingNext_.resize(grid_.entryCount());
   const float weight = float(direction.solidAngle / 3.14159265358979323846);
   const Vec3 unit(direction.unit);
-  if (settings_.tangentCorrection) {
+  if (settings_.tangentCorrection)
     pass<true>(direction.step, unit, weight, source, gathered);
-    pass<true>(-direction.step, -unit, weight, source, gathered);
-  } else {
+  else
     pass<false>(direction.step, unit, weight, source, gathered);
-    pass<false>(-direction.step, -unit, weight, source, gathered);
-  }
 }
 
 std::vector<uint32_t> DiscreteLineSweep::lineOfEachCell(const IVec3& step, const LineOffset& offset) {

@@ -79,32 +79,47 @@ class DiscreteLineSweep {
  private:
   static constexpr uint32_t kCellRef = 0x80000000u;
   static constexpr uint32_t kNoVoxel = 0xffffffffu;
+  /// A waiting side's link: the next waiting entry in the low 30 bits (kNoPending ends the
+  /// chain), in the top two the voxels it has looked through so far.
+  static constexpr uint32_t kNoPending = 0x3fffffffu;
+  static constexpr uint32_t kDepthShift = 30;
+  static constexpr uint32_t kLookThrough = 2;
   /// Half a cache line per line: its last voxel (runs along the same planes collapsed to their
   /// nearest voxel) inline, and the two voxels before it by reference (an entry, kCellRef | cell,
   /// or kNoVoxel), so that a visit touches this record and the visited cell's own data only.
-  struct alignas(32) LineState {
+  struct alignas(16) LineState {
     uint16_t stamp = 0;
     int16_t lastDominant = 0;
     uint32_t recentRef = kNoVoxel;
     uint32_t olderRef[2] = {kNoVoxel, kNoVoxel};
+    uint32_t pending = kNoPending;  ///< sides waiting for light from ahead, chained by pendingNext_
     Slot recent;
   };
-  static_assert(sizeof(LineState) == 32);
 
   void prepareLines(const IVec3& step, const LineOffset& offset = {});
   template <bool kTangentCorrection>
   void pass(const IVec3& step, const Vec3& unit, float weight, const Source& source,
             std::span<Color> gathered);
-  /// Lets the cell's sides look back along the line, then makes the cell the line's recent voxel.
+  /// What a pass reads and writes, as raw pointers the compiler can keep in registers.
+  struct PassView {
+    const uint32_t* entryBegin;
+    const Vec3* normal;
+    const Vec3* centroid;
+    Source source;
+    Color* gathered;
+    uint32_t* pendingNext;
+    Vec3 unit;
+    float weight, tolerance;
+  };
+  /// Lets a cell's sides look back along the line, then makes the cell the line's recent voxel.
   template <bool kTangentCorrection>
-  void visitCell(uint32_t cell, LineState& state, int32_t dominant, const Vec3& unit, float weight,
-                 const Source& source, std::span<Color> gathered);
+  void visitSingleSide(const PassView& view, uint32_t e, LineState& state, int32_t dominant) const;
   template <bool kTangentCorrection>
-  void visitSingleSide(uint32_t e, LineState& state, int32_t dominant, const Vec3& unit,
-                       float weight, const Source& source, std::span<Color> gathered);
+  void visitSeveralSides(const PassView& view, uint32_t cell, LineState& state,
+                         int32_t dominant) const;
+  /// Lets the sides waiting on the line's record look at the voxel in `slot`.
   template <bool kTangentCorrection>
-  void visitSeveralSides(uint32_t cell, LineState& state, int32_t dominant, const Vec3& unit,
-                         float weight, const Source& source, std::span<Color> gathered);
+  void resolvePending(const PassView& view, LineState& state, const Slot& slot) const;
   /// What entry e sees in slot s; `light` gets the source's radiosity when it is Source.
   Sight look(uint32_t e, const Slot& s, const Vec3& unit, const Source& source,
              Color& light) const;
@@ -121,6 +136,7 @@ class DiscreteLineSweep {
   std::vector<int32_t> lineTable_[3];      ///< per axis: contribution to the flat line index
   std::vector<int32_t> dominantTable_[3];  ///< per axis: contribution to the signed dominant coordinate
   std::vector<LineState> lines_;
+  std::vector<uint32_t> pendingNext_;  ///< per entry: the chain of sides waiting on a line
   std::vector<int64_t> scratchU_[3], scratchV_[3];  ///< per-direction tables, reused
   uint16_t stamp_ = 0;
 };
