@@ -82,6 +82,10 @@ Vec3 slotNormal(const int16_t normal[3]) {
   return Vec3(float(normal[0]), float(normal[1]), float(normal[2])) * (1.0f / kSnorm16);
 }
 
+Color halfColor(const uint16_t h[3]) {
+  return Color(_cvtsh_ss(h[0]), _cvtsh_ss(h[1]), _cvtsh_ss(h[2]));
+}
+
 uint32_t slotCell(float offset) {
   uint32_t cell;
   std::memcpy(&cell, &offset, sizeof cell);
@@ -119,12 +123,23 @@ void DiscreteLineSweep::packSides(const VoxelGrid& grid, const std::function<Col
   }
 }
 
-inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
-  return Color(_cvtsh_ss(s.radiosity[0]), _cvtsh_ss(s.radiosity[1]), _cvtsh_ss(s.radiosity[2]));
+inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) { return halfColor(s.radiosity); }
+
+DiscreteLineSweep::Slot DiscreteLineSweep::recentSlot(const LineState& state) {
+  Slot slot;
+  std::memcpy(slot.normal, state.recent.normal, sizeof slot.normal);
+  std::memcpy(slot.radiosity, state.recent.radiosity, sizeof slot.radiosity);
+  if (holdsCell(slot.normal)) {
+    const uint32_t cell = state.recentRef & ~kCellRef;
+    std::memcpy(&slot.offset, &cell, sizeof cell);
+  } else {
+    slot.offset = glm::dot(slotNormal(slot.normal), state.recent.centroid);
+  }
+  return slot;
 }
 
-inline Sight DiscreteLineSweep::look(uint32_t e, const Slot& s, const Vec3& unit,
-                              const Source& source, Color& light) const {
+inline Sight DiscreteLineSweep::look(uint32_t e, const Vec3& centroid, const Slot& s,
+                                     const Vec3& unit, const Source& source, Color& light) const {
   if (holdsCell(s.normal)) {
     uint32_t side = 0;
     const Sight sight = visibility_.look(e, slotCell(s.offset), unit, side);
@@ -132,7 +147,7 @@ inline Sight DiscreteLineSweep::look(uint32_t e, const Slot& s, const Vec3& unit
     return sight;
   }
   const Vec3 n = slotNormal(s.normal);
-  const float height = glm::dot(n, grid_.centroid[e]) - s.offset;
+  const float height = glm::dot(n, centroid) - s.offset;
   const float approach = glm::dot(n, unit);
   if (std::abs(height) <= visibility_.planeTolerance() || height * approach <= 0.0f)
     return Sight::Through;
@@ -147,8 +162,9 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
   // Most cells hold one side and most recent voxels are one side: the plane test against the
   // recent voxel serves the look back, the run test and the waiting sides, computed once.
   const Vec3 n = view.normal[e];
+  const Vec3 c = view.centroid[e];
   const float facing = glm::dot(n, view.unit);  // < 0: e looks back along the line, > 0: ahead
-  const Slot& recent = state.recent;
+  const RecentVoxel& recent = state.recent;
   const bool hasRecent = state.recentRef != kNoVoxel;
   const bool recentIsSide = hasRecent && !holdsCell(recent.normal);
   Vec3 recentNormal(0.0f);
@@ -156,15 +172,15 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
   bool inRecentPlane = false;
   if (recentIsSide) {
     recentNormal = slotNormal(recent.normal);
-    height = glm::dot(recentNormal, view.centroid[e]) - recent.offset;
+    height = glm::dot(recentNormal, c - recent.centroid);
     inRecentPlane = std::abs(height) <= view.tolerance;
   }
   // A run along the same plane stays one voxel: its nearest.
   const bool continues = kTangentCorrection && inRecentPlane &&
                          std::abs(dominant - state.lastDominant) == 1 &&
                          glm::dot(recentNormal, n) > kSamePlaneCos;
-  if (!continues && state.pending != kNoPending)
-    resolvePending<kTangentCorrection>(view, state, view.source[e]);
+  const Slot& slot = view.source[e];
+  if (!continues && state.pending != kNoPending) resolvePending<kTangentCorrection>(view, state, slot);
   if (facing < 0.0f && hasRecent) {
     Color light(0.0f);
     Sight sight;
@@ -175,25 +191,32 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
         sight = Sight::Blocked;
       } else {
         sight = Sight::Source;
-        light = sentRadiosity(recent);
+        light = halfColor(recent.radiosity);
       }
     } else {
-      sight = look(e, recent, view.unit, view.source, light);
+      sight = look(e, c, recentSlot(state), view.unit, view.source, light);
     }
     if (kTangentCorrection && sight == Sight::Through)
-      sight = lookOlder(e, state, view.unit, view.source, light);
+      sight = lookOlder(e, c, state, view.unit, view.source, light);
     if (sight == Sight::Source) view.gathered[e] += light * (-facing * view.weight);
   } else if (facing > 0.0f) {
-    view.pendingNext[e] = state.pending;
-    state.pending = e;
+    wait(view, state, e);
   }
   if (!continues) {
     state.olderRef[1] = state.olderRef[0];
     state.olderRef[0] = state.recentRef;
   }
-  state.recent = view.source[e];
+  std::memcpy(state.recent.normal, slot.normal, sizeof slot.normal);
+  std::memcpy(state.recent.radiosity, slot.radiosity, sizeof slot.radiosity);
+  state.recent.centroid = c;
   state.recentRef = e;
   state.lastDominant = int16_t(dominant);
+}
+
+inline void DiscreteLineSweep::wait(const PassView& view, LineState& state, uint32_t e) {
+  if (state.pending != kNoPending) view.pendingNext[state.pending] = state.pendingLink;
+  state.pendingLink = state.pending;
+  state.pending = e;
 }
 
 template <bool kTangentCorrection>
@@ -207,7 +230,7 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
   // A run of cells holding the same planes stays one voxel.
   const bool continues = kTangentCorrection && state.recentRef != kNoVoxel &&
                          std::abs(dominant - state.lastDominant) == 1 && holdsCell(state.recent.normal) &&
-                         visibility_.continuesPlanes(cell, slotCell(state.recent.offset));
+                         visibility_.continuesPlanes(cell, state.recentRef & ~kCellRef);
   if (!continues && state.pending != kNoPending) resolvePending<kTangentCorrection>(view, state, slot);
   const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
   for (uint32_t e = begin; e < end; ++e) {
@@ -219,12 +242,12 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
     if (visibility_.lookWithinCell(e, cell, facing < 0.0f ? unit : -unit, own)) {
       view.gathered[e] += sentRadiosity(source[own]) * w;
     } else if (facing > 0.0f) {
-      view.pendingNext[e] = state.pending;
-      state.pending = e;
+      wait(view, state, e);
     } else if (state.recentRef != kNoVoxel) {
       Color light(0.0f);
-      Sight sight = look(e, state.recent, unit, source, light);
-      if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(e, state, unit, source, light);
+      const Vec3 c = view.centroid[e];
+      Sight sight = look(e, c, recentSlot(state), unit, source, light);
+      if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(e, c, state, unit, source, light);
       if (sight == Sight::Source) view.gathered[e] += light * w;
     }
   }
@@ -233,35 +256,59 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
     state.olderRef[1] = state.olderRef[0];
     state.olderRef[0] = state.recentRef;
   }
-  state.recent = slot;
+  state.recent.normal[0] = state.recent.normal[1] = state.recent.normal[2] = 0;
   state.recentRef = kCellRef | cell;
   state.lastDominant = int16_t(dominant);
+}
+
+inline void DiscreteLineSweep::gatherLater(const PassView& view, uint32_t e, const Color& light) {
+  DeferredGathers& later = *view.later;
+  later.items[later.count++] = {e, light};
+  if (later.count == DeferredGathers::kCapacity) later.addTo(view.gathered);
+}
+
+void DiscreteLineSweep::DeferredGathers::addTo(Color* gathered) {
+  // The sides were visited long ago: fetch ahead so that the misses overlap.
+  constexpr uint32_t kAhead = 16;
+  for (uint32_t i = 0; i < count; ++i) {
+    if (i + kAhead < count) __builtin_prefetch(&gathered[items[i + kAhead].entry], 1);
+    gathered[items[i].entry] += items[i].light;
+  }
+  count = 0;
 }
 
 template <bool kTangentCorrection>
 void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state, const Slot& slot) const {
   // The sides waiting for light from ahead meet a new voxel (the nearest of its run): each sees
   // its source, is blocked, or, grazing it, waits for the next one (with the tangent correction,
-  // up to kLookThrough voxels, as many as a look back passes).
+  // up to kLookThrough voxels, as many as a look back passes). The first waiting side is often
+  // the line's recent voxel, whose centroid the record holds.
   const Vec3 back = -view.unit;
-  uint32_t m = state.pending, waiting = kNoPending;
-  while (m != kNoPending) {
-    const uint32_t link = view.pendingNext[m];
+  uint32_t m = state.pending, link = state.pendingLink;
+  uint32_t waiting = kNoPending, waitingLink = kNoPending;
+  while (true) {
+    const bool recent = m == state.recentRef;
+    const Vec3 centroid = recent ? state.recent.centroid : view.centroid[m];
     Color light(0.0f);
-    const Sight sight = look(m, slot, back, view.source, light);
+    const Sight sight = look(m, centroid, slot, back, view.source, light);
     if (sight == Sight::Source) {
-      view.gathered[m] += light * (glm::dot(view.normal[m], view.unit) * view.weight);
+      const Vec3 normal = recent ? slotNormal(state.recent.normal) : view.normal[m];
+      gatherLater(view, m, light * (glm::dot(normal, view.unit) * view.weight));
     } else if (kTangentCorrection && sight == Sight::Through && (link >> kDepthShift) < kLookThrough) {
-      view.pendingNext[m] = waiting | (((link >> kDepthShift) + 1) << kDepthShift);
+      if (waiting != kNoPending) view.pendingNext[waiting] = waitingLink;
+      waitingLink = waiting | (((link >> kDepthShift) + 1) << kDepthShift);
       waiting = m;
     }
     m = link & kNoPending;
+    if (m == kNoPending) break;
+    link = view.pendingNext[m];
   }
   state.pending = waiting;
+  state.pendingLink = waitingLink;
 }
 
-Sight DiscreteLineSweep::lookOlder(uint32_t e, const LineState& state, const Vec3& unit,
-                                   const Source& source, Color& light) const {
+Sight DiscreteLineSweep::lookOlder(uint32_t e, const Vec3& centroid, const LineState& state,
+                                   const Vec3& unit, const Source& source, Color& light) const {
   // With the tangent correction a grazed voxel is looked through: the two voxels before it
   // decide (a slot for a cell of several sides is made from its reference).
   for (const uint32_t ref : state.olderRef) {
@@ -274,7 +321,7 @@ Sight DiscreteLineSweep::lookOlder(uint32_t e, const LineState& state, const Vec
     } else {
       older = source[ref];
     }
-    const Sight sight = look(e, older, unit, source, light);
+    const Sight sight = look(e, centroid, older, unit, source, light);
     if (sight != Sight::Through) return sight;
   }
   return Sight::Through;
@@ -307,14 +354,14 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
     stamp_ = 1;
   }
   const PassView view{grid_.cellEntryBegin.data(), grid_.normal.data(), grid_.centroid.data(),
-                      source, gathered.data(), pendingNext_.data(), unit, weight,
+                      source, gathered.data(), pendingNext_.data(), &later_, unit, weight,
                       visibility_.planeTolerance()};
   LineState* const lines = lines_.data();
   const uint16_t stamp = stamp_;
   // Line records are scattered over a table the size of the scene's cross-section, and the
-  // cells' own data is read in an order that jumps back row by row: fetch both a few cells
+  // cells' own data is read in an order that jumps back row by row: fetch both kAhead cells
   // ahead of the visit so that the misses overlap instead of queueing.
-  constexpr uint32_t kAhead = 16;
+  constexpr uint32_t kAhead = 16, kMask = kAhead - 1;
   uint32_t ringCell[kAhead], ringLine[kAhead];
   int32_t ringDominant[kAhead];
   uint32_t count = 0;
@@ -324,7 +371,7 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
     if (state.stamp != stamp) {
       state.stamp = stamp;
       state.recentRef = state.olderRef[0] = state.olderRef[1] = kNoVoxel;
-      state.pending = kNoPending;
+      state.pending = state.pendingLink = kNoPending;
     }
     if (view.entryBegin[cell + 1] - begin == 1)
       visitSingleSide<kTangentCorrection>(view, begin, state, ringDominant[i]);
@@ -337,11 +384,12 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
     __builtin_prefetch(&view.normal[first]);
     __builtin_prefetch(&view.centroid[first]);
     __builtin_prefetch(&view.gathered[first], 1);
-    const uint32_t i = count++ % kAhead;
+    const uint32_t i = count++ & kMask;
     if (count > kAhead) visit(i);
     ringCell[i] = cell, ringLine[i] = line, ringDominant[i] = dominant;
   });
-  for (uint32_t i = count > kAhead ? count - kAhead : 0; i < count; ++i) visit(i % kAhead);
+  for (uint32_t i = count > kAhead ? count - kAhead : 0; i < count; ++i) visit(i & kMask);
+  later_.addTo(view.gathered);
 }
 
 void DiscreteLineSweep::sweepPair(const DiscreteDirection& direction, const Source& source,

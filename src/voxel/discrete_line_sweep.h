@@ -11,14 +11,17 @@
 // axes run with the direction's signs meets each line's voxels in order along it, so a table
 // holding each line's last voxel pairs every voxel with its predecessor in O(1), no sorting.
 //
-// What a voxel side sees along its line: the light travelling along the pass direction s reaches
-// side e from the first voxel behind it whose surface the backward ray from e's centroid really
-// meets (side_visibility.h). Each line keeps its last voxel (plane and radiosity) inline and the
-// two before it by reference, so that the common case touches one line record and nothing else. A
-// voxel is looked through when the ray only grazes its surface: this is the paper's tangent
-// correction made exact per side; the voxels of a floor do not hide each other from a wall at a
-// grazing angle, and the sides of a thin wall never see through it. Runs of voxels along the
-// same planes are kept as one, so long grazing runs cost one slot.
+// What a voxel side sees along its line: the light travelling along s reaches side e from the
+// first voxel behind it whose surface the backward ray from e's centroid really meets
+// (side_visibility.h). One traversal along s serves s and -s: a side facing back looks at the
+// voxels behind it at once; a side facing ahead waits on its line's record until the next voxel
+// arrives, and its light is added later in batches (it was visited long ago). Each line keeps its
+// last voxel (plane, radiosity, centroid) inline and the two before it by reference, so that the
+// common case touches one line record and nothing else. A voxel is looked through when the ray
+// only grazes its surface: this is the paper's tangent correction made exact per side; the
+// voxels of a floor do not hide each other from a wall at a grazing angle, and the sides of a
+// thin wall never see through it. Runs of voxels along the same planes are kept as one, so long
+// grazing runs cost one slot.
 
 #include "voxel/direction_set.h"
 #include "voxel/side_visibility.h"
@@ -63,9 +66,9 @@ class DiscreteLineSweep {
   static Color sentRadiosity(const Slot& slot);
   using Source = std::span<const Slot>;
 
-  /// Sweeps the direction and its opposite. For each entry e facing back along a pass direction s
-  /// (cos = -n_e . s > 0): gathered[e] += B(source) * cos * w, w = solidAngle / pi, where the
-  /// source is the entry of the preceding voxel on e's line that faces e.
+  /// Sweeps the direction s and its opposite in one traversal along s. For each entry e and each
+  /// of d = s, -s with cos = -n_e . d > 0: gathered[e] += B(source) * cos * w, w = solidAngle / pi,
+  /// where the source is the side of the voxel before e along d on its line that e's ray meets.
   void sweepPair(const DiscreteDirection& direction, const Source& source,
                  std::span<Color> gathered, const LineOffset& offset = {});
 
@@ -74,7 +77,11 @@ class DiscreteLineSweep {
   /// Cells in the order a pass along `step` visits them (for tests).
   std::vector<uint32_t> passOrder(const IVec3& step);
   size_t lineTableSize() const { return lines_.size(); }
-  size_t lineTableBytes() const { return lines_.capacity() * sizeof(LineState); }
+  /// Working memory: the line records, the waiting sides' links and the deferred light.
+  size_t workingBytes() const {
+    return lines_.capacity() * sizeof(LineState) + pendingNext_.capacity() * sizeof(uint32_t) +
+           later_.items.capacity() * sizeof(DeferredGathers::Item);
+  }
 
  private:
   static constexpr uint32_t kCellRef = 0x80000000u;
@@ -87,19 +94,44 @@ class DiscreteLineSweep {
   /// Half a cache line per line: its last voxel (runs along the same planes collapsed to their
   /// nearest voxel) inline, and the two voxels before it by reference (an entry, kCellRef | cell,
   /// or kNoVoxel), so that a visit touches this record and the visited cell's own data only.
+  /// The line's most recent voxel as its record keeps it: a side's packed normal and radiosity
+  /// with its centroid (which the side, when it waits for light from ahead, looks from), or a
+  /// zero normal for a cell of several sides.
+  struct RecentVoxel {
+    int16_t normal[3];
+    uint16_t radiosity[3];
+    Vec3 centroid;
+  };
   struct alignas(16) LineState {
     uint16_t stamp = 0;
     int16_t lastDominant = 0;
     uint32_t recentRef = kNoVoxel;
     uint32_t olderRef[2] = {kNoVoxel, kNoVoxel};
-    uint32_t pending = kNoPending;  ///< sides waiting for light from ahead, chained by pendingNext_
-    Slot recent;
+    /// The sides waiting for light from ahead: the first, and its link (the rest are chained
+    /// through pendingNext_), so that a lone waiting side costs no access beyond this record.
+    uint32_t pending = kNoPending, pendingLink = kNoPending;
+    RecentVoxel recent;
   };
+  static_assert(sizeof(LineState) == 48);
+  /// The recent voxel as a slot (the cell's index for a cell of several sides).
+  static Slot recentSlot(const LineState& state);
 
   void prepareLines(const IVec3& step, const LineOffset& offset = {});
   template <bool kTangentCorrection>
   void pass(const IVec3& step, const Vec3& unit, float weight, const Source& source,
             std::span<Color> gathered);
+  /// Light for sides that waited on a line: added to their accumulators in batches, after the
+  /// fact, so that the sweep never stalls on a side it visited long ago.
+  struct DeferredGathers {
+    static constexpr uint32_t kCapacity = 4096;
+    struct Item {
+      uint32_t entry;
+      Color light;
+    };
+    std::vector<Item> items = std::vector<Item>(kCapacity);
+    uint32_t count = 0;
+    void addTo(Color* gathered);
+  };
   /// What a pass reads and writes, as raw pointers the compiler can keep in registers.
   struct PassView {
     const uint32_t* entryBegin;
@@ -108,6 +140,7 @@ class DiscreteLineSweep {
     Source source;
     Color* gathered;
     uint32_t* pendingNext;
+    DeferredGathers* later;
     Vec3 unit;
     float weight, tolerance;
   };
@@ -120,12 +153,16 @@ class DiscreteLineSweep {
   /// Lets the sides waiting on the line's record look at the voxel in `slot`.
   template <bool kTangentCorrection>
   void resolvePending(const PassView& view, LineState& state, const Slot& slot) const;
-  /// What entry e sees in slot s; `light` gets the source's radiosity when it is Source.
-  Sight look(uint32_t e, const Slot& s, const Vec3& unit, const Source& source,
-             Color& light) const;
+  /// What entry e (its centroid given) sees in slot s; `light` gets the source's radiosity when
+  /// it is Source.
+  Sight look(uint32_t e, const Vec3& centroid, const Slot& s, const Vec3& unit,
+             const Source& source, Color& light) const;
   /// What entry e sees past the line's recent voxel (the two voxels before it).
-  Sight lookOlder(uint32_t e, const LineState& state, const Vec3& unit, const Source& source,
-                  Color& light) const;
+  Sight lookOlder(uint32_t e, const Vec3& centroid, const LineState& state, const Vec3& unit,
+                  const Source& source, Color& light) const;
+  static void gatherLater(const PassView& view, uint32_t e, const Color& light);
+  /// Makes side e wait on the line for light from ahead.
+  static void wait(const PassView& view, LineState& state, uint32_t e);
   /// Calls f(cell, line, dominant) for every cell in the order of a pass along `step`.
   template <typename F>
   void forEachCellInPassOrder(const IVec3& step, F&& f) const;
@@ -137,6 +174,7 @@ class DiscreteLineSweep {
   std::vector<int32_t> dominantTable_[3];  ///< per axis: contribution to the signed dominant coordinate
   std::vector<LineState> lines_;
   std::vector<uint32_t> pendingNext_;  ///< per entry: the chain of sides waiting on a line
+  DeferredGathers later_;
   std::vector<int64_t> scratchU_[3], scratchV_[3];  ///< per-direction tables, reused
   uint16_t stamp_ = 0;
 };
