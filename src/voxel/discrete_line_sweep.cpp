@@ -180,7 +180,21 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
                          std::abs(dominant - state.lastDominant) == 1 &&
                          glm::dot(recentNormal, n) > kSamePlaneCos;
   const Slot& slot = view.source[e];
-  if (!continues && state.pending != kNoPending) resolvePending<kTangentCorrection>(view, state, slot);
+  if (!continues && state.pending != kNoPending) {
+    // Most often the one side waiting is the recent voxel, a wall across the room: it looks at
+    // e's plane from its centroid, which the record holds, unless it grazes e (then the
+    // general rule lets it wait on).
+    const float recentHeight = glm::dot(n, recent.centroid - c);  // recent's side of e's plane
+    if (state.pending == state.recentRef && state.pendingLink == kNoPending && recentIsSide &&
+        std::abs(recentHeight) > view.tolerance && recentHeight * facing < 0.0f) {
+      if (recentHeight > 0.0f)
+        gatherLater(view, state.pending,
+                    sentRadiosity(slot) * (glm::dot(recentNormal, view.unit) * view.weight));
+      state.pending = kNoPending;
+    } else {
+      resolvePending<kTangentCorrection>(view, state, slot);
+    }
+  }
   if (facing < 0.0f && hasRecent) {
     Color light(0.0f);
     Sight sight;
