@@ -214,7 +214,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
       sight = lookOlder(e, c, state, view.unit, view.source, light);
     if (sight == Sight::Source) view.gathered[e] += light * (-facing * view.weight);
   } else if (facing > 0.0f) {
-    wait(view, state, e);
+    wait(view, state, e, continues && state.pending == state.recentRef);
   }
   if (!continues) {
     state.olderRef[1] = state.olderRef[0];
@@ -227,9 +227,10 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
   state.lastDominant = int16_t(dominant);
 }
 
-inline void DiscreteLineSweep::wait(const PassView& view, LineState& state, uint32_t e) {
+inline void DiscreteLineSweep::wait(const PassView& view, LineState& state, uint32_t e,
+                                    bool sameRun) {
   if (state.pending != kNoPending) view.pendingNext[state.pending] = state.pendingLink;
-  state.pendingLink = state.pending;
+  state.pendingLink = state.pending | (sameRun ? kSameRun : 0u);
   state.pending = e;
 }
 
@@ -256,7 +257,7 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
     if (visibility_.lookWithinCell(e, cell, facing < 0.0f ? unit : -unit, own)) {
       view.gathered[e] += sentRadiosity(source[own]) * w;
     } else if (facing > 0.0f) {
-      wait(view, state, e);
+      wait(view, state, e, false);
     } else if (state.recentRef != kNoVoxel) {
       Color light(0.0f);
       const Vec3 c = view.centroid[e];
@@ -300,19 +301,34 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state, c
   const Vec3 back = -view.unit;
   uint32_t m = state.pending, link = state.pendingLink;
   uint32_t waiting = kNoPending, waitingLink = kNoPending;
+  Sight sight = Sight::Through;
+  Color light(0.0f);
+  float weight = 0.0f;
+  bool sameRunAsBefore = false, keptBefore = false;
   while (true) {
-    const bool recent = m == state.recentRef;
-    const Vec3 centroid = recent ? state.recent.centroid : view.centroid[m];
-    Color light(0.0f);
-    const Sight sight = look(m, centroid, slot, back, view.source, light);
-    if (sight == Sight::Source) {
-      const Vec3 normal = recent ? slotNormal(state.recent.normal) : view.normal[m];
-      gatherLater(view, m, light * (glm::dot(normal, view.unit) * view.weight));
-    } else if (kTangentCorrection && sight == Sight::Through && (link >> kDepthShift) < kLookThrough) {
-      if (waiting != kNoPending) view.pendingNext[waiting] = waitingLink;
-      waitingLink = waiting | (((link >> kDepthShift) + 1) << kDepthShift);
-      waiting = m;
+    if (!sameRunAsBefore) {
+      const bool recent = m == state.recentRef;
+      const Vec3 centroid = recent ? state.recent.centroid : view.centroid[m];
+      sight = look(m, centroid, slot, back, view.source, light);
+      if (sight == Sight::Source) {
+        const Vec3 normal = recent ? slotNormal(state.recent.normal) : view.normal[m];
+        weight = glm::dot(normal, view.unit) * view.weight;
+      }
     }
+    const uint32_t depth = link >> kDepthShift;
+    if (sight == Sight::Source) {
+      gatherLater(view, m, light * weight);
+    } else if (kTangentCorrection && sight == Sight::Through && depth < kLookThrough) {
+      // Kept, in reverse order: the run mark now links it to the side kept before it.
+      if (waiting != kNoPending) view.pendingNext[waiting] = waitingLink;
+      waitingLink = waiting | ((depth + 1) << kDepthShift) |
+                    (sameRunAsBefore && keptBefore ? kSameRun : 0u);
+      waiting = m;
+      keptBefore = true;
+    } else {
+      keptBefore = false;
+    }
+    sameRunAsBefore = (link & kSameRun) != 0;
     m = link & kNoPending;
     if (m == kNoPending) break;
     link = view.pendingNext[m];

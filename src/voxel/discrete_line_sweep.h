@@ -86,9 +86,11 @@ class DiscreteLineSweep {
  private:
   static constexpr uint32_t kCellRef = 0x80000000u;
   static constexpr uint32_t kNoVoxel = 0xffffffffu;
-  /// A waiting side's link: the next waiting entry in the low 30 bits (kNoPending ends the
-  /// chain), in the top two the voxels it has looked through so far.
-  static constexpr uint32_t kNoPending = 0x3fffffffu;
+  /// A waiting side's link: the next waiting entry in the low 29 bits (kNoPending ends the
+  /// chain), kSameRun when that entry is the voxel before it in the same run (one plane: the
+  /// answer for one serves both), and in the top two the voxels it has looked through so far.
+  static constexpr uint32_t kNoPending = 0x1fffffffu;
+  static constexpr uint32_t kSameRun = 0x20000000u;
   static constexpr uint32_t kDepthShift = 30;
   static constexpr uint32_t kLookThrough = 2;
   /// Half a cache line per line: its last voxel (runs along the same planes collapsed to their
@@ -161,8 +163,9 @@ class DiscreteLineSweep {
   Sight lookOlder(uint32_t e, const Vec3& centroid, const LineState& state, const Vec3& unit,
                   const Source& source, Color& light) const;
   static void gatherLater(const PassView& view, uint32_t e, const Color& light);
-  /// Makes side e wait on the line for light from ahead.
-  static void wait(const PassView& view, LineState& state, uint32_t e);
+  /// Makes side e wait on the line for light from ahead; `sameRun` when the side waiting before
+  /// it is the previous voxel of its run.
+  static void wait(const PassView& view, LineState& state, uint32_t e, bool sameRun);
   /// Calls f(cell, line, dominant) for every cell in the order of a pass along `step`.
   template <typename F>
   void forEachCellInPassOrder(const IVec3& step, F&& f) const;
