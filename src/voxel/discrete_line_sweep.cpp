@@ -409,7 +409,9 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
       visitSeveralSides<kTangentCorrection>(view, cell, state, ringDominant[i]);
   };
   forEachCellInPassOrder(step, [&](uint32_t cell, uint32_t line, int32_t dominant) {
+    // A 48-byte record may straddle two cache lines: fetch both.
     __builtin_prefetch(&lines[line], 1);
+    __builtin_prefetch(reinterpret_cast<const char*>(&lines[line]) + sizeof(LineState) - 1, 1);
     const uint32_t first = view.entryBegin[cell];
     __builtin_prefetch(&view.normal[first]);
     __builtin_prefetch(&view.centroid[first]);
