@@ -7,8 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/gtc/constants.hpp>
+
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <random>
 
@@ -209,6 +212,82 @@ TEST(Voxelizer, ThinTwoSidedWallKeepsOneEntryPerSide) {
     const uint32_t e = grid.cellEntryBegin[c];
     EXPECT_NEAR(glm::dot(grid.normal[e], grid.normal[e + 1]), -1.0f, 1e-5f);
   }
+}
+
+// A direction of the sweep with factor pi, so that w = 1 and a side gathers B cos.
+DiscreteDirection unitWeightDirection(const IVec3& step) {
+  return {step, glm::normalize(Vec3d(step)), glm::pi<double>()};
+}
+
+// Two parallel plates 0.6 apart facing each other, voxelized at 0.1: objects "a" (x = 0, facing
+// +x) and "b" (x = 0.6, facing -x).
+VoxelGrid facingPlates() {
+  SceneBuilder b("plates");
+  const uint32_t m = b.addMaterial({"white", Color(0.5f), Color(0.0f), false});
+  test::addQuadFacing(b, test::axisSquare(Vec3(0.0f), 0, 1.0f), Vec3(1, 0, 0), m, b.addObject("a"));
+  test::addQuadFacing(b, test::axisSquare(Vec3(0.6f, 0.0f, 0.0f), 0, 1.0f), Vec3(-1, 0, 0), m,
+                      b.addObject("b"));
+  VoxelizerSettings settings;
+  settings.voxelSize = 0.1f;
+  return voxelizeScene(b.build(), settings);
+}
+
+TEST(DiscreteLineSweep, FacingPlatesGetTheSameLightWhicheverWayTheLinesRun) {
+  // In one traversal along s the plate behind waits for light from ahead while the other looks
+  // back: both ways must give every side B cos w = 1 along the normal.
+  const VoxelGrid grid = facingPlates();
+  std::vector<DiscreteLineSweep::Slot> slots(grid.entryCount());
+  DiscreteLineSweep::packSides(grid, [](size_t) { return Color(1.0f); }, slots);
+  for (const IVec3& step : {IVec3(1, 0, 0), IVec3(-1, 0, 0)}) {
+    DiscreteLineSweep sweep(grid, {});
+    std::vector<Color> gathered(grid.entryCount(), Color(0.0f));
+    sweep.sweepPair(unitWeightDirection(step), slots, gathered);
+    for (size_t e = 0; e < grid.entryCount(); ++e) EXPECT_FLOAT_EQ(gathered[e].x, 1.0f) << e;
+  }
+  // At 45 degrees, the lines from one plate's lower rows reach the other's upper rows (6 voxels
+  // up): each side that sees the other plate gets cos 45 degrees, and the two plates get the same
+  // total (each line is one exchange).
+  for (const IVec3& step : {IVec3(1, 1, 0), IVec3(-1, -1, 0)}) {
+    DiscreteLineSweep sweep(grid, {});
+    std::vector<Color> gathered(grid.entryCount(), Color(0.0f));
+    sweep.sweepPair(unitWeightDirection(step), slots, gathered);
+    double total[2] = {0.0, 0.0};
+    for (size_t e = 0; e < grid.entryCount(); ++e) {
+      const float g = gathered[e].x;
+      EXPECT_TRUE(g == 0.0f || std::abs(g - std::sqrt(0.5f)) < 1e-6f) << e << " " << g;
+      total[grid.object[e]] += g;
+    }
+    EXPECT_GT(total[0], 0.0);
+    EXPECT_DOUBLE_EQ(total[0], total[1]);
+  }
+}
+
+TEST(DiscreteLineSweep, EveryVoxelOfAGrazingRunGetsTheLightAhead) {
+  // A floor and, beyond its end, a wall. Lines of (4, 1, 0) run along the floor for about four
+  // voxels before they rise to the wall, so the floor's sides (facing ahead, they wait on their
+  // lines) wait in runs: every one of them, not only a run's nearest, must get the wall's light.
+  SceneBuilder b("floor and wall");
+  const uint32_t m = b.addMaterial({"white", Color(0.5f), Color(0.0f), false});
+  const uint32_t floorObject = b.addObject("floor");
+  test::addQuadFacing(b, test::axisSquare(Vec3(0.5f, 0.0f, 0.5f), 1, 1.0f), Vec3(0, 1, 0), m, floorObject);
+  test::addQuadFacing(b, test::axisSquare(Vec3(1.25f, 0.5f, 0.5f), 0, 1.0f), Vec3(-1, 0, 0), m,
+                      b.addObject("wall"));
+  VoxelizerSettings settings;
+  settings.voxelSize = 0.1f;
+  const VoxelGrid grid = voxelizeScene(b.build(), settings);
+  std::vector<DiscreteLineSweep::Slot> slots(grid.entryCount());
+  DiscreteLineSweep::packSides(
+      grid, [&](size_t e) { return Color(grid.object[e] == floorObject ? 0.0f : 1.0f); }, slots);
+  DiscreteLineSweep sweep(grid, {});
+  std::vector<Color> gathered(grid.entryCount(), Color(0.0f));
+  sweep.sweepPair(unitWeightDirection(IVec3(4, 1, 0)), slots, gathered);
+  size_t floorSides = 0;
+  for (size_t e = 0; e < grid.entryCount(); ++e) {
+    if (grid.object[e] != floorObject) continue;
+    ++floorSides;
+    EXPECT_NEAR(gathered[e].x, 1.0f / std::sqrt(17.0f), 1e-4f) << e;  // cos = n . s = 1 / sqrt(17)
+  }
+  EXPECT_GT(floorSides, 100u);
 }
 
 }  // namespace
