@@ -93,9 +93,6 @@ class DiscreteLineSweep {
   static constexpr uint32_t kSameRun = 0x20000000u;
   static constexpr uint32_t kDepthShift = 30;
   static constexpr uint32_t kLookThrough = 2;
-  /// Half a cache line per line: its last voxel (runs along the same planes collapsed to their
-  /// nearest voxel) inline, and the two voxels before it by reference (an entry, kCellRef | cell,
-  /// or kNoVoxel), so that a visit touches this record and the visited cell's own data only.
   /// The line's most recent voxel as its record keeps it: a side's packed normal and radiosity
   /// with its centroid (which the side, when it waits for light from ahead, looks from), or a
   /// zero normal for a cell of several sides.
@@ -104,6 +101,10 @@ class DiscreteLineSweep {
     uint16_t radiosity[3];
     Vec3 centroid;
   };
+  /// 48 bytes per line: its last voxel (runs along the same planes collapsed to their nearest
+  /// voxel) inline, the two voxels before it by reference (an entry, kCellRef | cell, or
+  /// kNoVoxel) and the sides waiting on it, so that a visit mostly touches this record and the
+  /// visited cell's own data only.
   struct alignas(16) LineState {
     uint16_t stamp = 0;
     int16_t lastDominant = 0;
@@ -162,6 +163,7 @@ class DiscreteLineSweep {
   /// What entry e sees past the line's recent voxel (the two voxels before it).
   Sight lookOlder(uint32_t e, const Vec3& centroid, const LineState& state, const Vec3& unit,
                   const Source& source, Color& light) const;
+  /// Queues light for side e (a side that waited) in the pass's deferred batch.
   static void gatherLater(const PassView& view, uint32_t e, const Color& light);
   /// Makes side e wait on the line for light from ahead; `sameRun` when the side waiting before
   /// it is the previous voxel of its run.
