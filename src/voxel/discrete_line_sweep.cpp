@@ -1,9 +1,12 @@
 #include "voxel/discrete_line_sweep.h"
 
+#include <radiosity/error.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 
 #include <immintrin.h>
 
@@ -27,7 +30,12 @@ inline void forEach(uint32_t begin, uint32_t end, bool ascending, F&& f) {
 }  // namespace
 
 DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings& settings)
-    : grid_(grid), settings_(settings), visibility_(grid) {}
+    : grid_(grid), settings_(settings), visibility_(grid) {
+  // Waiting sides are chained by 29-bit entry indices.
+  if (grid.entryCount() >= kNoPending)
+    throw InputError("voxel grid", std::to_string(grid.entryCount()) + " voxel sides exceed the sweep's limit of " +
+                                       std::to_string(kNoPending - 1) + "; use a larger voxel size");
+}
 
 void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset) {
   // Axes by decreasing |component|: d[0] dominant. Components a >= b >= c >= 0 after signing.
