@@ -1,5 +1,6 @@
 #include "voxel/discrete_line_sweep.h"
 
+#include <immintrin.h>
 #include <radiosity/error.h>
 
 #include <algorithm>
@@ -8,14 +9,16 @@
 #include <cstring>
 #include <string>
 
-#include <immintrin.h>
-
 namespace rad {
 
 namespace {
 
-int64_t floorDiv(int64_t n, int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
-int64_t ceilDiv(int64_t n, int64_t d) { return -floorDiv(-n, d); }
+int64_t floorDiv(int64_t n, int64_t d) {
+  return n >= 0 ? n / d : -((-n + d - 1) / d);
+}
+int64_t ceilDiv(int64_t n, int64_t d) {
+  return -floorDiv(-n, d);
+}
 
 // Calls f(i) for i in [begin, end), ascending or descending.
 template <typename F>
@@ -33,14 +36,17 @@ DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings&
     : grid_(grid), settings_(settings), visibility_(grid) {
   // Waiting sides are chained by 29-bit entry indices.
   if (grid.entryCount() >= kNoPending)
-    throw InputError("voxel grid", std::to_string(grid.entryCount()) + " voxel sides exceed the sweep's limit of " +
-                                       std::to_string(kNoPending - 1) + "; use a larger voxel size");
+    throw InputError("voxel grid", std::to_string(grid.entryCount()) +
+                                       " voxel sides exceed the sweep's limit of " +
+                                       std::to_string(kNoPending - 1) +
+                                       "; use a larger voxel size");
 }
 
 void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset) {
   // Axes by decreasing |component|: d[0] dominant. Components a >= b >= c >= 0 after signing.
   std::array<int, 3> d{0, 1, 2};
-  std::stable_sort(d.begin(), d.end(), [&](int i, int j) { return std::abs(step[i]) > std::abs(step[j]); });
+  std::stable_sort(d.begin(), d.end(),
+                   [&](int i, int j) { return std::abs(step[i]) > std::abs(step[j]); });
   const int64_t a = std::abs(step[d[0]]), b = std::abs(step[d[1]]), c = std::abs(step[d[2]]);
   int64_t uSpan = 0, vSpan = 0;
   std::array<int64_t, 3> uMin{}, vMin{};
@@ -51,7 +57,8 @@ void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset
     u.resize(size_t(grid_.dims[d[k]]));
     v.resize(u.size());
     for (size_t t = 0; t < u.size(); ++t) {
-      const int64_t m = sign * int64_t(t);  // coordinate in the frame where the direction is positive
+      const int64_t m =
+          sign * int64_t(t);  // coordinate in the frame where the direction is positive
       // floor((a y - b x + u) / a) = y - ceil((b x - u) / a), likewise for z.
       u[t] = k == 0 ? -ceilDiv(b * m - offset.u, a) : (k == 1 ? m : 0);
       v[t] = k == 0 ? -ceilDiv(c * m - offset.v, a) : (k == 2 ? m : 0);
@@ -84,7 +91,9 @@ namespace {
 
 constexpr float kSnorm16 = 32767.0f;
 
-bool holdsCell(const int16_t normal[3]) { return (normal[0] | normal[1] | normal[2]) == 0; }
+bool holdsCell(const int16_t normal[3]) {
+  return (normal[0] | normal[1] | normal[2]) == 0;
+}
 
 Vec3 slotNormal(const int16_t normal[3]) {
   return Vec3(float(normal[0]), float(normal[1]), float(normal[2])) * (1.0f / kSnorm16);
@@ -131,7 +140,9 @@ void DiscreteLineSweep::packSides(const VoxelGrid& grid, const std::function<Col
   }
 }
 
-inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) { return halfColor(s.radiosity); }
+inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
+  return halfColor(s.radiosity);
+}
 
 DiscreteLineSweep::Slot DiscreteLineSweep::recentSlot(const LineState& state) {
   Slot slot;
@@ -252,9 +263,11 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
   std::memcpy(&slot.offset, &cell, sizeof cell);
   // A run of cells holding the same planes stays one voxel.
   const bool continues = kTangentCorrection && state.recentRef != kNoVoxel &&
-                         std::abs(dominant - state.lastDominant) == 1 && holdsCell(state.recent.normal) &&
+                         std::abs(dominant - state.lastDominant) == 1 &&
+                         holdsCell(state.recent.normal) &&
                          visibility_.continuesPlanes(cell, state.recentRef & ~kCellRef);
-  if (!continues && state.pending != kNoPending) resolvePending<kTangentCorrection>(view, state, slot);
+  if (!continues && state.pending != kNoPending)
+    resolvePending<kTangentCorrection>(view, state, slot);
   const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
   for (uint32_t e = begin; e < end; ++e) {
     const float facing = glm::dot(grid_.normal[e], unit);
@@ -270,7 +283,8 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
       Color light(0.0f);
       const Vec3 c = view.centroid[e];
       Sight sight = look(e, c, recentSlot(state), unit, source, light);
-      if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(e, c, state, unit, source, light);
+      if (kTangentCorrection && sight == Sight::Through)
+        sight = lookOlder(e, c, state, unit, source, light);
       if (sight == Sight::Source) view.gathered[e] += light * w;
     }
   }
@@ -301,7 +315,8 @@ void DiscreteLineSweep::DeferredGathers::addTo(Color* gathered) {
 }
 
 template <bool kTangentCorrection>
-void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state, const Slot& slot) const {
+void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
+                                       const Slot& slot) const {
   // The sides waiting for light from ahead meet a new voxel (the nearest of its run): each sees
   // its source, is blocked, or, grazing it, waits for the next one (with the tangent correction,
   // up to kLookThrough voxels, as many as a look back passes). The first waiting side is often
@@ -329,8 +344,8 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state, c
     } else if (kTangentCorrection && sight == Sight::Through && depth < kLookThrough) {
       // Kept, in reverse order: the run mark now links it to the side kept before it.
       if (waiting != kNoPending) view.pendingNext[waiting] = waitingLink;
-      waitingLink = waiting | ((depth + 1) << kDepthShift) |
-                    (sameRunAsBefore && keptBefore ? kSameRun : 0u);
+      waitingLink =
+          waiting | ((depth + 1) << kDepthShift) | (sameRunAsBefore && keptBefore ? kSameRun : 0u);
       waiting = m;
       keptBefore = true;
     } else {
@@ -391,8 +406,15 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
     for (LineState& line : lines_) line.stamp = 0;
     stamp_ = 1;
   }
-  const PassView view{grid_.cellEntryBegin.data(), grid_.normal.data(), grid_.centroid.data(),
-                      source, gathered.data(), pendingNext_.data(), &later_, unit, weight,
+  const PassView view{grid_.cellEntryBegin.data(),
+                      grid_.normal.data(),
+                      grid_.centroid.data(),
+                      source,
+                      gathered.data(),
+                      pendingNext_.data(),
+                      &later_,
+                      unit,
+                      weight,
                       visibility_.planeTolerance()};
   LineState* const lines = lines_.data();
   const uint16_t stamp = stamp_;
@@ -444,7 +466,8 @@ void DiscreteLineSweep::sweepPair(const DiscreteDirection& direction, const Sour
     pass<false>(direction.step, unit, weight, source, gathered);
 }
 
-std::vector<uint32_t> DiscreteLineSweep::lineOfEachCell(const IVec3& step, const LineOffset& offset) {
+std::vector<uint32_t> DiscreteLineSweep::lineOfEachCell(const IVec3& step,
+                                                        const LineOffset& offset) {
   prepareLines(step, offset);
   std::vector<uint32_t> lines(grid_.cellCount());
   forEachCellInPassOrder(step, [&](uint32_t cell, uint32_t line, int32_t) { lines[cell] = line; });

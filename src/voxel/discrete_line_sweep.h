@@ -23,13 +23,13 @@
 // thin wall never see through it. Runs of voxels along the same planes are kept as one, so long
 // grazing runs cost one slot.
 
-#include "voxel/direction_set.h"
-#include "voxel/side_visibility.h"
-#include "voxel/voxel_grid.h"
-
 #include <functional>
 #include <span>
 #include <vector>
+
+#include "voxel/direction_set.h"
+#include "voxel/side_visibility.h"
+#include "voxel/voxel_grid.h"
 
 namespace rad {
 
@@ -175,8 +175,9 @@ class DiscreteLineSweep {
   const VoxelGrid& grid_;
   SweepSettings settings_;
   SideVisibility visibility_;
-  std::vector<int32_t> lineTable_[3];      ///< per axis: contribution to the flat line index
-  std::vector<int32_t> dominantTable_[3];  ///< per axis: contribution to the signed dominant coordinate
+  std::vector<int32_t> lineTable_[3];  ///< per axis: contribution to the flat line index
+  std::vector<int32_t>
+      dominantTable_[3];  ///< per axis: contribution to the signed dominant coordinate
   std::vector<LineState> lines_;
   std::vector<uint32_t> pendingNext_;  ///< per entry: the chain of sides waiting on a line
   DeferredGathers later_;

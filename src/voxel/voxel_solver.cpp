@@ -1,12 +1,5 @@
 #include "voxel/voxel_solver.h"
 
-#include "core/rng.h"
-#include "geometry/ray_caster.h"
-#include "render/path_integrator.h"
-#include "render/progress_ticker.h"
-#include "voxel/direction_set.h"
-
-#include <glm/gtc/constants.hpp>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -14,7 +7,14 @@
 #include <array>
 #include <chrono>
 #include <cstring>
+#include <glm/gtc/constants.hpp>
 #include <map>
+
+#include "core/rng.h"
+#include "geometry/ray_caster.h"
+#include "render/path_integrator.h"
+#include "render/progress_ticker.h"
+#include "voxel/direction_set.h"
 
 namespace rad {
 
@@ -62,7 +62,8 @@ std::vector<float> facingWeights(const VoxelGrid& grid, const DirectionSet& dire
     for (size_t i = r.begin(); i != r.end(); ++i) {
       double sum = 0.0;
       for (size_t d = 0; d < directions.size(); ++d)
-        sum += std::max(0.0, glm::dot(Vec3d(distinct[i]), directions[d].unit)) * directions[d].solidAngle;
+        sum += std::max(0.0, glm::dot(Vec3d(distinct[i]), directions[d].unit)) *
+               directions[d].solidAngle;
       weightOf[i] = float(sum / glm::pi<double>());
     }
   });
@@ -82,8 +83,9 @@ LineOffset lineOffset(const DiscreteDirection& d, uint64_t seed, int iteration, 
 
 void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLineSweep>& sweeps,
                          std::vector<std::vector<Color>>& slots,
-                         const DiscreteLineSweep::Source& source, const VoxelSolverSettings& settings,
-                         int iteration, ProgressTicker& ticker) {
+                         const DiscreteLineSweep::Source& source,
+                         const VoxelSolverSettings& settings, int iteration,
+                         ProgressTicker& ticker) {
   const size_t slotCount = slots.size();
   // One task per slot: the simple partitioner splits down to single slots.
   tbb::parallel_for(
@@ -94,8 +96,8 @@ void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLin
           for (size_t k = slot; k < directions.pairCount(); k += slotCount) {
             if (ticker.cancelled()) return;
             const DiscreteDirection& d = directions.pairFirst(k);
-            const LineOffset offset = settings.jitterLines ? lineOffset(d, settings.seed, iteration, k)
-                                                           : LineOffset{};
+            const LineOffset offset =
+                settings.jitterLines ? lineOffset(d, settings.seed, iteration, k) : LineOffset{};
             sweeps[slot].sweepPair(d, source, slots[slot], offset);
             ticker.tick();
           }
@@ -114,7 +116,9 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const ProgressCallback& progress) {
   VoxelSolution solution;
   const size_t n = grid.entryCount();
-  auto emitted = [&](size_t e) { return glm::pi<float>() * grid.materials[grid.material[e]].emission; };
+  auto emitted = [&](size_t e) {
+    return glm::pi<float>() * grid.materials[grid.material[e]].emission;
+  };
   auto rho = [&](size_t e) { return grid.materials[grid.material[e]].rho; };
   std::vector<Color> direct(settings.directFirstShot ? n : 0);
   if (settings.directFirstShot) {
@@ -129,7 +133,8 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   const size_t slotCount = size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
   std::vector<DiscreteLineSweep> sweeps(slotCount, DiscreteLineSweep(grid, settings.sweep));
   std::vector<std::vector<Color>> slots(slotCount, std::vector<Color>(n));
-  const std::vector<float> weights = settings.normalize ? facingWeights(grid, directions) : std::vector<float>{};
+  const std::vector<float> weights =
+      settings.normalize ? facingWeights(grid, directions) : std::vector<float>{};
 
   // The sweeps carry what surfaces send: all of B, or only its reflected part when the first
   // shot has already delivered the emitters' light. H starts as the direct light (or none).
@@ -140,7 +145,8 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     return settings.directFirstShot ? rho(e) * irradiance[e] : radiosityOf(e);
   };
   std::vector<DiscreteLineSweep::Slot> packed(n);
-  ProgressTicker ticker(progress, directions.pairCount() * size_t(std::max(settings.iterations, 1)));
+  ProgressTicker ticker(progress,
+                        directions.pairCount() * size_t(std::max(settings.iterations, 1)));
   const auto start = std::chrono::steady_clock::now();
   for (int iteration = 0; iteration < settings.iterations; ++iteration) {
     DiscreteLineSweep::packSides(grid, sends, packed);
@@ -160,8 +166,8 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     if (settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance) break;
   }
   solution.sweepSeconds = secondsSince(start);
-  solution.workingBytes = slotCount * n * sizeof(Color) + weights.size() * sizeof(float) + (direct.size() + n) * sizeof(Color) +
-                          n * sizeof(DiscreteLineSweep::Slot);
+  solution.workingBytes = slotCount * n * sizeof(Color) + weights.size() * sizeof(float) +
+                          (direct.size() + n) * sizeof(Color) + n * sizeof(DiscreteLineSweep::Slot);
   for (const DiscreteLineSweep& s : sweeps) solution.workingBytes += s.workingBytes();
   // The working arrays go before the result's B is made, so they never coexist.
   slots = {};

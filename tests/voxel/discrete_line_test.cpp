@@ -1,24 +1,24 @@
 // Properties of the discrete lines and of the voxelization they run through.
-#include "voxel/direction_set.h"
-#include "voxel/discrete_line_sweep.h"
-#include "voxel/voxelizer.h"
-
-#include "voxel/voxel_test_scenes.h"
-
 #include <gtest/gtest.h>
-
-#include <glm/gtc/constants.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <glm/gtc/constants.hpp>
 #include <map>
 #include <random>
+
+#include "voxel/direction_set.h"
+#include "voxel/discrete_line_sweep.h"
+#include "voxel/voxel_test_scenes.h"
+#include "voxel/voxelizer.h"
 
 namespace rad {
 namespace {
 
-int64_t floorDiv(int64_t n, int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
+int64_t floorDiv(int64_t n, int64_t d) {
+  return n >= 0 ? n / d : -((-n + d - 1) / d);
+}
 
 int dominantAxis(const IVec3& s) {
   int axis = 0;
@@ -40,7 +40,8 @@ std::array<int, 2> nonDominantAxes(const IVec3& s) {
   return others;
 }
 
-std::pair<int64_t, int64_t> naiveLine(const IVec3& p, const IVec3& s, const LineOffset& offset = {}) {
+std::pair<int64_t, int64_t> naiveLine(const IVec3& p, const IVec3& s,
+                                      const LineOffset& offset = {}) {
   const int i = dominantAxis(s);
   const std::array<int, 2> others = nonDominantAxes(s);
   const int64_t a = std::abs(s[i]), si = s[i] >= 0 ? 1 : -1;
@@ -87,7 +88,8 @@ TEST(DiscreteLines, PartitionMatchesTheNaiveLineDefinition) {
     SCOPED_TRACE(testing::Message() << "step " << step.x << " " << step.y << " " << step.z);
     // Half the directions with their lines shifted, as the solver's jitter does.
     const int64_t a = std::max({std::abs(step.x), std::abs(step.y), std::abs(step.z)});
-    const LineOffset offset = rng() % 2 ? LineOffset{int64_t(rng() % a), int64_t(rng() % a)} : LineOffset{};
+    const LineOffset offset =
+        rng() % 2 ? LineOffset{int64_t(rng() % a), int64_t(rng() % a)} : LineOffset{};
     const std::vector<uint32_t> lines = sweep.lineOfEachCell(step, offset);
     // Same partition both ways: equal table index <=> equal naive line.
     std::map<uint32_t, std::pair<int64_t, int64_t>> byIndex;
@@ -146,8 +148,10 @@ bool lineMeetsSurface(const VoxelGrid& grid, const IVec3& start, const IVec3& s)
         IVec3 q = p;
         q[axis] = mid * sj;
         const auto l = naiveLine(q, s);
-        if ((axis == others[0] ? l.first : l.second) < want) lo = mid + 1;
-        else hi = mid;
+        if ((axis == others[0] ? l.first : l.second) < want)
+          lo = mid + 1;
+        else
+          hi = mid;
       }
       p[axis] = lo * sj;
     }
@@ -203,7 +207,8 @@ TEST(Voxelizer, AreasAddUpToTheSurface) {
 TEST(Voxelizer, ThinTwoSidedWallKeepsOneEntryPerSide) {
   SceneBuilder b("wall");
   const uint32_t m = b.addMaterial({"white", Color(0.5f), Color(0.0f), true});
-  test::addQuadFacing(b, test::axisSquare(Vec3(0.0f), 0, 1.0f), Vec3(1, 0, 0), m, b.addObject("wall"));
+  test::addQuadFacing(b, test::axisSquare(Vec3(0.0f), 0, 1.0f), Vec3(1, 0, 0), m,
+                      b.addObject("wall"));
   VoxelizerSettings settings;
   settings.voxelSize = 0.1f;
   const VoxelGrid grid = voxelizeScene(b.build(), settings);
@@ -237,7 +242,8 @@ TEST(DiscreteLineSweep, FacingPlatesGetTheSameLightWhicheverWayTheLinesRun) {
   // back: both ways must give every side B cos w = 1 along the normal.
   const VoxelGrid grid = facingPlates();
   std::vector<DiscreteLineSweep::Slot> slots(grid.entryCount());
-  DiscreteLineSweep::packSides(grid, [](size_t) { return Color(1.0f); }, slots);
+  DiscreteLineSweep::packSides(
+      grid, [](size_t) { return Color(1.0f); }, slots);
   for (const IVec3& step : {IVec3(1, 0, 0), IVec3(-1, 0, 0)}) {
     DiscreteLineSweep sweep(grid, {});
     std::vector<Color> gathered(grid.entryCount(), Color(0.0f));
@@ -269,7 +275,8 @@ TEST(DiscreteLineSweep, EveryVoxelOfAGrazingRunGetsTheLightAhead) {
   SceneBuilder b("floor and wall");
   const uint32_t m = b.addMaterial({"white", Color(0.5f), Color(0.0f), false});
   const uint32_t floorObject = b.addObject("floor");
-  test::addQuadFacing(b, test::axisSquare(Vec3(0.5f, 0.0f, 0.5f), 1, 1.0f), Vec3(0, 1, 0), m, floorObject);
+  test::addQuadFacing(b, test::axisSquare(Vec3(0.5f, 0.0f, 0.5f), 1, 1.0f), Vec3(0, 1, 0), m,
+                      floorObject);
   test::addQuadFacing(b, test::axisSquare(Vec3(1.25f, 0.5f, 0.5f), 0, 1.0f), Vec3(-1, 0, 0), m,
                       b.addObject("wall"));
   VoxelizerSettings settings;
