@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -95,12 +96,30 @@ bool holdsCell(const int16_t normal[3]) {
   return (normal[0] | normal[1] | normal[2]) == 0;
 }
 
-Vec3 slotNormal(const int16_t normal[3]) {
-  return Vec3(float(normal[0]), float(normal[1]), float(normal[2])) * (1.0f / kSnorm16);
+// A packed normal and radiosity (a Slot's or a RecentVoxel's first 12 bytes) decode with one
+// 8-byte load and one conversion each; the fourth lane, read from the field after, is dropped.
+Vec3 lanes(__m128 v) {
+  alignas(16) float f[4];
+  _mm_store_ps(f, v);
+  return Vec3(f[0], f[1], f[2]);
 }
 
-Color halfColor(const uint16_t h[3]) {
-  return Color(_cvtsh_ss(h[0]), _cvtsh_ss(h[1]), _cvtsh_ss(h[2]));
+__m128i eightBytesAt(const void* p) {
+  int64_t bits;
+  std::memcpy(&bits, p, sizeof bits);
+  return _mm_cvtsi64_si128(bits);
+}
+
+template <typename Packed>
+Vec3 slotNormal(const Packed& p) {
+  static_assert(offsetof(Packed, normal) == 0 && offsetof(Packed, radiosity) == 6 && sizeof(Packed) >= 14);
+  const __m128 n = _mm_cvtepi32_ps(_mm_cvtepi16_epi32(eightBytesAt(&p)));
+  return lanes(_mm_mul_ps(n, _mm_set1_ps(1.0f / kSnorm16)));
+}
+
+template <typename Packed>
+Color halfColor(const Packed& p) {
+  return lanes(_mm_cvtph_ps(eightBytesAt(reinterpret_cast<const char*>(&p) + offsetof(Packed, radiosity))));
 }
 
 uint32_t slotCell(float offset) {
@@ -134,14 +153,14 @@ void DiscreteLineSweep::packSides(const VoxelGrid& grid, const std::function<Col
         slot.radiosity[k] = _cvtss_sh(b[k], _MM_FROUND_TO_NEAREST_INT);
       }
       // A unit normal has a component of at least 0.57: it never packs to the cell marker.
-      slot.offset = glm::dot(slotNormal(slot.normal), grid.centroid[e]);
+      slot.offset = glm::dot(slotNormal(slot), grid.centroid[e]);
     }
     begin = end;
   }
 }
 
 inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
-  return halfColor(s.radiosity);
+  return halfColor(s);
 }
 
 DiscreteLineSweep::Slot DiscreteLineSweep::recentSlot(const LineState& state) {
@@ -152,7 +171,7 @@ DiscreteLineSweep::Slot DiscreteLineSweep::recentSlot(const LineState& state) {
     const uint32_t cell = state.recentRef & ~kCellRef;
     std::memcpy(&slot.offset, &cell, sizeof cell);
   } else {
-    slot.offset = glm::dot(slotNormal(slot.normal), state.recent.centroid);
+    slot.offset = glm::dot(slotNormal(slot), state.recent.centroid);
   }
   return slot;
 }
@@ -165,7 +184,7 @@ inline Sight DiscreteLineSweep::look(uint32_t e, const Vec3& centroid, const Slo
     if (sight == Sight::Source) light = sentRadiosity(source[side]);
     return sight;
   }
-  const Vec3 n = slotNormal(s.normal);
+  const Vec3 n = slotNormal(s);
   const float height = glm::dot(n, centroid) - s.offset;
   const float approach = glm::dot(n, unit);
   if (std::abs(height) <= visibility_.planeTolerance() || height * approach <= 0.0f)
@@ -190,7 +209,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
   float height = 0.0f;
   bool inRecentPlane = false;
   if (recentIsSide) {
-    recentNormal = slotNormal(recent.normal);
+    recentNormal = slotNormal(recent);
     height = glm::dot(recentNormal, c - recent.centroid);
     inRecentPlane = std::abs(height) <= view.tolerance;
   }
@@ -224,7 +243,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
         sight = Sight::Blocked;
       } else {
         sight = Sight::Source;
-        light = halfColor(recent.radiosity);
+        light = halfColor(recent);
       }
     } else {
       sight = look(e, c, recentSlot(state), view.unit, view.source, light);
@@ -334,7 +353,7 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
       const Vec3 centroid = recent ? state.recent.centroid : view.centroid[m];
       sight = look(m, centroid, slot, back, view.source, light);
       if (sight == Sight::Source) {
-        const Vec3 normal = recent ? slotNormal(state.recent.normal) : view.normal[m];
+        const Vec3 normal = recent ? slotNormal(state.recent) : view.normal[m];
         weight = glm::dot(normal, view.unit) * view.weight;
       }
     }
