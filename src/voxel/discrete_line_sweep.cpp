@@ -112,14 +112,16 @@ __m128i eightBytesAt(const void* p) {
 
 template <typename Packed>
 Vec3 slotNormal(const Packed& p) {
-  static_assert(offsetof(Packed, normal) == 0 && offsetof(Packed, radiosity) == 6 && sizeof(Packed) >= 14);
+  static_assert(offsetof(Packed, normal) == 0 && offsetof(Packed, radiosity) == 6 &&
+                sizeof(Packed) >= 14);
   const __m128 n = _mm_cvtepi32_ps(_mm_cvtepi16_epi32(eightBytesAt(&p)));
   return lanes(_mm_mul_ps(n, _mm_set1_ps(1.0f / kSnorm16)));
 }
 
 template <typename Packed>
 Color halfColor(const Packed& p) {
-  return lanes(_mm_cvtph_ps(eightBytesAt(reinterpret_cast<const char*>(&p) + offsetof(Packed, radiosity))));
+  return lanes(
+      _mm_cvtph_ps(eightBytesAt(reinterpret_cast<const char*>(&p) + offsetof(Packed, radiosity))));
 }
 
 uint32_t slotCell(float offset) {

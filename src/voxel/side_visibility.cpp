@@ -1,5 +1,7 @@
 #include "voxel/side_visibility.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -13,10 +15,20 @@ constexpr float kPlaneTolerance = 0.05f;
 }  // namespace
 
 SideVisibility::SideVisibility(const VoxelGrid& grid)
-    : grid_(grid), tolerance_(kPlaneTolerance * grid.voxelSize) {}
+    : grid_(grid), tolerance_(kPlaneTolerance * grid.voxelSize), frontOf_(grid.entryCount(), 0) {
+  for (size_t cell = 0; cell < grid.cellCount(); ++cell) {
+    // A voxel crossed by more than 16 sides (many objects in one voxel) leaves its sides past
+    // the 16th out of its folds.
+    const uint32_t begin = grid.cellEntryBegin[cell];
+    const uint32_t end = std::min(grid.cellEntryBegin[cell + 1], begin + 16);
+    for (uint32_t f = begin; f < end; ++f)
+      for (uint32_t g = begin; g < end; ++g)
+        if (g != f && glm::dot(grid.normal[f], grid.centroid[g] - grid.centroid[f]) > tolerance_)
+          frontOf_[f] = uint16_t(frontOf_[f] | (1u << (g - begin)));
+  }
+}
 
-Sight SideVisibility::look(uint32_t e, uint32_t q, const Vec3& unit,
-                                                 uint32_t& source) const {
+Sight SideVisibility::look(uint32_t e, uint32_t q, const Vec3& unit, uint32_t& source) const {
   const float tolerance = tolerance_;
   const Vec3 ce = grid_.centroid[e];
   Sight sight = Sight::Through;
@@ -36,13 +48,14 @@ Sight SideVisibility::look(uint32_t e, uint32_t q, const Vec3& unit,
 }
 
 bool SideVisibility::insideFold(uint32_t f, uint32_t q, const Vec3& point,
-                                   const Vec3& origin) const {
+                                const Vec3& origin) const {
   // Where f meets another side g of the cell in a concave fold (g stands in front of f), f's
   // polygon ends at g's plane: a crossing of f's plane behind g is past the edge of f.
   // The fold's own edge is sharp: a side lying in g's plane is not in front of it.
-  const float tolerance = tolerance_, edge = 1e-3f * grid_.voxelSize;
-  for (uint32_t g = grid_.cellEntryBegin[q]; g < grid_.cellEntryBegin[q + 1]; ++g) {
-    if (g == f || glm::dot(grid_.normal[f], grid_.centroid[g] - grid_.centroid[f]) <= tolerance) continue;
+  const float edge = 1e-3f * grid_.voxelSize;
+  const uint32_t begin = grid_.cellEntryBegin[q];
+  for (uint32_t front = frontOf_[f]; front != 0; front &= front - 1) {
+    const uint32_t g = begin + uint32_t(std::countr_zero(front));
     // The crossing must lie in front of g, and so must the ray's origin: a ray from behind g
     // reaches f's front only through g.
     if (glm::dot(grid_.normal[g], point - grid_.centroid[g]) < -edge ||
@@ -53,17 +66,15 @@ bool SideVisibility::insideFold(uint32_t f, uint32_t q, const Vec3& point,
 }
 
 bool SideVisibility::lookWithinCell(uint32_t e, uint32_t cell, const Vec3& unit,
-                                       uint32_t& source) const {
+                                    uint32_t& source) const {
   // Only sides of a concave fold (each in front of the other) see each other; the outer sides
   // of a convex corner, or a wall's two sides, never do.
-  const float tolerance = tolerance_;
+  const uint32_t begin = grid_.cellEntryBegin[cell];
   float best = 0.0f;
-  for (uint32_t f = grid_.cellEntryBegin[cell]; f < grid_.cellEntryBegin[cell + 1]; ++f) {
-    const Vec3 gap = grid_.centroid[e] - grid_.centroid[f];
+  for (uint32_t front = frontOf_[e]; front != 0; front &= front - 1) {
+    const uint32_t f = begin + uint32_t(std::countr_zero(front));
     const float approach = glm::dot(grid_.normal[f], unit);
-    if (f == e || glm::dot(grid_.normal[f], gap) <= tolerance ||
-        -glm::dot(grid_.normal[e], gap) <= tolerance || approach <= best)
-      continue;
+    if (!inFront(f, e, begin) || approach <= best) continue;
     best = approach;
     source = f;
   }
@@ -78,8 +89,9 @@ bool SideVisibility::continuesPlanes(uint32_t p, uint32_t q) const {
   for (uint32_t a = pBegin; a < pEnd; ++a) {
     bool matched = false;
     for (uint32_t b = qBegin; b < qEnd && !matched; ++b)
-      matched = glm::dot(grid_.normal[a], grid_.normal[b]) > kSamePlaneCos &&
-                std::abs(glm::dot(grid_.normal[b], grid_.centroid[a] - grid_.centroid[b])) <= tolerance;
+      matched =
+          glm::dot(grid_.normal[a], grid_.normal[b]) > kSamePlaneCos &&
+          std::abs(glm::dot(grid_.normal[b], grid_.centroid[a] - grid_.centroid[b])) <= tolerance;
     if (!matched) return false;
   }
   return true;

@@ -9,6 +9,8 @@
 // in front of the other, like a room's inner edge), each side's polygon ends at the other's
 // plane, which keeps light from turning around the outside of a convex edge.
 
+#include <vector>
+
 #include "voxel/voxel_grid.h"
 
 namespace rad {
@@ -32,9 +34,16 @@ class SideVisibility {
 
  private:
   bool insideFold(uint32_t f, uint32_t cell, const Vec3& point, const Vec3& origin) const;
+  /// True when side g of f's cell (whose first side is `cellBegin`) stands in front of f's plane.
+  bool inFront(uint32_t f, uint32_t g, uint32_t cellBegin) const {
+    return (frontOf_[f] >> (g - cellBegin)) & 1u;
+  }
 
   const VoxelGrid& grid_;
   float tolerance_;
+  /// Per entry: bit j set when the cell's j-th side stands in front of the entry's plane (the
+  /// two form a concave fold). Computed once: the tests it saves would run for every direction.
+  std::vector<uint16_t> frontOf_;
 };
 
 /// Normals within about 8 degrees belong to one plane.
