@@ -296,7 +296,8 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
     const float w = std::abs(facing) * view.weight;
     // The cell's own other sides first (the faces of an inner edge see each other).
     uint32_t own = 0;
-    if (visibility_.lookWithinCell(e, cell, facing < 0.0f ? unit : -unit, own)) {
+    if (visibility_.hasFold(e) &&
+        visibility_.lookWithinCell(e, cell, facing < 0.0f ? unit : -unit, own)) {
       view.gathered[e] += sentRadiosity(source[own]) * w;
     } else if (facing > 0.0f) {
       wait(view, state, e, false);

@@ -39,7 +39,7 @@ Sight SideVisibility::look(uint32_t e, uint32_t q, const Vec3& unit, uint32_t& s
     const float approach = glm::dot(nf, unit);
     if (std::abs(height) <= tolerance || height * approach <= 0.0f) continue;
     const float t = height / approach;
-    if (t >= nearest || !insideFold(f, q, ce - t * unit, ce)) continue;
+    if (t >= nearest || (frontOf_[f] != 0 && !insideFold(f, q, ce - t * unit, ce))) continue;
     nearest = t;
     sight = height > 0.0f ? Sight::Source : Sight::Blocked;
     source = f;

@@ -26,6 +26,8 @@ class SideVisibility {
   Sight look(uint32_t e, uint32_t cell, const Vec3& unit, uint32_t& source) const;
   /// The side of e's own cell that e sees along -unit, if any (the faces of an inner edge).
   bool lookWithinCell(uint32_t e, uint32_t cell, const Vec3& unit, uint32_t& source) const;
+  /// False when no other side of e's cell stands in front of e: e sees nothing within its cell.
+  bool hasFold(uint32_t e) const { return frontOf_[e] != 0; }
   /// True when cell p holds the same planes as cell q (a floor, or the two faces of an edge):
   /// consecutive such cells on a line are one run.
   bool continuesPlanes(uint32_t p, uint32_t q) const;
