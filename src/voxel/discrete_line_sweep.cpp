@@ -208,11 +208,12 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
   const bool hasRecent = state.recentRef != kNoVoxel;
   const bool recentIsSide = hasRecent && !holdsCell(recent.normal);
   Vec3 recentNormal(0.0f);
-  float height = 0.0f;
+  float height = 0.0f, recentFacing = 0.0f;
   bool inRecentPlane = false;
   if (recentIsSide) {
     recentNormal = slotNormal(recent);
     height = glm::dot(recentNormal, c - recent.centroid);
+    recentFacing = glm::dot(recentNormal, view.unit);
     inRecentPlane = std::abs(height) <= view.tolerance;
   }
   // A run along the same plane stays one voxel: its nearest.
@@ -228,8 +229,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
     if (state.pending == state.recentRef && state.pendingLink == kNoPending && recentIsSide &&
         std::abs(recentHeight) > view.tolerance && recentHeight * facing < 0.0f) {
       if (recentHeight > 0.0f)
-        gatherLater(view, state.pending,
-                    sentRadiosity(slot) * (glm::dot(recentNormal, view.unit) * view.weight));
+        gatherLater(view, state.pending, sentRadiosity(slot) * (recentFacing * view.weight));
       state.pending = kNoPending;
     } else {
       resolvePending<kTangentCorrection>(view, state, slot);
@@ -239,7 +239,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
     Color light(0.0f);
     Sight sight;
     if (recentIsSide) {
-      if (inRecentPlane || height * glm::dot(recentNormal, view.unit) <= 0.0f) {
+      if (inRecentPlane || height * recentFacing <= 0.0f) {
         sight = Sight::Through;
       } else if (height < 0.0f) {
         sight = Sight::Blocked;
