@@ -77,9 +77,11 @@ class DiscreteLineSweep {
   /// Cells in the order a pass along `step` visits them (for tests).
   std::vector<uint32_t> passOrder(const IVec3& step);
   size_t lineTableSize() const { return lines_.size(); }
-  /// Working memory: the line records, the waiting sides' links and the deferred light.
+  /// Working memory: the line records, the waiting sides' links, the deferred light and the fold
+  /// masks.
   size_t workingBytes() const {
-    return lines_.capacity() * sizeof(LineState) + pendingNext_.capacity() * sizeof(uint32_t) +
+    return visibility_.memoryBytes() + lines_.capacity() * sizeof(LineState) +
+           pendingNext_.capacity() * sizeof(uint32_t) +
            later_.items.capacity() * sizeof(DeferredGathers::Item);
   }
 
