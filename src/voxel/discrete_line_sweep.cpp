@@ -1,7 +1,8 @@
 #include "voxel/discrete_line_sweep.h"
 
-#include <immintrin.h>
 #include <radiosity/error.h>
+
+#include <immintrin.h>
 
 #include <algorithm>
 #include <cmath>
@@ -165,13 +166,18 @@ inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
   return halfColor(s);
 }
 
+DiscreteLineSweep::Slot DiscreteLineSweep::cellSlot(uint32_t cell) {
+  Slot slot{};
+  std::memcpy(&slot.offset, &cell, sizeof cell);
+  return slot;
+}
+
 DiscreteLineSweep::Slot DiscreteLineSweep::recentSlot(const LineState& state) {
   Slot slot;
   std::memcpy(slot.normal, state.recent.normal, sizeof slot.normal);
   std::memcpy(slot.radiosity, state.recent.radiosity, sizeof slot.radiosity);
   if (holdsCell(slot.normal)) {
-    const uint32_t cell = state.recentRef & ~kCellRef;
-    std::memcpy(&slot.offset, &cell, sizeof cell);
+    slot = cellSlot(state.recentRef & ~kCellRef);
   } else {
     slot.offset = glm::dot(slotNormal(slot), state.recent.centroid);
   }
@@ -187,13 +193,10 @@ inline Sight DiscreteLineSweep::look(uint32_t e, const Vec3& centroid, const Slo
     return sight;
   }
   const Vec3 n = slotNormal(s);
-  const float height = glm::dot(n, centroid) - s.offset;
-  const float approach = glm::dot(n, unit);
-  if (std::abs(height) <= visibility_.planeTolerance() || height * approach <= 0.0f)
-    return Sight::Through;
-  if (height < 0.0f) return Sight::Blocked;
-  light = sentRadiosity(s);
-  return Sight::Source;
+  const Sight sight =
+      planeSight(glm::dot(n, centroid) - s.offset, glm::dot(n, unit), visibility_.planeTolerance());
+  if (sight == Sight::Source) light = sentRadiosity(s);
+  return sight;
 }
 
 template <bool kTangentCorrection>
@@ -225,10 +228,10 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
     // Most often the one side waiting is the recent voxel, a wall across the room: it looks at
     // e's plane from its centroid, which the record holds, unless it grazes e (then the
     // general rule lets it wait on).
-    const float recentHeight = glm::dot(n, recent.centroid - c);  // recent's side of e's plane
+    const Sight recentSight = planeSight(glm::dot(n, recent.centroid - c), -facing, view.tolerance);
     if (state.pending == state.recentRef && state.pendingLink == kNoPending && recentIsSide &&
-        std::abs(recentHeight) > view.tolerance && recentHeight * facing < 0.0f) {
-      if (recentHeight > 0.0f)
+        recentSight != Sight::Through) {
+      if (recentSight == Sight::Source)
         gatherLater(view, state.pending, sentRadiosity(slot) * (recentFacing * view.weight));
       state.pending = kNoPending;
     } else {
@@ -239,14 +242,8 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
     Color light(0.0f);
     Sight sight;
     if (recentIsSide) {
-      if (inRecentPlane || height * recentFacing <= 0.0f) {
-        sight = Sight::Through;
-      } else if (height < 0.0f) {
-        sight = Sight::Blocked;
-      } else {
-        sight = Sight::Source;
-        light = halfColor(recent);
-      }
+      sight = planeSight(height, recentFacing, view.tolerance);
+      if (sight == Sight::Source) light = halfColor(recent);
     } else {
       sight = look(e, c, recentSlot(state), view.unit, view.source, light);
     }
@@ -256,14 +253,21 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
   } else if (facing > 0.0f) {
     wait(view, state, e, continues && state.pending == state.recentRef);
   }
+  becomeRecent(state, e, dominant, continues);
+  std::memcpy(state.recent.normal, slot.normal, sizeof slot.normal);
+  std::memcpy(state.recent.radiosity, slot.radiosity, sizeof slot.radiosity);
+  state.recent.centroid = c;
+}
+
+inline void DiscreteLineSweep::becomeRecent(LineState& state, uint32_t ref, int32_t dominant,
+                                            bool continues) {
+  // A run along the same planes stays one voxel (its nearest): only a new run pushes the
+  // voxels before it back.
   if (!continues) {
     state.olderRef[1] = state.olderRef[0];
     state.olderRef[0] = state.recentRef;
   }
-  std::memcpy(state.recent.normal, slot.normal, sizeof slot.normal);
-  std::memcpy(state.recent.radiosity, slot.radiosity, sizeof slot.radiosity);
-  state.recent.centroid = c;
-  state.recentRef = e;
+  state.recentRef = ref;
   state.lastDominant = int16_t(dominant);
 }
 
@@ -279,9 +283,7 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
                                           int32_t dominant) const {
   const Vec3& unit = view.unit;
   const Source& source = view.source;
-  Slot slot;
-  slot.normal[0] = slot.normal[1] = slot.normal[2] = 0;
-  std::memcpy(&slot.offset, &cell, sizeof cell);
+  const Slot slot = cellSlot(cell);
   // A run of cells holding the same planes stays one voxel.
   const bool continues = kTangentCorrection && state.recentRef != kNoVoxel &&
                          std::abs(dominant - state.lastDominant) == 1 &&
@@ -310,14 +312,8 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
       if (sight == Sight::Source) view.gathered[e] += light * w;
     }
   }
-  // The cell becomes the line's recent voxel.
-  if (!continues) {
-    state.olderRef[1] = state.olderRef[0];
-    state.olderRef[0] = state.recentRef;
-  }
+  becomeRecent(state, kCellRef | cell, dominant, continues);
   state.recent.normal[0] = state.recent.normal[1] = state.recent.normal[2] = 0;
-  state.recentRef = kCellRef | cell;
-  state.lastDominant = int16_t(dominant);
 }
 
 inline void DiscreteLineSweep::gatherLater(const PassView& view, uint32_t e, const Color& light) {
@@ -388,14 +384,7 @@ Sight DiscreteLineSweep::lookOlder(uint32_t e, const Vec3& centroid, const LineS
   // decide (a slot for a cell of several sides is made from its reference).
   for (const uint32_t ref : state.olderRef) {
     if (ref == kNoVoxel) break;
-    Slot older;
-    if (ref & kCellRef) {
-      older.normal[0] = older.normal[1] = older.normal[2] = 0;
-      const uint32_t olderCell = ref & ~kCellRef;
-      std::memcpy(&older.offset, &olderCell, sizeof olderCell);
-    } else {
-      older = source[ref];
-    }
+    const Slot older = ref & kCellRef ? cellSlot(ref & ~kCellRef) : source[ref];
     const Sight sight = look(e, centroid, older, unit, source, light);
     if (sight != Sight::Through) return sight;
   }

@@ -23,13 +23,13 @@
 // thin wall never see through it. Runs of voxels along the same planes are kept as one, so long
 // grazing runs cost one slot.
 
-#include <functional>
-#include <span>
-#include <vector>
-
 #include "voxel/direction_set.h"
 #include "voxel/side_visibility.h"
 #include "voxel/voxel_grid.h"
+
+#include <functional>
+#include <span>
+#include <vector>
 
 namespace rad {
 
@@ -118,6 +118,10 @@ class DiscreteLineSweep {
     RecentVoxel recent;
   };
   static_assert(sizeof(LineState) == 48);
+  /// The slot standing for a cell of several sides (zero normal, the cell's index in `offset`).
+  static Slot cellSlot(uint32_t cell);
+  /// Makes `ref` (an entry or kCellRef | cell) the line's recent voxel.
+  static void becomeRecent(LineState& state, uint32_t ref, int32_t dominant, bool continues);
   /// The recent voxel as a slot (the cell's index for a cell of several sides).
   static Slot recentSlot(const LineState& state);
 

@@ -37,11 +37,12 @@ Sight SideVisibility::look(uint32_t e, uint32_t q, const Vec3& unit, uint32_t& s
     const Vec3 nf = grid_.normal[f];
     const float height = glm::dot(nf, ce - grid_.centroid[f]);
     const float approach = glm::dot(nf, unit);
-    if (std::abs(height) <= tolerance || height * approach <= 0.0f) continue;
+    const Sight met = planeSight(height, approach, tolerance);
+    if (met == Sight::Through) continue;
     const float t = height / approach;
     if (t >= nearest || (frontOf_[f] != 0 && !insideFold(f, q, ce - t * unit, ce))) continue;
     nearest = t;
-    sight = height > 0.0f ? Sight::Source : Sight::Blocked;
+    sight = met;
     source = f;
   }
   return sight;

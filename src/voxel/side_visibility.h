@@ -9,13 +9,23 @@
 // in front of the other, like a room's inner edge), each side's polygon ends at the other's
 // plane, which keeps light from turning around the outside of a convex edge.
 
-#include <vector>
-
 #include "voxel/voxel_grid.h"
+
+#include <cmath>
+#include <vector>
 
 namespace rad {
 
 enum class Sight { Through, Source, Blocked };
+
+/// What the backward ray from a point meets at a side's plane, given the point's height above the
+/// plane and the dot of the plane's normal with the direction the light travels: grazing (within
+/// `tolerance`) or on a ray that never crosses the plane it passes; otherwise it meets the front
+/// (the source) or the back (blocked).
+inline Sight planeSight(float height, float approach, float tolerance) {
+  if (std::abs(height) <= tolerance || height * approach <= 0.0f) return Sight::Through;
+  return height > 0.0f ? Sight::Source : Sight::Blocked;
+}
 
 class SideVisibility {
  public:

@@ -1,5 +1,12 @@
 #include "voxel/voxel_solver.h"
 
+#include "core/rng.h"
+#include "geometry/ray_caster.h"
+#include "render/path_integrator.h"
+#include "render/progress_ticker.h"
+#include "voxel/direction_set.h"
+
+#include <glm/gtc/constants.hpp>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -7,14 +14,7 @@
 #include <array>
 #include <chrono>
 #include <cstring>
-#include <glm/gtc/constants.hpp>
 #include <map>
-
-#include "core/rng.h"
-#include "geometry/ray_caster.h"
-#include "render/path_integrator.h"
-#include "render/progress_ticker.h"
-#include "voxel/direction_set.h"
 
 namespace rad {
 

@@ -1,17 +1,18 @@
 // Properties of the discrete lines and of the voxelization they run through.
+#include "voxel/direction_set.h"
+#include "voxel/discrete_line_sweep.h"
+#include "voxel/voxelizer.h"
+
+#include "voxel/voxel_test_scenes.h"
+
+#include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <glm/gtc/constants.hpp>
 #include <map>
 #include <random>
-
-#include "voxel/direction_set.h"
-#include "voxel/discrete_line_sweep.h"
-#include "voxel/voxel_test_scenes.h"
-#include "voxel/voxelizer.h"
 
 namespace rad {
 namespace {
