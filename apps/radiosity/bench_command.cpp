@@ -2,7 +2,6 @@
 // Fixed workloads on built-in scenes, so numbers from different machines compare.
 #include "commands.h"
 
-#include "bench_patch.h"
 #include "bench_workloads.h"
 
 #include <CLI/CLI.hpp>

@@ -1,6 +1,6 @@
 // The patch method's throughput: for each workload, form factors by hemisphere ray casting
 // (256 rays a patch; no disk cache) and the three solvers to the default tolerance (1e-3).
-#include "bench_patch.h"
+#include "bench_workloads.h"
 
 #include <fmt/format.h>
 #include <radiosity/patch_radiosity.h>

@@ -4,7 +4,10 @@
 #include <radiosity/scene_loader.h>
 #include <radiosity/voxel_radiosity.h>
 
+#include <radiosity/error.h>
+
 #include "core/atomic_file.h"
+#include "voxel/voxelizer.h"
 
 #include <fmt/format.h>
 
@@ -107,12 +110,14 @@ nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxV
   std::vector<int> rooms;
   for (int n : {2, 4, 8, 16, 32, 64, 128, 192, 256}) {
     const Scene scene = loadScene(fmt::format("room:{}", n));
-    double area = 0.0;
-    for (const Face& f : scene.faces) area += f.area;
-    if (area / (kVoxelSize * kVoxelSize) > 1.3 * double(maxVoxels)) break;
+    // Stop at the first room that would be well past the limit at this voxel size.
+    if (voxelSizeForCount(scene, size_t(1.3 * double(maxVoxels))) > kVoxelSize) break;
     points.push_back(measureSweep(scene, 0, sphereRadius, console, kVoxelSize));
     rooms.push_back(n);
   }
+  if (points.empty())
+    throw InputError("--scaling-max-voxels", fmt::format("{} voxels is fewer than the smallest room "
+                                                         "(room:2) needs at 2.5 cm", maxVoxels));
   // Least-squares slope of log(time) against log(voxels).
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (const auto& p : points) {

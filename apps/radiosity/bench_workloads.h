@@ -13,6 +13,10 @@ namespace rad::cli {
 /// The reference path tracer on the Cornell box: rays per second.
 nlohmann::json benchPathTracer(Console& console);
 
+/// The patch method's form-factor rays per second, table memory and solve times on fixed
+/// workloads (the Cornell box and a furnished room at ~10k patches, the Cornell box at ~100k).
+nlohmann::json benchPatch(Console& console);
+
 /// The voxel sweep on a furnished room: voxel-direction visits per second, bytes per voxel, and
 /// the paper's workload (2e6 voxels, R = 38, 6 iterations) extrapolated from the rate.
 nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius);

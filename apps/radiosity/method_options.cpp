@@ -39,9 +39,9 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
                             "Look through voxels a line only grazes (default on)")->group(voxel);
   firstShotFlag_ = c.add_flag("--first-shot,!--no-first-shot", voxel_.directFirstShot,
                               "Direct light by shadow rays before the sweeps (default on)")->group(voxel);
-  normalizeFlag_ = c.add_flag("--normalize,!--no-normalize", voxel_.normalize,
+  c.add_flag("--normalize,!--no-normalize", voxel_.normalize,
                               "Per-voxel normalization of the direction factors (default on)")->group(voxel);
-  jitterFlag_ = c.add_flag("--jitter-lines,!--no-jitter-lines", voxel_.jitterLines,
+  c.add_flag("--jitter-lines,!--no-jitter-lines", voxel_.jitterLines,
                            "Shift each direction's lines every iteration (default on)")->group(voxel);
   directSamplesFlag_ = c.add_option("--direct-samples", voxel_.directSamples,
                                     "Shadow-ray samples per voxel side for the first shot (default 64)")

@@ -43,7 +43,7 @@ class MethodOptions {
   std::string estimator_ = "hemisphere", solver_ = "gauss-seidel", shading_ = "smooth";
   CLI::Option *methodFlag_, *sppFlag_, *maxDepthFlag_, *seedFlag_;
   CLI::Option *voxelSizeFlag_, *voxelsFlag_, *radiusFlag_, *iterationsFlag_, *toleranceFlag_,
-      *tangentFlag_, *firstShotFlag_, *directSamplesFlag_, *normalizeFlag_, *jitterFlag_;
+      *tangentFlag_, *firstShotFlag_, *directSamplesFlag_;
   CLI::Option *patchSizeFlag_, *patchesFlag_, *estimatorFlag_, *ffRaysFlag_, *thresholdFlag_,
       *cacheDirFlag_, *solverFlag_, *maxIterationsFlag_, *shadingFlag_;
   void addPatchFlags(CLI::App& command);

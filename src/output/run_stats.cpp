@@ -26,7 +26,6 @@ Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& obj
 }
 
 nlohmann::json toJson(const RunStats& s) {
-  nlohmann::json details = s.methodDetails.is_null() ? nlohmann::json::object() : s.methodDetails;
   nlohmann::json objects = nlohmann::json::array();
   for (const ObjectRadiometry& o : s.objects)
     objects.push_back({{"name", o.name},
@@ -55,7 +54,7 @@ nlohmann::json toJson(const RunStats& s) {
       {"objects", objects},
       {"memory_peak_bytes", s.memoryPeakBytes},
   };
-  if (!details.empty()) j[s.method] = details;
+  if (!s.methodDetails.empty()) j[s.method] = s.methodDetails;
   return j;
 }
 
