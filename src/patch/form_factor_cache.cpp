@@ -106,8 +106,7 @@ std::string FormFactorCacheKey::hex() const {
 }
 
 FormFactorCacheKey formFactorCacheKey(const Scene& scene, float patchSize,
-                                      const FormFactorSettings& settings, float threshold,
-                                      bool symmetrized) {
+                                      const FormFactorSettings& settings, float threshold) {
   Hasher h;
   h.value(kVersion);
   h.value(uint64_t(scene.positions.size()));
@@ -127,7 +126,6 @@ FormFactorCacheKey formFactorCacheKey(const Scene& scene, float patchSize,
   h.value(settings.rays);
   h.value(settings.seed);
   h.value(threshold);
-  h.value(uint8_t(symmetrized));
   return h.key();
 }
 

@@ -24,11 +24,10 @@ struct FormFactorCacheKey {
 };
 
 /// A hash of what the table depends on: the scene's positions, triangles, faces and sidedness,
-/// the patch size, the estimator settings, the threshold and whether it was symmetrized (not
-/// the materials' colours, so that repainting a scene reuses its table).
+/// the patch size, the estimator settings (the estimator decides whether rows are symmetrized)
+/// and the threshold (not the materials' colours, so that repainting a scene reuses its table).
 FormFactorCacheKey formFactorCacheKey(const Scene& scene, float patchSize,
-                                      const FormFactorSettings& settings, float threshold,
-                                      bool symmetrized);
+                                      const FormFactorSettings& settings, float threshold);
 
 /// $XDG_CACHE_HOME/radiosity, else $HOME/.cache/radiosity, else "" (no cache).
 std::filesystem::path defaultFormFactorCacheDir();

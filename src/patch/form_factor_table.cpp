@@ -67,12 +67,6 @@ FormFactorTable FormFactorTable::fromArrays(std::vector<uint64_t> offsets,
   return t;
 }
 
-float FormFactorTable::at(size_t i, uint32_t j) const {
-  const auto cols = columns(i);
-  const auto it = std::lower_bound(cols.begin(), cols.end(), j);
-  return it != cols.end() && *it == j ? values(i)[size_t(it - cols.begin())] : 0.0f;
-}
-
 double FormFactorTable::rowSum(size_t row) const {
   double s = 0.0;
   for (float v : values(row)) s += v;

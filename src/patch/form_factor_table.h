@@ -33,8 +33,6 @@ class FormFactorTable {
   std::span<const float> values(size_t row) const {
     return {values_.data() + offsets_[row], size_t(offsets_[row + 1] - offsets_[row])};
   }
-  /// F_ij, or 0 where the entry is absent (binary search in row i).
-  float at(size_t i, uint32_t j) const;
   double rowSum(size_t row) const;
 
   /// Enforces reciprocity A_i F_ij = A_j F_ji, both set from the mean of the two estimates of

@@ -279,9 +279,9 @@ PatchMesh::Location PatchMesh::locate(uint32_t triangle, bool frontFace, const V
 Vec3 PatchMesh::samplePoint(uint32_t patch, Vec2 u, float& weight) const {
   std::array<Vec3, 4> c;
   if (corners(patch, c) == 3) {
-    const float s = std::sqrt(u.x);  // area-uniform (Osada et al.)
+    const Vec2 b = sampleUniformTriangle(u);  // weights of c[0] and c[2]
     weight = 1.0f;
-    return (1.0f - s) * c[0] + (s * (1.0f - u.y)) * c[1] + (s * u.y) * c[2];
+    return b.x * c[0] + (1.0f - b.x - b.y) * c[1] + b.y * c[2];
   }
   const Vec3 du = (1 - u.y) * (c[1] - c[0]) + u.y * (c[2] - c[3]);
   const Vec3 dv = (1 - u.x) * (c[3] - c[0]) + u.x * (c[2] - c[1]);

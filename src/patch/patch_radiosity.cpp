@@ -42,9 +42,7 @@ namespace {
 
 void validate(const PatchRadiositySettings& s) {
   auto fail = [](const std::string& what) { throw InputError("patch settings", what); };
-  if (!(s.patchSize >= 0.0f) || !std::isfinite(s.patchSize))
-    fail(fmt::format("patch size {} must be positive", s.patchSize));
-  if (s.patchSize == 0.0f && s.targetPatches < 1) fail("patch count must be at least 1");
+  // The patch size and count are checked where the mesh is built (PatchMesh).
   if (s.formFactorRays < 1)
     fail(fmt::format("form-factor rays {} must be at least 1", s.formFactorRays));
   if (!(s.formFactorThreshold >= 0.0f && s.formFactorThreshold < 1.0f))
@@ -116,7 +114,7 @@ FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
   const auto start = std::chrono::steady_clock::now();
   const FormFactorSettings ff{settings.estimator, settings.formFactorRays, settings.seed};
   const FormFactorCacheKey key =
-      formFactorCacheKey(*scene, mesh->patchSize(), ff, settings.formFactorThreshold, true);
+      formFactorCacheKey(*scene, mesh->patchSize(), ff, settings.formFactorThreshold);
   std::filesystem::path file;
   if (!settings.cacheDir.empty()) {
     file = formFactorCacheFile(settings.cacheDir, key);

@@ -1,5 +1,5 @@
 #pragma once
-// Terms the patch solvers share: the norm of the emission, a patch's gather, the final deposit.
+// Terms the patch solvers share: the norm of the emission, a patch's gather, the end of a solve.
 
 #include <radiosity/error.h>
 
@@ -40,12 +40,7 @@ inline bool endSweep(PatchSolution& out, double change, double norm, const Patch
   return out.residuals.back() < control.tolerance;
 }
 
-/// Copies E and derives the absorbed power per area (1 - rho) H.
-inline void finishSolution(const PatchSystem& s, PatchSolution& out) {
-  out.emitted = s.emitted;
-  out.deposit.resize(s.size());
-  for (size_t i = 0; i < s.size(); ++i)
-    out.deposit[i] = (Color(1.0f) - s.rho[i]) * out.irradiance[i];
-}
+/// Copies E into the solution.
+inline void finishSolution(const PatchSystem& s, PatchSolution& out) { out.emitted = s.emitted; }
 
 }  // namespace rad

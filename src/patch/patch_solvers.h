@@ -33,11 +33,9 @@ struct PatchSolution {
   std::vector<Color> emitted;     ///< E
   std::vector<Color> irradiance;  ///< H, incident power per area
   std::vector<Color> radiosity;   ///< B = E + rho H, excident power per area
-  std::vector<Color> deposit;     ///< (1 - rho) H, absorbed power per area
   std::vector<double> residuals;  ///< relative residual after each sweep
   int iterations = 0;
   uint64_t shots = 0;   ///< progressive refinement: patches shot
-  Color ambient{0.0f};  ///< progressive refinement: the ambient term added at the end
   double seconds = 0.0;
 };
 

@@ -97,10 +97,10 @@ PatchSolution solveProgressive(const FormFactorRowSource& rows, const PatchSyste
     out.residuals.push_back(norm > 0.0 ? total / norm : 0.0);
     ++out.iterations;
   }
-  out.ambient = ambientTerm(s, unshot);
+  const Color ambient = ambientTerm(s, unshot);
   for (size_t i = 0; i < n; ++i) {
-    out.irradiance[i] += out.ambient;
-    out.radiosity[i] += s.rho[i] * out.ambient;
+    out.irradiance[i] += ambient;
+    out.radiosity[i] += s.rho[i] * ambient;
   }
   finishSolution(s, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

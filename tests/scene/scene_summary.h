@@ -54,7 +54,11 @@ inline std::map<std::string, ObjectSummary> summarize(const Scene& s, double pos
 
 /// A fresh directory for files a test writes.
 inline std::filesystem::path scratchDir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / ("rad_scene_" + name);
+  // One folder per test: ctest runs the tests of a suite in parallel processes.
+  const testing::TestInfo* test = testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path dir =
+      std::filesystem::path(testing::TempDir()) /
+      ("rad_scene_" + name + "_" + test->test_suite_name() + "_" + test->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
