@@ -36,6 +36,7 @@ test: build
 
 bench: build
 	@$(BUILD)/radiosity bench all
+	@$(BUILD)/radiosity_benchmarks
 
 format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.h')
