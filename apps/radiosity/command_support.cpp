@@ -13,6 +13,10 @@ void addSceneArgument(CLI::App& command, std::string& scene) {
                                      "cornell-spot, room:N")->required();
 }
 
+void addStatsOption(CLI::App& command, std::string& path) {
+  command.add_option("--stats", path, "Write the run's numbers to this JSON file");
+}
+
 Scene loadSceneForCommand(const std::string& name, Console& console, RunStats& stats) {
   Stopwatch loadTime;
   Scene scene = loadScene(name);

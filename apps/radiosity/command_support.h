@@ -17,6 +17,8 @@ namespace rad::cli {
 
 /// The SCENE argument every command takes: a scene file or a built-in name.
 void addSceneArgument(CLI::App& command, std::string& scene);
+/// The --stats FILE option of the commands that compute light transport (see writeStatsFile).
+void addStatsOption(CLI::App& command, std::string& path);
 
 /// Loads the scene, prints its warnings, refuses a scene with nothing that emits (a black
 /// result), and records the load time and the triangle count.

@@ -7,8 +7,86 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace rad::cli {
+
+namespace {
+
+// One value of an enum-valued setting. Each such setting has one table of these: its flag's
+// check and help and the conversion of the flag's or scene key's name all read it, so a new
+// value is one more row.
+template <class Enum>
+struct NamedValue {
+  const char* name;
+  Enum value;
+  const char* help;  ///< what the value means, for --help; "" if the name says it
+};
+
+constexpr NamedValue<PatchFormFactorEstimator> kEstimators[] = {
+    {"hemisphere", PatchFormFactorEstimator::Hemisphere, "rays from each patch"},
+    {"pairwise", PatchFormFactorEstimator::Pairwise, "point pairs"},
+    {"exact", PatchFormFactorEstimator::Exact, "point-to-polygon, visibility rays"}};
+constexpr NamedValue<PatchSolverKind> kSolvers[] = {
+    {"gauss-seidel", PatchSolverKind::GaussSeidel, ""},
+    {"jacobi", PatchSolverKind::Jacobi, ""},
+    {"progressive", PatchSolverKind::Progressive, ""}};
+constexpr NamedValue<PatchShading> kShadings[] = {{"smooth", PatchShading::Smooth, ""},
+                                                  {"flat", PatchShading::Flat, ""}};
+
+template <class Enum, size_t N>
+std::vector<std::string> namesOf(const NamedValue<Enum> (&values)[N]) {
+  std::vector<std::string> names;
+  for (const NamedValue<Enum>& v : values) names.push_back(v.name);
+  return names;
+}
+
+// The flag, checked against the table, with the names (and the default) listed in its help:
+// "<what>: a (help, default), b, c".
+template <class Enum, size_t N>
+CLI::Option* addNamedOption(CLI::App& command, const std::string& flag, std::string& name,
+                            const NamedValue<Enum> (&values)[N], Enum defaultValue,
+                            const std::string& what) {
+  std::vector<std::string> items;
+  for (const NamedValue<Enum>& v : values) {
+    std::string note = v.help;
+    if (v.value == defaultValue) note += note.empty() ? "default" : ", default";
+    items.push_back(note.empty() ? v.name : fmt::format("{} ({})", v.name, note));
+  }
+  return command.add_option(flag, name, fmt::format("{}: {}", what, fmt::join(items, ", ")))
+      ->check(CLI::IsMember(namesOf(values)));
+}
+
+// The value a name stands for. The flag and the scene loader check the names they take, so an
+// unknown one here means their lists and this table differ; it is still bad input, named.
+template <class Enum, size_t N>
+Enum valueOf(const NamedValue<Enum> (&values)[N], const std::string& name,
+             const std::string& where) {
+  for (const NamedValue<Enum>& v : values)
+    if (name == v.name) return v.value;
+  throw InputError(where, fmt::format("'{}' is not one of {}", name, fmt::join(namesOf(values), ", ")));
+}
+
+// The flag's value if it was given, else the scene's if it has one; `value` as it is otherwise.
+template <class T, class U>
+void takeUnlessFlagged(const CLI::Option* flag, T& value, const std::optional<U>& fromScene) {
+  if (!*flag && fromScene) value = *fromScene;
+}
+
+// Solves with a progress bar, then prints the method's warnings (settings that lose light, a
+// cache file that could not be used).
+template <class Solution, class Settings>
+Solution solveShowingProgress(const Scene& scene, const Settings& settings, const std::string& label,
+                              Console& console) {
+  Solution solution(scene, settings, console.progress(label));
+  console.finishProgress();
+  for (const std::string& w : solution.stats().warnings) console.warn(w);
+  return solution;
+}
+
+}  // namespace
 
 MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
     : methods_(std::move(methods)), method_(methods_.front()) {
@@ -57,11 +135,9 @@ void MethodOptions::addPatchFlags(CLI::App& c) {
   patchesFlag_ = c.add_option("--patches", patch_.targetPatches,
                               "Approximate number of patches (default 4000)")
                      ->check(CLI::Range(size_t(1), size_t(1) << 32))->group(patch);
-  estimatorFlag_ = c.add_option("--ff-estimator", estimator_,
-                                "Form factors by: hemisphere (rays from each patch, default), "
-                                "pairwise (point pairs), exact (point-to-polygon, visibility "
-                                "rays)")
-                       ->check(CLI::IsMember({"hemisphere", "pairwise", "exact"}))->group(patch);
+  const PatchRadiositySettings defaults;
+  estimatorFlag_ = addNamedOption(c, "--ff-estimator", estimatorName_, kEstimators,
+                                  defaults.estimator, "Form factors by")->group(patch);
   ffRaysFlag_ = c.add_option("--ff-rays", patch_.formFactorRays,
                              "Rays per patch (hemisphere, default 256), point pairs per patch pair "
                              "(pairwise) or points per patch (exact)")
@@ -72,71 +148,67 @@ void MethodOptions::addPatchFlags(CLI::App& c) {
   cacheDirFlag_ = c.add_option("--cache-dir", patch_.cacheDir,
                                "Form-factor cache directory (default $XDG_CACHE_HOME/radiosity, "
                                "else ~/.cache/radiosity; none: no cache)")->group(patch);
-  solverFlag_ = c.add_option("--solver", solver_,
-                             "Linear solver: gauss-seidel (default), jacobi, progressive")
-                    ->check(CLI::IsMember({"jacobi", "gauss-seidel", "progressive"}))->group(patch);
+  solverFlag_ = addNamedOption(c, "--solver", solverName_, kSolvers, defaults.solver,
+                               "Linear solver")->group(patch);
   maxIterationsFlag_ = c.add_option("--max-iterations", patch_.maxIterations,
                                     "Solver sweeps at most (progressive: shots / patches; "
                                     "default 1000)")
                            ->check(CLI::Range(1, 100000000))->group(patch);
-  shadingFlag_ = c.add_option("--shading", shading_, "Rendering: smooth (default) or flat patches")
-                     ->check(CLI::IsMember({"smooth", "flat"}))->group(patch);
+  shadingFlag_ = addNamedOption(c, "--shading", shadingName_, kShadings, defaults.shading,
+                                "Rendering of the patches")->group(patch);
 }
 
 void MethodOptions::resolvePatch(const Scene& scene) {
   const SolverSettings& s = scene.solver;
-  auto take = [](CLI::Option* flag, auto& value, const auto& fromScene) {
-    if (!*flag && fromScene) value = *fromScene;
+  auto takeNamed = [&](const CLI::Option* flag, std::string& name,
+                       const std::optional<std::string>& fromScene, const char* key, auto& value,
+                       const auto& values) {
+    takeUnlessFlagged(flag, name, fromScene);
+    if (!name.empty()) value = valueOf(values, name, scene.name + ": /solver/" + key);
   };
   patch_.seed = pathTracer_.seed;
-  take(patchSizeFlag_, patch_.patchSize, s.patchSize);
-  take(patchesFlag_, patch_.targetPatches, s.patches);
-  take(estimatorFlag_, estimator_, s.ffEstimator);
-  take(ffRaysFlag_, patch_.formFactorRays, s.ffRays);
+  takeUnlessFlagged(patchSizeFlag_, patch_.patchSize, s.patchSize);
+  takeUnlessFlagged(patchesFlag_, patch_.targetPatches, s.patches);
+  takeNamed(estimatorFlag_, estimatorName_, s.ffEstimator, "ff_estimator", patch_.estimator,
+            kEstimators);
+  takeUnlessFlagged(ffRaysFlag_, patch_.formFactorRays, s.ffRays);
   if (!*thresholdFlag_ && s.ffThreshold) patch_.formFactorThreshold = float(*s.ffThreshold);
   if (!*cacheDirFlag_) patch_.cacheDir = s.cacheDir.value_or(defaultPatchCacheDir());
   if (patch_.cacheDir == "none") patch_.cacheDir.clear();
-  take(solverFlag_, solver_, s.patchSolver);
-  take(maxIterationsFlag_, patch_.maxIterations, s.maxIterations);
-  take(shadingFlag_, shading_, s.shading);
+  takeNamed(solverFlag_, solverName_, s.patchSolver, "solver", patch_.solver, kSolvers);
+  takeUnlessFlagged(maxIterationsFlag_, patch_.maxIterations, s.maxIterations);
+  takeNamed(shadingFlag_, shadingName_, s.shading, "shading", patch_.shading, kShadings);
   // --tolerance is shared with the voxel method, whose default (0: run every sweep) differs.
   patch_.tolerance = *toleranceFlag_ ? voxel_.tolerance : s.tolerance.value_or(1e-3);
-  patch_.estimator = estimator_ == "pairwise" ? PatchFormFactorEstimator::Pairwise
-                     : estimator_ == "exact"  ? PatchFormFactorEstimator::Exact
-                                              : PatchFormFactorEstimator::Hemisphere;
-  patch_.solver = solver_ == "jacobi"        ? PatchSolverKind::Jacobi
-                  : solver_ == "progressive" ? PatchSolverKind::Progressive
-                                             : PatchSolverKind::GaussSeidel;
-  patch_.shading = shading_ == "flat" ? PatchShading::Flat : PatchShading::Smooth;
 }
 
 void MethodOptions::resolve(const Scene& scene) {
   const SolverSettings& s = scene.solver;
-  auto take = [](CLI::Option* flag, auto& value, const auto& fromScene) {
-    if (!*flag && fromScene) value = *fromScene;
-  };
-  take(methodFlag_, method_, s.method);
+  takeUnlessFlagged(methodFlag_, method_, s.method);
   if (std::find(methods_.begin(), methods_.end(), method_) == methods_.end())
     throw InputError(scene.name + ": /solver/method",
                      fmt::format("method '{}' is not available here (available: {})", method_,
                                  fmt::join(methods_, ", ")));
   if (method_ != "pathtrace" && !*sppFlag_) pathTracer_.samplesPerPixel = 4;
-  take(sppFlag_, pathTracer_.samplesPerPixel, s.spp);
-  take(maxDepthFlag_, pathTracer_.maxDepth, s.maxDepth);
-  take(seedFlag_, pathTracer_.seed, s.seed);
+  takeUnlessFlagged(sppFlag_, pathTracer_.samplesPerPixel, s.spp);
+  takeUnlessFlagged(maxDepthFlag_, pathTracer_.maxDepth, s.maxDepth);
+  takeUnlessFlagged(seedFlag_, pathTracer_.seed, s.seed);
   voxel_.seed = pathTracer_.seed;
-  take(voxelSizeFlag_, voxel_.voxelSize, s.voxelSize);
-  take(voxelsFlag_, voxel_.targetVoxels, s.voxels);
-  take(radiusFlag_, voxel_.sphereRadius, s.sphereRadius);
-  take(iterationsFlag_, voxel_.iterations, s.iterations);
-  take(toleranceFlag_, voxel_.tolerance, s.tolerance);
-  take(tangentFlag_, voxel_.tangentCorrection, s.tangentCorrection);
-  take(firstShotFlag_, voxel_.directFirstShot, s.firstShot);
-  take(directSamplesFlag_, voxel_.directSamples, s.directSamples);
+  takeUnlessFlagged(voxelSizeFlag_, voxel_.voxelSize, s.voxelSize);
+  takeUnlessFlagged(voxelsFlag_, voxel_.targetVoxels, s.voxels);
+  takeUnlessFlagged(radiusFlag_, voxel_.sphereRadius, s.sphereRadius);
+  takeUnlessFlagged(iterationsFlag_, voxel_.iterations, s.iterations);
+  takeUnlessFlagged(toleranceFlag_, voxel_.tolerance, s.tolerance);
+  takeUnlessFlagged(tangentFlag_, voxel_.tangentCorrection, s.tangentCorrection);
+  takeUnlessFlagged(firstShotFlag_, voxel_.directFirstShot, s.firstShot);
+  takeUnlessFlagged(directSamplesFlag_, voxel_.directSamples, s.directSamples);
   resolvePatch(scene);
 }
 
-void addVoxelStats(const VoxelRadiosity& solution, RunStats& stats) {
+VoxelRadiosity solveVoxels(const Scene& scene, const VoxelRadiositySettings& settings,
+                           Console& console, RunStats& stats, bool objectMeans) {
+  VoxelRadiosity solution =
+      solveShowingProgress<VoxelRadiosity>(scene, settings, "voxel solve", console);
   const VoxelRadiosityStats& v = solution.stats();
   stats.methodDetails = {{"voxel_size", v.voxelSize},
                          {"cells", v.voxels},
@@ -156,14 +228,14 @@ void addVoxelStats(const VoxelRadiosity& solution, RunStats& stats) {
   stats.iterations = int(v.residuals.size());
   stats.residual = v.residuals.empty() ? 0.0 : v.residuals.back();
   stats.residuals = v.residuals;
-  stats.objects = solution.objectRadiometry();
+  if (objectMeans) stats.objects = solution.objectRadiometry();
+  return solution;
 }
 
-}  // namespace rad::cli
-
-namespace rad::cli {
-
-void addPatchStats(const PatchRadiosity& solution, RunStats& stats) {
+PatchRadiosity solvePatches(const Scene& scene, const PatchRadiositySettings& settings,
+                            Console& console, RunStats& stats, bool objectMeans) {
+  PatchRadiosity solution =
+      solveShowingProgress<PatchRadiosity>(scene, settings, "patch solve", console);
   const PatchRadiosityStats& p = solution.stats();
   stats.methodDetails = {{"patch_size", p.patchSize},
                          {"nodes", p.nodes},
@@ -188,7 +260,8 @@ void addPatchStats(const PatchRadiosity& solution, RunStats& stats) {
   stats.iterations = p.iterations;
   stats.residual = p.residuals.empty() ? 0.0 : p.residuals.back();
   stats.residuals = p.residuals;
-  stats.objects = solution.objectRadiometry();
+  if (objectMeans) stats.objects = solution.objectRadiometry();
+  return solution;
 }
 
 }  // namespace rad::cli

@@ -1,13 +1,14 @@
 #pragma once
 // The light-transport method and its settings, shared by `render` and `solve`: each setting is
 // a flag and a key of the scene's "solver" object; the flag wins, then the scene, then the
-// method's default.
+// method's default. Also the solve both commands run: progress, warnings and stats.
 
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
 #include <radiosity/scene.h>
 #include <radiosity/voxel_radiosity.h>
 
+#include "console.h"
 #include "output/run_stats.h"
 
 #include <string>
@@ -40,7 +41,8 @@ class MethodOptions {
   PathTracerSettings pathTracer_;
   VoxelRadiositySettings voxel_;
   PatchRadiositySettings patch_;
-  std::string estimator_ = "hemisphere", solver_ = "gauss-seidel", shading_ = "smooth";
+  /// The names given to the enum-valued flags; empty: not given.
+  std::string estimatorName_, solverName_, shadingName_;
   CLI::Option *methodFlag_, *sppFlag_, *maxDepthFlag_, *seedFlag_;
   CLI::Option *voxelSizeFlag_, *voxelsFlag_, *radiusFlag_, *iterationsFlag_, *toleranceFlag_,
       *tangentFlag_, *firstShotFlag_, *directSamplesFlag_;
@@ -50,9 +52,13 @@ class MethodOptions {
   void resolvePatch(const Scene& scene);
 };
 
-/// The voxel method's numbers in the stats file.
-void addVoxelStats(const VoxelRadiosity& solution, RunStats& stats);
-/// The patch method's numbers in the stats file.
-void addPatchStats(const PatchRadiosity& solution, RunStats& stats);
+/// Solves `scene` by the voxel method with a progress bar, prints the method's warnings and puts
+/// its numbers in `stats`; the per-object means (stats.objects, a pass over every voxel side) only
+/// if `objectMeans`, since only the stats file reports them. Throws what the solver throws.
+VoxelRadiosity solveVoxels(const Scene& scene, const VoxelRadiositySettings& settings,
+                           Console& console, RunStats& stats, bool objectMeans);
+/// The same for the patch method.
+PatchRadiosity solvePatches(const Scene& scene, const PatchRadiositySettings& settings,
+                            Console& console, RunStats& stats, bool objectMeans);
 
 }  // namespace rad::cli

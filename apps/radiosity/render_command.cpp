@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 
@@ -70,24 +71,6 @@ Image renderSolution(const Scene& scene, const Camera& camera, const SurfaceRadi
   return image;
 }
 
-Image renderWithVoxels(const Scene& scene, const Camera& camera, const RenderOptions& o,
-                       Console& console, RunStats& stats) {
-  const VoxelRadiosity solution(scene, o.method.voxel(), console.progress("voxel solve"));
-  console.finishProgress();
-  for (const std::string& w : solution.stats().warnings) console.warn(w);
-  addVoxelStats(solution, stats);
-  return renderSolution(scene, camera, solution, o, console, stats);
-}
-
-Image renderWithPatches(const Scene& scene, const Camera& camera, const RenderOptions& o,
-                        Console& console, RunStats& stats) {
-  const PatchRadiosity solution(scene, o.method.patch(), console.progress("patch solve"));
-  console.finishProgress();
-  for (const std::string& w : solution.stats().warnings) console.warn(w);
-  addPatchStats(solution, stats);
-  return renderSolution(scene, camera, solution, o, console, stats);
-}
-
 int runRender(RenderOptions& o, Console& console) {
   Stopwatch total;
   RunStats stats;
@@ -102,9 +85,17 @@ int runRender(RenderOptions& o, Console& console) {
   if (o.height > 0) camera.height = o.height;
   InterruptGuard interruptible;
   const std::string& method = o.method.method();
-  const Image image = method == "pathtrace" ? renderWithPathTracer(scene, camera, o, console, stats)
-                      : method == "patch"   ? renderWithPatches(scene, camera, o, console, stats)
-                                            : renderWithVoxels(scene, camera, o, console, stats);
+  const bool objectMeans = !o.stats.empty();
+  const Image image =
+      method == "pathtrace"
+          ? renderWithPathTracer(scene, camera, o, console, stats)
+      : method == "patch"
+          ? renderSolution(scene, camera,
+                           solvePatches(scene, o.method.patch(), console, stats, objectMeans), o,
+                           console, stats)
+          : renderSolution(scene, camera,
+                           solveVoxels(scene, o.method.voxel(), console, stats, objectMeans), o,
+                           console, stats);
   ImageWriteOptions writeOptions;
   writeOptions.exposureEV = o.exposure;
   writeOptions.exrPixelType = o.exrFloat ? ExrPixelType::Float : ExrPixelType::Half;
@@ -130,7 +121,7 @@ void addRenderCommand(CLI::App& app, Console& console, CommandAction& action) {
       ->check(CLI::Range(1, 1 << 15));
   sub->add_option("--exposure", o->exposure, "PNG exposure in EV (radiance x 2^EV)");
   sub->add_flag("--exr-float", o->exrFloat, "Write 32-bit float EXR instead of half");
-  sub->add_option("--stats", o->stats, "Write the run's numbers to this JSON file");
+  addStatsOption(*sub, o->stats);
   sub->add_option("--object-points", o->objectPoints,
                   "pathtrace: surface points per object for the stats' per-object means (0: skip)")
       ->check(CLI::NonNegativeNumber);

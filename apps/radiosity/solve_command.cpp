@@ -15,6 +15,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <type_traits>
 
 namespace rad::cli {
 
@@ -32,29 +34,41 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
-int solveWithPatches(const SolveOptions& o, const Scene& scene, const std::string& ext,
-                     const Stopwatch& total, RunStats& stats, Console& console) {
-  const PatchRadiosity solution(scene, o.method.patch(), console.progress("patch solve"));
-  console.finishProgress();
-  for (const std::string& w : solution.stats().warnings) console.warn(w);
-  addPatchStats(solution, stats);
-  if (ext == ".csv") solution.exportCsv(o.exportPath);
-  if (ext == ".ply") solution.exportPly(o.exportPath);
-  if (ext == ".glb") solution.exportGlb(o.exportPath);
-  if (!o.stats.empty())
-    writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
-  const PatchRadiosityStats& p = solution.stats();
-  console.info(fmt::format(
-      "solved {} with patch: {} patches, form factors {} ({} entries, {:.1f} MB, rows sum to "
-      "{:.3f} on average), {} {} sweeps, residual {:.2g}, {:.2f} s{}{}",
-      o.scene, p.patches,
+// The summary line's account of each method's run (`seconds`: the whole command's).
+std::string describeRun(const PatchRadiosityStats& p, double seconds) {
+  return fmt::format(
+      "{} patches, form factors {} ({} entries, {:.1f} MB, rows sum to {:.3f} on average), {} {} "
+      "sweeps, residual {:.2g}, {:.2f} s",
+      p.patches,
       p.cacheLoaded ? fmt::format("loaded in {:.2f} s", p.cacheLoadSeconds)
                     : fmt::format("{:.2f} s, {:.1f} M rays/s", p.formFactorSeconds,
                                   double(p.rays) / std::max(p.formFactorSeconds, 1e-9) * 1e-6),
       p.nonZeros, double(p.tableBytes) / 1e6, p.rowSumMean, p.iterations, p.solver,
-      p.residuals.empty() ? 0.0 : p.residuals.back(), total.seconds(),
-      o.exportPath.empty() ? "" : " -> " + o.exportPath,
-      o.stats.empty() ? "" : ", stats -> " + o.stats));
+      p.residuals.empty() ? 0.0 : p.residuals.back(), seconds);
+}
+
+std::string describeRun(const VoxelRadiosityStats& v, double seconds) {
+  return fmt::format("{} voxels ({} sides), {} directions, {} iterations, residual {:.2g}, {:.2f} s "
+                     "({:.1f} M visits/s)",
+                     v.voxels, v.sides, v.directions, v.residuals.size(),
+                     v.residuals.empty() ? 0.0 : v.residuals.back(), seconds,
+                     double(v.visits) / std::max(v.sweepSeconds, 1e-9) * 1e-6);
+}
+
+// Exports the solution, writes the stats and prints the summary line.
+template <class Solution>
+int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solution,
+                const std::string& ext, const Stopwatch& total, RunStats& stats, Console& console) {
+  if (ext == ".csv") solution.exportCsv(o.exportPath);
+  if (ext == ".ply") solution.exportPly(o.exportPath);
+  if constexpr (std::is_same_v<Solution, PatchRadiosity>) {
+    if (ext == ".glb") solution.exportGlb(o.exportPath);
+  }
+  if (!o.stats.empty()) writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
+  console.info(fmt::format("solved {} with {}: {}{}{}", o.scene, o.method.method(),
+                           describeRun(solution.stats(), total.seconds()),
+                           o.exportPath.empty() ? "" : " -> " + o.exportPath,
+                           o.stats.empty() ? "" : ", stats -> " + o.stats));
   return 0;
 }
 
@@ -71,23 +85,12 @@ int runSolve(SolveOptions& o, Console& console) {
   if (ext == ".glb" && o.method.method() != "patch")
     throw InputError("--export " + o.exportPath, ".glb export needs --method patch");
   InterruptGuard interruptible;
-  if (o.method.method() == "patch") return solveWithPatches(o, scene, ext, total, stats, console);
-  const VoxelRadiosity solution(scene, o.method.voxel(), console.progress("voxel solve"));
-  console.finishProgress();
-  for (const std::string& w : solution.stats().warnings) console.warn(w);
-  addVoxelStats(solution, stats);
-  if (ext == ".csv") solution.exportCsv(o.exportPath);
-  if (ext == ".ply") solution.exportPly(o.exportPath);
-  if (!o.stats.empty()) writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
-  const VoxelRadiosityStats& v = solution.stats();
-  console.info(fmt::format("solved {} with {}: {} voxels ({} sides), {} directions, {} iterations, "
-                           "residual {:.2g}, {:.2f} s ({:.1f} M visits/s){}{}",
-                           o.scene, o.method.method(), v.voxels, v.sides, v.directions,
-                           v.residuals.size(), v.residuals.empty() ? 0.0 : v.residuals.back(),
-                           total.seconds(), double(v.visits) / std::max(v.sweepSeconds, 1e-9) * 1e-6,
-                           o.exportPath.empty() ? "" : " -> " + o.exportPath,
-                           o.stats.empty() ? "" : ", stats -> " + o.stats));
-  return 0;
+  const bool objectMeans = !o.stats.empty();
+  if (o.method.method() == "patch")
+    return finishSolve(o, scene, solvePatches(scene, o.method.patch(), console, stats, objectMeans),
+                       ext, total, stats, console);
+  return finishSolve(o, scene, solveVoxels(scene, o.method.voxel(), console, stats, objectMeans),
+                     ext, total, stats, console);
 }
 
 }  // namespace
@@ -99,7 +102,7 @@ void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--export", o->exportPath,
                   "Per-element results: .csv (a row per voxel side or patch), .ply (a point cloud) "
                   "or, with --method patch, .glb (the lit mesh, vertex colours = radiance)");
-  sub->add_option("--stats", o->stats, "Write the run's numbers to this JSON file");
+  addStatsOption(*sub, o->stats);
   sub->callback([o, &console, &action] { action = [o, &console] { return runSolve(*o, console); }; });
 }
 

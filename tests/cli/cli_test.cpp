@@ -1,12 +1,17 @@
 // End-to-end tests of the command line, driven in-process through runCli.
 #include "cli.h"
 
+#include <radiosity/image.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <tuple>
 
 namespace fs = std::filesystem;
 
@@ -35,6 +40,37 @@ fs::path writeFile(const fs::path& path, const std::string& text) {
   return path;
 }
 
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// The data rows of an exported CSV, after checking its header: the documented columns
+// (docs/ARCHITECTURE.md), one row per voxel side or patch.
+size_t csvRowCount(const std::string& path) {
+  std::ifstream rows(path);
+  std::string header, line;
+  std::getline(rows, header);
+  EXPECT_EQ(header, "id,object,area,cx,cy,cz,nx,ny,nz,E_r,E_g,E_b,rho_r,rho_g,rho_b,H_r,H_g,H_b,B_r,B_g,B_b");
+  size_t count = 0;
+  while (std::getline(rows, line)) ++count;
+  return count;
+}
+
+// Mean of the pixels' RGB radiance.
+double meanRadiance(const rad::Image& image) {
+  double sum = 0.0;
+  for (const rad::Color& c : image.pixels) sum += double(c.r) + double(c.g) + double(c.b);
+  return sum / (3.0 * double(image.pixels.size()));
+}
+
+// How many different RGB values the pixels hold.
+size_t distinctPixels(const rad::Image& image) {
+  std::set<std::tuple<float, float, float>> values;
+  for (const rad::Color& c : image.pixels) values.insert({c.r, c.g, c.b});
+  return values.size();
+}
+
 TEST(Cli, RendersCornellBoxWithStats) {
   const fs::path dir = freshDir("render");
   const std::string png = (dir / "x.png").string(), stats = (dir / "s.json").string();
@@ -42,8 +78,7 @@ TEST(Cli, RendersCornellBoxWithStats) {
                            "64", "--spp", "4", "-o", png, "--stats", stats, "--object-points", "8"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_GT(fs::file_size(png), 100u);
-  std::ifstream in(stats);
-  const nlohmann::json j = nlohmann::json::parse(in);
+  const nlohmann::json j = readJson(stats);
   // The fields of the stats contract (docs/ARCHITECTURE.md, "Stats JSON").
   for (const char* key : {"scene", "method", "counts", "timings_s", "iterations", "residual",
                           "energy", "objects", "memory_peak_bytes"})
@@ -163,8 +198,7 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
                                    "--stats", stats};
   args.insert(args.end(), coarse.begin(), coarse.end());
   ASSERT_EQ(run(args).status, 0);
-  std::ifstream in(stats);
-  const nlohmann::json j = nlohmann::json::parse(in);
+  const nlohmann::json j = readJson(stats);
   EXPECT_EQ(j["method"], "voxel");
   EXPECT_GT(j["counts"]["voxels"].get<int>(), 2000);
   // The digital sphere of radius 4 has 134 directions (python3 brute-force count).
@@ -172,14 +206,7 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
   EXPECT_EQ(j["iterations"].get<int>(), 6);
   EXPECT_EQ(j["residuals"].size(), 6u);
   ASSERT_EQ(j["objects"].size(), 8u);
-
-  // One CSV row per voxel side, the documented columns.
-  std::ifstream rows(csv);
-  std::string header, line;
-  std::getline(rows, header);
-  EXPECT_EQ(header, "id,object,area,cx,cy,cz,nx,ny,nz,E_r,E_g,E_b,rho_r,rho_g,rho_b,H_r,H_g,H_b,B_r,B_g,B_b");
-  size_t count = 0;
-  while (std::getline(rows, line)) ++count;
+  const size_t count = csvRowCount(csv);
   EXPECT_EQ(count, j["counts"]["voxels"].get<size_t>());
 
   args[5] = ply;
@@ -208,22 +235,14 @@ TEST(Cli, SolvesWithPatchesExportsAndCaches) {
                                          "--export", csv, "--stats", stats};
   const CliResult first = run(args);
   ASSERT_EQ(first.status, 0) << first.err;
-  std::ifstream in(stats);
-  const nlohmann::json j = nlohmann::json::parse(in);
+  const nlohmann::json j = readJson(stats);
   EXPECT_EQ(j["method"], "patch");
   EXPECT_GE(j["counts"]["patches"].get<int>(), 500);
   EXPECT_EQ(j["counts"]["rays"].get<double>(), 64.0 * j["counts"]["patches"].get<double>());
   EXPECT_GE(j["iterations"].get<int>(), 1);
   EXPECT_LT(j["residual"].get<double>(), 1e-3);  // the default tolerance
   ASSERT_EQ(j["objects"].size(), 8u);
-  // One CSV row per patch, the documented columns.
-  std::ifstream rows(csv);
-  std::string header, line;
-  std::getline(rows, header);
-  EXPECT_EQ(header, "id,object,area,cx,cy,cz,nx,ny,nz,E_r,E_g,E_b,rho_r,rho_g,rho_b,H_r,H_g,H_b,B_r,B_g,B_b");
-  size_t count = 0;
-  while (std::getline(rows, line)) ++count;
-  EXPECT_EQ(count, j["counts"]["patches"].get<size_t>());
+  EXPECT_EQ(csvRowCount(csv), j["counts"]["patches"].get<size_t>());
   // The second run loads the form factors from the cache.
   const CliResult second = run(args);
   ASSERT_EQ(second.status, 0) << second.err;
@@ -231,15 +250,60 @@ TEST(Cli, SolvesWithPatchesExportsAndCaches) {
   EXPECT_NE(second.err.find("form factors loaded"), std::string::npos) << second.err;
 }
 
-TEST(Cli, RendersWithPatchesAndSceneSolverKeys) {
-  const fs::path dir = freshDir("patch_render");
-  const std::string png = (dir / "p.png").string();
-  CliResult r = run({"render", "cornell", "--method", "patch", "--patches", "300", "--ff-rays", "16",
-                     "--cache-dir", "none", "--solver", "jacobi", "--shading", "flat", "--width", "32",
-                     "--height", "32", "-o", png});
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_TRUE(fs::exists(png));
-  // The scene's "solver" keys choose the same settings; a bad value names its key.
+// The three solvers solve one system (one cached table: without a cache, progressive
+// refinement casts its own rows, which are not made reciprocal), so their images agree.
+TEST(Cli, PatchSolversGiveTheSameImage) {
+  const fs::path dir = freshDir("patch_solvers");
+  auto render = [&](const std::string& solver) {
+    const std::string pfm = (dir / (solver + ".pfm")).string();
+    const std::string stats = (dir / (solver + ".json")).string();
+    const CliResult r = run({"render", "cornell", "--method", "patch", "--patches", "300",
+                             "--ff-rays", "64", "--cache-dir", (dir / "cache").string(), "--solver",
+                             solver, "--tolerance", "1e-6", "--width", "32", "--height", "32",
+                             "-o", pfm, "--stats", stats, "--quiet"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    const nlohmann::json j = readJson(stats);
+    EXPECT_EQ(j["patch"]["solver"], solver);
+    EXPECT_LT(j["residual"].get<double>(), 1e-6);
+    return meanRadiance(rad::readImage(pfm));
+  };
+  const double gaussSeidel = render("gauss-seidel");
+  ASSERT_GT(gaussSeidel, 0.0);
+  // Each solver stops at a relative residual ||r||_A < 1e-6 of the emitted power ||E||_A; with a
+  // reciprocal table and rho <= 0.78 (the Cornell light's; the walls' are lower) its error in B
+  // is at most ||r||_A / (1 - 0.78) < 5e-6 ||E||_A, so two solutions differ by < 1e-5 ||E||_A. The
+  // image weighs the surfaces by their projected, not their true, area, and B >= E; 1e-4 of its
+  // mean leaves an order of magnitude for that (measured: 2e-7).
+  EXPECT_NEAR(render("jacobi"), gaussSeidel, 1e-4 * gaussSeidel);
+  EXPECT_NEAR(render("progressive"), gaussSeidel, 1e-4 * gaussSeidel);
+}
+
+// Flat shading gives each patch one radiance, so with one camera ray per pixel the image holds
+// at most one value per patch (and black where the rays leave the box); smooth shading
+// interpolates across patches, so nearly every pixel differs.
+TEST(Cli, FlatShadingIsConstantPerPatch) {
+  const fs::path dir = freshDir("patch_shading");
+  const std::string stats = (dir / "s.json").string();
+  auto render = [&](const std::string& shading) {
+    const std::string pfm = (dir / (shading + ".pfm")).string();
+    const CliResult r = run({"render", "cornell", "--method", "patch", "--patches", "300",
+                             "--ff-rays", "16", "--cache-dir", (dir / "cache").string(),
+                             "--shading", shading, "--spp", "1", "--width", "64", "--height", "64",
+                             "-o", pfm, "--stats", stats, "--quiet"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    return rad::readImage(pfm);
+  };
+  const rad::Image flat = render("flat");
+  const size_t patches = readJson(stats)["counts"]["patches"].get<size_t>();
+  const rad::Image smooth = render("smooth");
+  EXPECT_LE(distinctPixels(flat), patches + 1);
+  // 64 x 64 = 4096 pixels, about 300 patches: smooth must exceed the flat bound by far.
+  EXPECT_GT(distinctPixels(smooth), 2 * (patches + 1));
+}
+
+// The scene's "solver" keys choose the same settings as the flags; a bad value names its key.
+TEST(Cli, SceneSolverKeysChooseSettings) {
+  const fs::path dir = freshDir("patch_scene_keys");
   const fs::path obj = writeFile(dir / "room.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   auto scene = [&](const std::string& solver) {
     return writeFile(dir / "s.json", R"({"geometry": [{"file": "room.obj"}],
@@ -247,12 +311,13 @@ TEST(Cli, RendersWithPatchesAndSceneSolverKeys) {
       "solver": )" + solver + "}").string();
   };
   const std::string stats = (dir / "s.stats.json").string();
-  r = run({"solve", scene(R"({"method": "patch", "patch_size": 0.25, "solver": "progressive",
+  CliResult r = run({"solve", scene(R"({"method": "patch", "patch_size": 0.25, "solver": "progressive",
             "cache_dir": "none", "ff_rays": 16, "max_iterations": 50, "shading": "flat"})"),
            "--stats", stats, "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
-  std::ifstream in(stats);
-  EXPECT_EQ(nlohmann::json::parse(in)["counts"]["patches"].get<int>(), 16);
+  const nlohmann::json j = readJson(stats);
+  EXPECT_EQ(j["counts"]["patches"].get<int>(), 16);
+  EXPECT_EQ(j["patch"]["solver"], "progressive");
   r = run({"solve", scene(R"({"method": "patch", "solver": "bogus"})")});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("/solver/solver"), std::string::npos) << r.err;
