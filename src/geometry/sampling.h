@@ -7,12 +7,17 @@
 
 #include <radiosity/types.h>
 
+#include "core/rng.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <glm/gtc/constants.hpp>
 #include <numeric>
 #include <span>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace rad {
@@ -45,6 +50,38 @@ inline Vec3 sampleCosineHemisphere(Vec2 u) {
 inline Vec2 sampleUniformTriangle(Vec2 u) {
   const float s = std::sqrt(u.x);
   return Vec2(1.0f - s, u.y * s);
+}
+
+/// A point uniform in [0,1)^2; draws two numbers from `rng`, y's first: the order GCC gave the
+/// former inline `Vec2(rng.uniform(), rng.uniform())` (unspecified in C++), kept so that results
+/// stay the same and no longer depend on the compiler.
+inline Vec2 uniformSquare(Rng& rng) {
+  const float y = rng.uniform();
+  const float x = rng.uniform();
+  return Vec2(x, y);
+}
+
+/// Cells per side of the smallest square grid of at least `count` strata (at least 1).
+inline int strataPerSide(int count) {
+  return std::max(1, int(std::ceil(std::sqrt(double(count)))));
+}
+
+/// A point uniform in cell `stratum` (row-major: x = stratum % side) of the side x side grid
+/// over [0,1)^2; draws two numbers from `rng`. Jittered (stratified) sampling of the square, and
+/// through an area-preserving map (sampleUniformTriangle, PatchMesh::samplePoint) of a triangle.
+inline Vec2 sampleStratum(int stratum, int side, Rng& rng) {
+  const Vec2 jitter = uniformSquare(rng);
+  return Vec2((float(stratum % side) + jitter.x) / float(side),
+              (float(stratum / side) + jitter.y) / float(side));
+}
+
+/// A uniformly random permutation of 0 .. n-1 (Fisher-Yates), e.g. to pair the strata of two
+/// stratified sample sets; draws n - 1 numbers from `rng`.
+inline std::vector<int> randomPermutation(int n, Rng& rng) {
+  std::vector<int> p(static_cast<size_t>(std::max(n, 0)));
+  std::iota(p.begin(), p.end(), 0);
+  for (int k = n - 1; k > 0; --k) std::swap(p[k], p[rng.next() % uint32_t(k + 1)]);
+  return p;
 }
 
 /// Completes the unit vector n to a right-handed orthonormal frame (t, b, n) without branches

@@ -16,9 +16,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <limits>
+#include <span>
+#include <sstream>
 #include <stdexcept>
 
 namespace rad {
@@ -183,19 +183,6 @@ void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& gr
   builder.addNode(group.name, std::move(gltfMesh));
 }
 
-// tinygltf's binary writer does not check its stream, so a short write (a full disk) would pass
-// unnoticed: the header's total length must match what reached the file.
-void checkWritten(const std::filesystem::path& file, const std::string& target) {
-  std::ifstream in(file, std::ios::binary);
-  std::array<char, 12> header{};
-  uint32_t length = 0;
-  if (in.read(header.data(), header.size())) std::memcpy(&length, header.data() + 8, 4);
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(file, ec);
-  if (!in || std::memcmp(header.data(), "glTF", 4) != 0 || ec || size != length)
-    throw std::runtime_error(fmt::format("{}: the glTF file was not written completely", target));
-}
-
 }  // namespace
 
 void writeLitMeshGlb(const std::string& path, const LitMesh& mesh) {
@@ -207,14 +194,14 @@ void writeLitMeshGlb(const std::string& path, const LitMesh& mesh) {
   } else {
     for (const LitMeshGroup& group : mesh.groups) addGroup(builder, mesh, group, local);
   }
-  writeFileAtomically(path, [&](const std::filesystem::path& temporary) {
-    tinygltf::TinyGLTF writer;
-    // No images to embed; the buffer goes into the .glb's BIN chunk; compact JSON; binary.
-    if (!writer.WriteGltfSceneToFile(&builder.model(), temporary.string(), false, true, false,
-                                     true))
-      throw std::runtime_error(fmt::format("{}: cannot write the glTF file", path));
-    checkWritten(temporary, path);
-  });
+  // Serialized in memory (the buffer as the .glb's BIN chunk, compact JSON), then written once:
+  // tinygltf's file writer does not check its stream, writeBytesAtomically does.
+  std::ostringstream glb(std::ios::binary);
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&builder.model(), glb, false, true))
+    throw std::runtime_error(fmt::format("{}: cannot serialize the glTF file", path));
+  const std::string bytes = std::move(glb).str();
+  writeBytesAtomically(path, std::span<const char>(bytes.data(), bytes.size()));
 }
 
 }  // namespace rad

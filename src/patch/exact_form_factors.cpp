@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "core/rng.h"
+#include "geometry/sampling.h"
 #include "patch/form_factor_estimators.h"
 #include "patch/point_polygon_form_factor.h"
 #include "render/progress_ticker.h"
@@ -26,7 +27,7 @@ struct QuadraturePoint {
 // bilinear map's area density), a triangle in side^2 congruent sub-triangles (at their
 // centroids). Both are second-order accurate for smooth integrands.
 std::vector<QuadraturePoint> midpointRule(const PatchMesh& mesh, uint32_t patch, int points) {
-  const int side = std::max(1, int(std::ceil(std::sqrt(double(points)))));
+  const int side = strataPerSide(points);
   std::vector<QuadraturePoint> q;
   std::array<Vec3, 4> c;
   if (mesh.corners(patch, c) == 3) {
@@ -79,18 +80,25 @@ FormFactorRows exactFormFactors(const PatchMesh& mesh, const RayCaster& caster,
     std::vector<double> f(points.size());
     for (uint32_t j = 0; j < n; ++j) {
       if (j == i) continue;
-      const Patch& pj = mesh.patches()[j];
+      // The kernel first: it is 0 wherever j does not face the point, and then no ray is needed.
       double any = 0.0;
       for (size_t k = 0; k < points.size(); ++k) {
         f[k] = pointPolygonFormFactor(Vec3d(points[k].position), Vec3d(pi.normal), polygons[j]);
         any += f[k];
+      }
+      if (any <= 0.0) {
+        // Skip the targets' random numbers all the same, so that each pair keeps its targets.
+        for (size_t k = 0; k < 2 * points.size(); ++k) rng.next();
+        continue;
+      }
+      const Patch& pj = mesh.patches()[j];
+      for (size_t k = 0; k < points.size(); ++k) {
         float w;
         const Vec3 target =
-            mesh.samplePoint(j, Vec2(rng.uniform(), rng.uniform()), w) + offset * pj.normal;
+            mesh.samplePoint(j, uniformSquare(rng), w) + offset * pj.normal;
         const Vec3 origin = points[k].position + offset * pi.normal;
         rays[k] = {origin, target - origin, 0.0f, 1.0f};
       }
-      if (any <= 0.0) continue;
       caster.occluded(rays, blocked);
       double sum = 0.0;
       for (size_t k = 0; k < points.size(); ++k) sum += blocked[k] ? 0.0 : points[k].weight * f[k];

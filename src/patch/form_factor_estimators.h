@@ -1,6 +1,7 @@
 #pragma once
 // The three ways to estimate the form factors between patches. Each returns one row of
-// (column, F) entries per patch, unsorted, for FormFactorTable::fromRows.
+// (column, F) entries per patch, sorted by column with each column once, for
+// FormFactorTable::fromRows.
 //   hemisphere: rays from stratified points on patch i in stratified cosine-weighted directions;
 //               the fraction landing on each patch j is F_ij (cost: patches x rays).
 //   pairwise:   for each facing pair, random point pairs averaging cos cos / (pi r^2) times
@@ -36,7 +37,13 @@ using FormFactorRows = std::vector<std::vector<FormFactorEntry>>;
 std::vector<FormFactorEntry> hemisphereRow(const PatchMesh& mesh, const RayCaster& caster,
                                            uint32_t patch, int rays, uint64_t seed);
 
-/// Every row by the chosen estimator; rays counts the rays cast. Throws rad::Cancelled if
+/// Every row by settings.estimator, the one place that maps the kind to its estimator (below).
+/// Throws rad::Cancelled if `progress` returns false.
+FormFactorRows estimateFormFactors(const PatchMesh& mesh, const RayCaster& caster,
+                                   const FormFactorSettings& settings,
+                                   const ProgressCallback& progress);
+
+/// Every row by one estimator, whatever settings.estimator says. Throws rad::Cancelled if
 /// `progress` returns false.
 FormFactorRows hemisphereFormFactors(const PatchMesh& mesh, const RayCaster& caster,
                                      const FormFactorSettings& settings,

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cassert>
 #include <numeric>
 
 namespace rad {
@@ -19,17 +20,10 @@ FormFactorTable FormFactorTable::fromRows(std::vector<std::vector<FormFactorEntr
   std::vector<size_t> estimated(rows.size());
   tbb::parallel_for(size_t(0), rows.size(), [&](size_t i) {
     auto& row = rows[i];
-    std::sort(row.begin(), row.end(), [](const FormFactorEntry& a, const FormFactorEntry& b) {
-      return a.column < b.column;
-    });
-    size_t out = 0;
-    for (size_t k = 0; k < row.size();) {  // merge repeated columns
-      FormFactorEntry e = row[k++];
-      while (k < row.size() && row[k].column == e.column) e.value += row[k++].value;
-      row[out++] = e;
-    }
-    row.resize(out);
-    estimated[i] = out;
+    assert(std::adjacent_find(row.begin(), row.end(), [](const auto& a, const auto& b) {
+             return a.column >= b.column;
+           }) == row.end());
+    estimated[i] = row.size();
     for (const FormFactorEntry& e : row) total[i] += e.value;
     std::erase_if(row, [threshold](const FormFactorEntry& e) {
       return !(e.value >= threshold) || e.value <= 0.0f;

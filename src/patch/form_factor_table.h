@@ -17,8 +17,9 @@ struct FormFactorEntry {
 class FormFactorTable {
  public:
   FormFactorTable() = default;
-  /// Takes rows of (column, value) entries in any order (repeated columns are summed) and keeps
-  /// those >= threshold. rows.size() is the patch count.
+  /// Takes rows of (column, value) entries, each row sorted by column with every column once (as
+  /// the estimators and symmetrize() make them; asserted), and keeps those >= threshold.
+  /// rows.size() is the patch count.
   static FormFactorTable fromRows(std::vector<std::vector<FormFactorEntry>> rows, float threshold);
   /// Assembles a table from its arrays (offsets has rows + 1 entries); for the disk cache.
   static FormFactorTable fromArrays(std::vector<uint64_t> offsets, std::vector<uint32_t> columns,

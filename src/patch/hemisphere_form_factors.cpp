@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "core/rng.h"
 #include "geometry/sampling.h"
@@ -19,24 +18,18 @@ namespace rad {
 
 std::vector<FormFactorEntry> hemisphereRow(const PatchMesh& mesh, const RayCaster& caster,
                                            uint32_t patch, int rays, uint64_t seed) {
-  const int side = std::max(1, int(std::ceil(std::sqrt(double(rays)))));
+  const int side = strataPerSide(rays);
   const int n = side * side;
   Rng rng(seed, patch);
-  std::vector<int> pointStratum(static_cast<size_t>(n));
-  std::iota(pointStratum.begin(), pointStratum.end(), 0);
-  for (int k = n - 1; k > 0; --k)
-    std::swap(pointStratum[k], pointStratum[rng.next() % uint32_t(k + 1)]);
+  const std::vector<int> pointStratum = randomPermutation(n, rng);
 
   const Patch& p = mesh.patches()[patch];
   const float offset = mesh.rayOffset();
   std::vector<Ray> batch(static_cast<size_t>(n));
   std::vector<float> weight(static_cast<size_t>(n));
   for (int k = 0; k < n; ++k) {
-    const int s = pointStratum[k];
-    const Vec2 up((float(s % side) + rng.uniform()) / float(side),
-                  (float(s / side) + rng.uniform()) / float(side));
-    const Vec2 ud((float(k % side) + rng.uniform()) / float(side),
-                  (float(k / side) + rng.uniform()) / float(side));
+    const Vec2 up = sampleStratum(pointStratum[k], side, rng);
+    const Vec2 ud = sampleStratum(k, side, rng);
     const Vec3 origin = mesh.samplePoint(patch, up, weight[k]);
     batch[k] = {origin + offset * p.normal, toWorld(sampleCosineHemisphere(ud), p.normal)};
   }
@@ -50,6 +43,7 @@ std::vector<FormFactorEntry> hemisphereRow(const PatchMesh& mesh, const RayCaste
     const uint32_t j = mesh.locate(hits[k].triangle, hits[k].frontFace, at).patch;
     if (j != kNoPatch && j != patch) row.push_back({j, weight[k] / float(n)});
   }
+  // The one place where repeated columns are merged: the rows leave here as fromRows takes them.
   std::sort(row.begin(), row.end(), [](auto& a, auto& b) { return a.column < b.column; });
   size_t out = 0;
   for (size_t k = 0; k < row.size();) {

@@ -11,9 +11,10 @@
 #include <array>
 #include <cmath>
 #include <glm/gtc/constants.hpp>
-#include <numeric>
+#include <span>
 
 #include "core/rng.h"
+#include "geometry/sampling.h"
 #include "patch/form_factor_estimators.h"
 #include "patch/point_polygon_form_factor.h"
 #include "render/progress_ticker.h"
@@ -39,25 +40,19 @@ bool facing(const PatchMesh& mesh, uint32_t i, uint32_t j) {
 // Mean of cos cos V / (pi r^2) over `pairs` stratified point pairs of patches i and j.
 double pairMean(const PatchMesh& mesh, const RayCaster& caster, uint32_t i, uint32_t j, int pairs,
                 Rng& rng) {
-  const int side = std::max(1, int(std::ceil(std::sqrt(double(pairs)))));
+  const int side = strataPerSide(pairs);
   const int n = side * side;
-  std::vector<int> perm(static_cast<size_t>(n));
-  std::iota(perm.begin(), perm.end(), 0);
-  for (int k = n - 1; k > 0; --k) std::swap(perm[k], perm[rng.next() % uint32_t(k + 1)]);
+  const std::vector<int> perm = randomPermutation(n, rng);
   const Patch &pi = mesh.patches()[i], &pj = mesh.patches()[j];
   const float offset = mesh.rayOffset();
   std::vector<Ray> rays;
   std::vector<double> g;
   rays.reserve(static_cast<size_t>(n));
   g.reserve(static_cast<size_t>(n));
-  auto jitter = [&](int s) {
-    return Vec2((float(s % side) + rng.uniform()) / float(side),
-                (float(s / side) + rng.uniform()) / float(side));
-  };
   for (int k = 0; k < n; ++k) {
     float wi, wj;
-    const Vec3 a = mesh.samplePoint(i, jitter(k), wi) + offset * pi.normal;
-    const Vec3 b = mesh.samplePoint(j, jitter(perm[k]), wj) + offset * pj.normal;
+    const Vec3 a = mesh.samplePoint(i, sampleStratum(k, side, rng), wi) + offset * pi.normal;
+    const Vec3 b = mesh.samplePoint(j, sampleStratum(perm[k], side, rng), wj) + offset * pj.normal;
     const Vec3 d = b - a;
     const double r2 = glm::dot(d, d);
     const double ci = glm::dot(d, pi.normal), cj = -glm::dot(d, pj.normal);
@@ -87,23 +82,22 @@ bool touching(const PatchMesh& mesh, uint32_t i, uint32_t j) {
 // same quantity pairMean estimates, with the singular inner integral done exactly.
 double touchingPairMean(const PatchMesh& mesh, const RayCaster& caster, uint32_t i, uint32_t j,
                         int pairs, Rng& rng) {
-  const int side = std::max(1, int(std::ceil(std::sqrt(double(pairs)))));
+  const int side = strataPerSide(pairs);
   std::array<Vec3, 4> c;
   const int n = mesh.corners(j, c);
-  std::vector<Vec3d> polygon;
-  for (int k = 0; k < n; ++k) polygon.push_back(Vec3d(c[k]));
+  std::array<Vec3d, 4> corners;
+  for (int k = 0; k < n; ++k) corners[k] = Vec3d(c[k]);
+  const std::span<const Vec3d> polygon(corners.data(), size_t(n));
   const Patch &pi = mesh.patches()[i], &pj = mesh.patches()[j];
   const float offset = mesh.rayOffset();
   std::vector<Ray> rays;
   std::vector<double> f;
   for (int k = 0; k < side * side; ++k) {
     float wi, wj;
-    const Vec2 u((float(k % side) + rng.uniform()) / float(side),
-                 (float(k / side) + rng.uniform()) / float(side));
-    const Vec3 x = mesh.samplePoint(i, u, wi);
+    const Vec3 x = mesh.samplePoint(i, sampleStratum(k, side, rng), wi);
     f.push_back(double(wi) * pointPolygonFormFactor(Vec3d(x), Vec3d(pi.normal), polygon));
     const Vec3 a = x + offset * pi.normal;
-    const Vec3 b = mesh.samplePoint(j, Vec2(rng.uniform(), rng.uniform()), wj) + offset * pj.normal;
+    const Vec3 b = mesh.samplePoint(j, uniformSquare(rng), wj) + offset * pj.normal;
     rays.push_back({a, b - a, 0.0f, 1.0f});
   }
   std::vector<uint8_t> blocked(rays.size());
@@ -138,6 +132,8 @@ FormFactorRows pairwiseFormFactors(const PatchMesh& mesh, const RayCaster& caste
     ticker.tick();
   });
   ticker.throwIfCancelled();
+  // Row r gets its columns i < r (in increasing i) before its own j > r: sorted, as fromRows
+  // takes them.
   FormFactorRows rows(n);
   const auto& patches = mesh.patches();
   for (uint32_t i = 0; i < n; ++i)

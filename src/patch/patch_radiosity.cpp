@@ -92,12 +92,8 @@ void recordRowSums(const std::vector<double>& sums, PatchRadiosityStats& stats) 
 
 FormFactorTable PatchRadiosity::Impl::computeTable(const RayCaster& caster,
                                                    const ProgressCallback& progress) {
-  FormFactorSettings ff{settings.estimator, settings.formFactorRays, settings.seed};
-  FormFactorRows rows = settings.estimator == PatchFormFactorEstimator::Hemisphere
-                            ? hemisphereFormFactors(*mesh, caster, ff, progress)
-                        : settings.estimator == PatchFormFactorEstimator::Pairwise
-                            ? pairwiseFormFactors(*mesh, caster, ff, progress)
-                            : exactFormFactors(*mesh, caster, ff, progress);
+  const FormFactorSettings ff{settings.estimator, settings.formFactorRays, settings.seed};
+  FormFactorRows rows = estimateFormFactors(*mesh, caster, ff, progress);
   // Pairwise estimates are reciprocal by construction; the others average both directions,
   // then drop what falls below the threshold.
   if (settings.estimator == PatchFormFactorEstimator::Pairwise)

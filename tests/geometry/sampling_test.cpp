@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -65,6 +66,25 @@ TEST(Sampling, UniformTriangleMoments) {
     EXPECT_NEAR(square[k] / kSamples, 1.0 / 6.0, 3e-3) << k;
   }
   EXPECT_NEAR(double(medial) / kSamples, 0.25, 5e-3);
+}
+
+TEST(Sampling, StrataCoverTheSquareOncePerCell) {
+  // The smallest square grid of at least `count` cells, and one point inside each cell.
+  EXPECT_EQ(strataPerSide(0), 1);
+  EXPECT_EQ(strataPerSide(1), 1);
+  EXPECT_EQ(strataPerSide(16), 4);
+  EXPECT_EQ(strataPerSide(17), 5);
+  Rng rng(6, 0);
+  const int side = strataPerSide(37);
+  for (int s = 0; s < side * side; ++s) {
+    const Vec2 u = sampleStratum(s, side, rng);
+    EXPECT_EQ(int(u.x * float(side)), s % side) << s;
+    EXPECT_EQ(int(u.y * float(side)), s / side) << s;
+  }
+  // A permutation pairs the strata of two sets: every index exactly once.
+  std::vector<int> p = randomPermutation(side * side, rng);
+  std::sort(p.begin(), p.end());
+  for (int k = 0; k < side * side; ++k) EXPECT_EQ(p[size_t(k)], k);
 }
 
 TEST(Sampling, OrthonormalBasisIsRightHanded) {

@@ -107,11 +107,7 @@ Estimate estimate(const Scene& scene, float patchSize, FormFactorSettings settin
   std::vector<double> values;
   for (int r = 0; r < runs; ++r) {
     settings.seed = uint64_t(1000 + r);
-    FormFactorRows rows = settings.estimator == FormFactorEstimator::Hemisphere
-                              ? hemisphereFormFactors(mesh, caster, settings, {})
-                          : settings.estimator == FormFactorEstimator::Pairwise
-                              ? pairwiseFormFactors(mesh, caster, settings, {})
-                              : exactFormFactors(mesh, caster, settings, {});
+    FormFactorRows rows = estimateFormFactors(mesh, caster, settings, {});
     values.push_back(
         test::objectFormFactor(mesh, FormFactorTable::fromRows(std::move(rows), 0.0f)));
   }
@@ -124,11 +120,11 @@ Estimate estimate(const Scene& scene, float patchSize, FormFactorSettings settin
 }
 
 // Ray-cast estimates: within 3 standard errors (of 8 independent runs) of the closed form; the
-// standard error itself is held small so that the check has teeth.
-TEST(HemisphereFormFactors, WithinThreeStandardErrors) {
+// standard error itself is held small so that the check has teeth. Patches are the cases' size
+// times `patchScale`.
+void expectWithinThreeStandardErrors(const FormFactorSettings& settings, float patchScale) {
   for (const Case& c : cases()) {
-    const Estimate e =
-        estimate(c.scene(), c.patchSize, {FormFactorEstimator::Hemisphere, 64, 1}, 8);
+    const Estimate e = estimate(c.scene(), patchScale * c.patchSize, settings, 8);
     SCOPED_TRACE(c.name);
     EXPECT_LT(e.standardError, 0.01 * c.reference);
     EXPECT_NEAR(e.mean, c.reference, 3 * e.standardError + c.shapeTolerance * c.reference)
@@ -136,15 +132,12 @@ TEST(HemisphereFormFactors, WithinThreeStandardErrors) {
   }
 }
 
+TEST(HemisphereFormFactors, WithinThreeStandardErrors) {
+  expectWithinThreeStandardErrors({FormFactorEstimator::Hemisphere, 64, 1}, 1.0f);
+}
+
 TEST(PairwiseFormFactors, WithinThreeStandardErrors) {
-  for (const Case& c : cases()) {
-    const Estimate e =
-        estimate(c.scene(), 2 * c.patchSize, {FormFactorEstimator::Pairwise, 16, 1}, 8);
-    SCOPED_TRACE(c.name);
-    EXPECT_LT(e.standardError, 0.01 * c.reference);
-    EXPECT_NEAR(e.mean, c.reference, 3 * e.standardError + c.shapeTolerance * c.reference)
-        << "standard error " << e.standardError;
-  }
+  expectWithinThreeStandardErrors({FormFactorEstimator::Pairwise, 16, 1}, 2.0f);
 }
 
 // The exact kernel integrated by the midpoint rule over the receiving patches: deterministic up

@@ -35,6 +35,21 @@ Scene litRoom() {
   return b.build();
 }
 
+// litRoom() solved with the default settings but the patch size.
+struct SolvedRoom {
+  static PatchRadiositySettings withPatchSize(float patchSize) {
+    PatchRadiositySettings s;
+    s.patchSize = patchSize;
+    return s;
+  }
+  explicit SolvedRoom(float patchSize)
+      : settings(withPatchSize(patchSize)), solution(scene, settings) {}
+
+  const Scene scene = litRoom();
+  const PatchRadiositySettings settings;
+  const PatchRadiosity solution;
+};
+
 fs::path freshDir(const std::string& name) {
   const fs::path dir = fs::path(::testing::TempDir()) / name;
   fs::remove_all(dir);
@@ -72,10 +87,10 @@ std::vector<std::string> filesIn(const fs::path& dir) {
 }
 
 TEST(PatchGlbExport, IsTheLitPatchMesh) {
-  const Scene scene = litRoom();
-  PatchRadiositySettings settings;
-  settings.patchSize = 0.125f;
-  const PatchRadiosity solution(scene, settings);
+  const SolvedRoom room(0.125f);
+  const Scene& scene = room.scene;
+  const PatchRadiositySettings& settings = room.settings;
+  const PatchRadiosity& solution = room.solution;
   const fs::path dir = freshDir("radiosity_glb_export");
   const fs::path file = dir / "room.glb";
   solution.exportGlb(file.string());
@@ -155,12 +170,9 @@ TEST(PatchGlbExport, IsTheLitPatchMesh) {
 }
 
 TEST(PatchGlbExport, MissingDirectoryThrowsAndLeavesNothing) {
-  const Scene scene = litRoom();
-  PatchRadiositySettings settings;
-  settings.patchSize = 0.25f;
-  const PatchRadiosity solution(scene, settings);
+  const SolvedRoom room(0.25f);
   const fs::path dir = freshDir("radiosity_glb_missing");
-  EXPECT_THROW(solution.exportGlb((dir / "missing" / "room.glb").string()), std::runtime_error);
+  EXPECT_THROW(room.solution.exportGlb((dir / "missing" / "room.glb").string()), std::runtime_error);
   EXPECT_FALSE(fs::exists(dir / "missing"));
   EXPECT_TRUE(filesIn(dir).empty());
 }

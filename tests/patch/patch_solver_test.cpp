@@ -61,7 +61,7 @@ TEST(PatchSolvers, AgreeWithDenseSolveTo1e5) {
   const PatchMesh mesh(scene, {0.25f, 0});
   const RayCaster caster(scene);
   FormFactorTable table =
-      FormFactorTable::fromRows(hemisphereFormFactors(mesh, caster, {}, {}), 0.0f);
+      FormFactorTable::fromRows(estimateFormFactors(mesh, caster, {}, {}), 0.0f);
   const PatchSystem system = systemOf(scene, mesh);
   table.symmetrize(system.area);
   const std::vector<Vec3d> dense = denseSolve(table, system);
@@ -98,9 +98,7 @@ TEST(FormFactorClosure, ClosedBoxRowsSumToOne) {
   for (auto estimator : {FormFactorEstimator::Hemisphere, FormFactorEstimator::Exact}) {
     const FormFactorSettings settings{estimator, estimator == FormFactorEstimator::Exact ? 64 : 256,
                                       1};
-    const FormFactorRows rows = estimator == FormFactorEstimator::Hemisphere
-                                    ? hemisphereFormFactors(mesh, caster, settings, {})
-                                    : exactFormFactors(mesh, caster, settings, {});
+    const FormFactorRows rows = estimateFormFactors(mesh, caster, settings, {});
     FormFactorTable table = FormFactorTable::fromRows(rows, 0.0f);
     for (size_t i = 0; i < table.rows(); ++i)
       EXPECT_NEAR(table.rowSum(i), 1.0, 0.01) << "row " << i;
