@@ -62,7 +62,7 @@ Color PathIntegrator::directIntegral(const Vec3& p, const Vec3& n, bool misWeigh
   Color sum(0.0f);
   if (!emitters_.empty()) {
     const float choose = rng.uniform();
-    const Vec2 position(rng.uniform(), rng.uniform());
+    const Vec2 position = uniformSquare(rng);
     const EmitterSample s = emitters_.sample(choose, position);
     const Vec3 d = s.point - p;
     const float distance2 = glm::dot(d, d);
@@ -95,7 +95,7 @@ Color PathIntegrator::directIntegral(const Vec3& p, const Vec3& n, bool misWeigh
 }
 
 Ray PathIntegrator::bounce(const Vec3& p, const Vec3& n, float& pdf, Rng& rng) const {
-  const Vec2 u(rng.uniform(), rng.uniform());
+  const Vec2 u = uniformSquare(rng);
   const Vec3 local = sampleCosineHemisphere(u);
   pdf = local.z * glm::one_over_pi<float>();
   Ray r;

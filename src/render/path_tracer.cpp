@@ -7,6 +7,7 @@
 
 #include <chrono>
 
+#include "geometry/sampling.h"
 #include "render/camera_rays.h"
 #include "render/path_integrator.h"
 #include "render/path_tracer_settings.h"
@@ -29,7 +30,7 @@ void renderTile(const PathIntegrator& integrator, const PinholeCamera& camera,
     for (int x = x0; x < x1; ++x) {
       Color sum(0.0f);
       for (int s = 0; s < settings.samplesPerPixel; ++s) {
-        const Vec2 offset(rng.uniform(), rng.uniform());
+        const Vec2 offset = uniformSquare(rng);
         sum += integrator.radiance(camera.ray(x, y, offset), rng);
       }
       image.at(x, y) = sum * weight;

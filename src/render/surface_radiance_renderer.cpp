@@ -3,6 +3,7 @@
 #include <radiosity/surface_radiance.h>
 
 #include "core/rng.h"
+#include "geometry/sampling.h"
 #include "render/camera_rays.h"
 #include "render/progress_ticker.h"
 
@@ -27,7 +28,7 @@ Image renderSurfaceRadiance(const Scene& scene, const Camera& camera, const Surf
         Color sum(0.0f);
         for (int s = 0; s < settings.samplesPerPixel; ++s) {
           // One ray at the pixel centre, jittered ones after it.
-          const Vec2 offset = s == 0 ? Vec2(0.5f) : Vec2(rng.uniform(), rng.uniform());
+          const Vec2 offset = s == 0 ? Vec2(0.5f) : uniformSquare(rng);
           const Ray ray = pinhole.ray(x, y, offset);
           const Hit hit = caster.intersect(ray);
           if (!hit.valid()) continue;

@@ -122,7 +122,11 @@ Scene makeRoom(int n) {
   for (int i = 0; i < n; ++i) {
     Rng rng(0x726f6f6dULL, uint64_t(i));
     const Vec3 centre((float(i % cols) + 0.5f) * kCell, 0.0f, (float(i / cols) + 0.5f) * kCell);
-    const Vec3 offset((rng.uniform() - 0.5f) * 0.4f, 0.0f, (rng.uniform() - 0.5f) * 0.4f);
+    // z's shift is drawn first, the order GCC gave the former one-expression form (unspecified in
+    // C++), so that the rooms stay as they were whatever the compiler.
+    const float dz = (rng.uniform() - 0.5f) * 0.4f;
+    const float dx = (rng.uniform() - 0.5f) * 0.4f;
+    const Vec3 offset(dx, 0.0f, dz);
     const int kind = i % 3;
     const char* names[] = {"table", "boxes", "shelf"};
     const uint32_t object = b.addObject(fmt::format("{}_{}", names[kind], i));
