@@ -15,58 +15,52 @@ namespace rad::cli {
 
 namespace {
 
-// One value of an enum-valued setting. Each such setting has one table of these: its flag's
-// check and help and the conversion of the flag's or scene key's name all read it, so a new
-// value is one more row.
-template <class Enum>
-struct NamedValue {
-  const char* name;
-  Enum value;
-  const char* help;  ///< what the value means, for --help; "" if the name says it
-};
-
-constexpr NamedValue<PatchFormFactorEstimator> kEstimators[] = {
-    {"hemisphere", PatchFormFactorEstimator::Hemisphere, "rays from each patch"},
-    {"pairwise", PatchFormFactorEstimator::Pairwise, "point pairs"},
-    {"exact", PatchFormFactorEstimator::Exact, "point-to-polygon, visibility rays"}};
-constexpr NamedValue<PatchSolverKind> kSolvers[] = {
-    {"gauss-seidel", PatchSolverKind::GaussSeidel, ""},
-    {"jacobi", PatchSolverKind::Jacobi, ""},
-    {"progressive", PatchSolverKind::Progressive, ""}};
-constexpr NamedValue<PatchShading> kShadings[] = {{"smooth", PatchShading::Smooth, ""},
-                                                  {"flat", PatchShading::Flat, ""}};
+// What a choice means, for --help, where its name does not say it.
+const char* helpOf(PatchFormFactorEstimator e) {
+  switch (e) {
+    case PatchFormFactorEstimator::Hemisphere:
+      return "rays from each patch";
+    case PatchFormFactorEstimator::Pairwise:
+      return "point pairs";
+    case PatchFormFactorEstimator::Exact:
+      return "point-to-polygon, visibility rays";
+  }
+  return "";
+}
+const char* helpOf(PatchSolverKind) { return ""; }
+const char* helpOf(PatchShading) { return ""; }
 
 template <class Enum, size_t N>
-std::vector<std::string> namesOf(const NamedValue<Enum> (&values)[N]) {
+std::vector<std::string> namesOf(const NamedChoice<Enum> (&choices)[N]) {
   std::vector<std::string> names;
-  for (const NamedValue<Enum>& v : values) names.push_back(v.name);
+  for (const NamedChoice<Enum>& c : choices) names.push_back(c.name);
   return names;
 }
 
-// The flag, checked against the table, with the names (and the default) listed in its help:
-// "<what>: a (help, default), b, c".
+// The flag, checked against the library's table of names (patch_radiosity.h), with the names
+// (and the default) listed in its help: "<what>: a (help, default), b, c".
 template <class Enum, size_t N>
 CLI::Option* addNamedOption(CLI::App& command, const std::string& flag, std::string& name,
-                            const NamedValue<Enum> (&values)[N], Enum defaultValue,
+                            const NamedChoice<Enum> (&choices)[N], Enum defaultValue,
                             const std::string& what) {
   std::vector<std::string> items;
-  for (const NamedValue<Enum>& v : values) {
-    std::string note = v.help;
-    if (v.value == defaultValue) note += note.empty() ? "default" : ", default";
-    items.push_back(note.empty() ? v.name : fmt::format("{} ({})", v.name, note));
+  for (const NamedChoice<Enum>& c : choices) {
+    std::string note = helpOf(c.value);
+    if (c.value == defaultValue) note += note.empty() ? "default" : ", default";
+    items.push_back(note.empty() ? c.name : fmt::format("{} ({})", c.name, note));
   }
   return command.add_option(flag, name, fmt::format("{}: {}", what, fmt::join(items, ", ")))
-      ->check(CLI::IsMember(namesOf(values)));
+      ->check(CLI::IsMember(namesOf(choices)));
 }
 
-// The value a name stands for. The flag and the scene loader check the names they take, so an
-// unknown one here means their lists and this table differ; it is still bad input, named.
+// The value a name stands for. The flag and the scene loader check names against the same
+// table, so an unknown one here is a bug; it is still reported as bad input, named.
 template <class Enum, size_t N>
-Enum valueOf(const NamedValue<Enum> (&values)[N], const std::string& name,
+Enum valueOf(const NamedChoice<Enum> (&choices)[N], const std::string& name,
              const std::string& where) {
-  for (const NamedValue<Enum>& v : values)
-    if (name == v.name) return v.value;
-  throw InputError(where, fmt::format("'{}' is not one of {}", name, fmt::join(namesOf(values), ", ")));
+  for (const NamedChoice<Enum>& c : choices)
+    if (name == c.name) return c.value;
+  throw InputError(where, fmt::format("'{}' is not one of {}", name, fmt::join(namesOf(choices), ", ")));
 }
 
 // The flag's value if it was given, else the scene's if it has one; `value` as it is otherwise.
@@ -136,7 +130,7 @@ void MethodOptions::addPatchFlags(CLI::App& c) {
                               "Approximate number of patches (default 4000)")
                      ->check(CLI::Range(size_t(1), size_t(1) << 32))->group(patch);
   const PatchRadiositySettings defaults;
-  estimatorFlag_ = addNamedOption(c, "--ff-estimator", estimatorName_, kEstimators,
+  estimatorFlag_ = addNamedOption(c, "--ff-estimator", estimatorName_, kFormFactorEstimatorNames,
                                   defaults.estimator, "Form factors by")->group(patch);
   ffRaysFlag_ = c.add_option("--ff-rays", patch_.formFactorRays,
                              "Rays per patch (hemisphere, default 256), point pairs per patch pair "
@@ -148,13 +142,13 @@ void MethodOptions::addPatchFlags(CLI::App& c) {
   cacheDirFlag_ = c.add_option("--cache-dir", patch_.cacheDir,
                                "Form-factor cache directory (default $XDG_CACHE_HOME/radiosity, "
                                "else ~/.cache/radiosity; none: no cache)")->group(patch);
-  solverFlag_ = addNamedOption(c, "--solver", solverName_, kSolvers, defaults.solver,
+  solverFlag_ = addNamedOption(c, "--solver", solverName_, kPatchSolverNames, defaults.solver,
                                "Linear solver")->group(patch);
   maxIterationsFlag_ = c.add_option("--max-iterations", patch_.maxIterations,
                                     "Solver sweeps at most (progressive: shots / patches; "
                                     "default 1000)")
                            ->check(CLI::Range(1, 100000000))->group(patch);
-  shadingFlag_ = addNamedOption(c, "--shading", shadingName_, kShadings, defaults.shading,
+  shadingFlag_ = addNamedOption(c, "--shading", shadingName_, kPatchShadingNames, defaults.shading,
                                 "Rendering of the patches")->group(patch);
 }
 
@@ -170,14 +164,14 @@ void MethodOptions::resolvePatch(const Scene& scene) {
   takeUnlessFlagged(patchSizeFlag_, patch_.patchSize, s.patchSize);
   takeUnlessFlagged(patchesFlag_, patch_.targetPatches, s.patches);
   takeNamed(estimatorFlag_, estimatorName_, s.ffEstimator, "ff_estimator", patch_.estimator,
-            kEstimators);
+            kFormFactorEstimatorNames);
   takeUnlessFlagged(ffRaysFlag_, patch_.formFactorRays, s.ffRays);
   if (!*thresholdFlag_ && s.ffThreshold) patch_.formFactorThreshold = float(*s.ffThreshold);
   if (!*cacheDirFlag_) patch_.cacheDir = s.cacheDir.value_or(defaultPatchCacheDir());
   if (patch_.cacheDir == "none") patch_.cacheDir.clear();
-  takeNamed(solverFlag_, solverName_, s.patchSolver, "solver", patch_.solver, kSolvers);
+  takeNamed(solverFlag_, solverName_, s.patchSolver, "solver", patch_.solver, kPatchSolverNames);
   takeUnlessFlagged(maxIterationsFlag_, patch_.maxIterations, s.maxIterations);
-  takeNamed(shadingFlag_, shadingName_, s.shading, "shading", patch_.shading, kShadings);
+  takeNamed(shadingFlag_, shadingName_, s.shading, "shading", patch_.shading, kPatchShadingNames);
   // --tolerance is shared with the voxel method, whose default (0: run every sweep) differs.
   patch_.tolerance = *toleranceFlag_ ? voxel_.tolerance : s.tolerance.value_or(1e-3);
 }

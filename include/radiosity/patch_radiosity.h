@@ -23,6 +23,24 @@ enum class PatchFormFactorEstimator { Hemisphere, Pairwise, Exact };
 enum class PatchSolverKind { Jacobi, GaussSeidel, Progressive };
 enum class PatchShading { Smooth, Flat };
 
+/// A choice as scene files, the command line and the stats spell it. One table per enum, so that
+/// a new value is one more row wherever names are read or written.
+template <class Enum>
+struct NamedChoice {
+  const char* name;
+  Enum value;
+};
+inline constexpr NamedChoice<PatchFormFactorEstimator> kFormFactorEstimatorNames[] = {
+    {"hemisphere", PatchFormFactorEstimator::Hemisphere},
+    {"pairwise", PatchFormFactorEstimator::Pairwise},
+    {"exact", PatchFormFactorEstimator::Exact}};
+inline constexpr NamedChoice<PatchSolverKind> kPatchSolverNames[] = {
+    {"gauss-seidel", PatchSolverKind::GaussSeidel},
+    {"jacobi", PatchSolverKind::Jacobi},
+    {"progressive", PatchSolverKind::Progressive}};
+inline constexpr NamedChoice<PatchShading> kPatchShadingNames[] = {{"smooth", PatchShading::Smooth},
+                                                                   {"flat", PatchShading::Flat}};
+
 struct PatchRadiositySettings {
   float patchSize = 0.0f;       ///< longest patch edge in scene units; 0: from targetPatches
   size_t targetPatches = 4000;  ///< approximate patch count when patchSize is 0

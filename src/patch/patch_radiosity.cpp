@@ -57,14 +57,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 const char* solverName(PatchSolverKind s) {
-  switch (s) {
-    case PatchSolverKind::Jacobi:
-      return "jacobi";
-    case PatchSolverKind::GaussSeidel:
-      return "gauss-seidel";
-    case PatchSolverKind::Progressive:
-      return "progressive";
-  }
+  for (const NamedChoice<PatchSolverKind>& c : kPatchSolverNames)
+    if (c.value == s) return c.name;
   return "";
 }
 

@@ -163,6 +163,12 @@ TEST_F(JsonErrors, WrongTypesAndRanges) {
   expectMessage(load(withLight(R"({"type": "laser", "position": [0,1,0]})")), {"/lights/0/type", "laser"});
   expectMessage(load("{\"solver\": {\"method\": \"magic\"}}"), {"/solver/method", "patch, voxel"});
   expectMessage(load("{\"solver\": {\"spp\": 0}}"), {"/solver/spp", "out of range"});
+  // The patch method's choices are checked against the names the library spells them by.
+  expectMessage(load("{\"solver\": {\"solver\": \"gauss\"}}"),
+                {"/solver/solver", "'gauss'", "gauss-seidel, jacobi, progressive"});
+  expectMessage(load("{\"solver\": {\"ff_estimator\": \"rays\"}}"),
+                {"/solver/ff_estimator", "hemisphere, pairwise, exact"});
+  expectMessage(load("{\"solver\": {\"shading\": \"gouraud\"}}"), {"/solver/shading", "smooth, flat"});
   expectMessage(load("{\"dynamic_objects\": []}"), {"/dynamic_objects", "not supported"});
   expectMessage(load("{\"geometry\": [{\"file\": \"missing.obj\"}]}"), {"missing.obj", "cannot open"});
   expectMessage(load("{\"geometry\": [{\"file\": \"a.stl\"}]}"), {"/geometry/0/file", "'.stl'"});

@@ -10,6 +10,7 @@
 
 #include <radiosity/error.h>
 #include <radiosity/ies_profile.h>
+#include <radiosity/patch_radiosity.h>
 #include <radiosity/scene_builder.h>
 
 #include <fmt/format.h>
@@ -285,18 +286,21 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
     s.tangentCorrection = r.boolean(j["tangent_correction"], ptr + "/tangent_correction");
   if (j.contains("first_shot")) s.firstShot = r.boolean(j["first_shot"], ptr + "/first_shot");
   if (j.contains("direct_samples")) s.directSamples = int(integer("direct_samples", 1, 1 << 20));
-  auto choice = [&](const char* key, std::initializer_list<const char*> allowed) {
+  auto choice = [&](const char* key, const auto& allowed) {
     const std::string v = r.string(j[key], ptr + "/" + key);
-    for (const char* a : allowed)
-      if (v == a) return v;
+    std::vector<std::string> names;
+    for (const auto& a : allowed) {
+      if (v == a.name) return v;
+      names.push_back(a.name);
+    }
     r.fail(ptr + "/" + key,
-           fmt::format("unknown value '{}' (expected {})", v, fmt::join(allowed, ", ")));
+           fmt::format("unknown value '{}' (expected {})", v, fmt::join(names, ", ")));
     return v;
   };
   if (j.contains("patch_size")) s.patchSize = float(positive("patch_size"));
   if (j.contains("patches")) s.patches = size_t(integer("patches", 1, int64_t(1) << 32));
   if (j.contains("ff_estimator"))
-    s.ffEstimator = choice("ff_estimator", {"hemisphere", "pairwise", "exact"});
+    s.ffEstimator = choice("ff_estimator", kFormFactorEstimatorNames);
   if (j.contains("ff_rays")) s.ffRays = int(integer("ff_rays", 1, 1 << 24));
   if (j.contains("ff_threshold")) {
     const double v = r.number(j["ff_threshold"], ptr + "/ff_threshold");
@@ -306,9 +310,9 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
   }
   if (j.contains("cache_dir")) s.cacheDir = r.string(j["cache_dir"], ptr + "/cache_dir");
   if (j.contains("solver"))
-    s.patchSolver = choice("solver", {"jacobi", "gauss-seidel", "progressive"});
+    s.patchSolver = choice("solver", kPatchSolverNames);
   if (j.contains("max_iterations")) s.maxIterations = int(integer("max_iterations", 1, 100000000));
-  if (j.contains("shading")) s.shading = choice("shading", {"smooth", "flat"});
+  if (j.contains("shading")) s.shading = choice("shading", kPatchShadingNames);
   return s;
 }
 
