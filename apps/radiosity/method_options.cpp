@@ -235,6 +235,7 @@ PatchRadiosity solvePatches(const Scene& scene, const PatchRadiositySettings& se
                          {"nodes", p.nodes},
                          {"vertices", p.vertices},
                          {"table_entries", p.nonZeros},
+                         {"exact_columns", p.exactColumns},
                          {"table_bytes", p.tableBytes},
                          {"dropped_entry_fraction", p.droppedEntryFraction},
                          {"dropped_sum_fraction", p.droppedSumFraction},

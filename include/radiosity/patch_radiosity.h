@@ -60,6 +60,9 @@ struct PatchRadiosityStats {
   size_t patches = 0, nodes = 0, vertices = 0;
   float patchSize = 0.0f;
   uint64_t rays = 0;    ///< form-factor rays cast
+  /// Emitter patches whose form-factor columns were computed exactly (hemisphere estimator; 0:
+  /// none, the emitters were too many or the estimator is another).
+  size_t exactColumns = 0;
   size_t nonZeros = 0;  ///< entries of the form-factor table (or of the rows computed)
   size_t tableBytes = 0;
   double droppedEntryFraction = 0.0, droppedSumFraction = 0.0;  ///< by the threshold

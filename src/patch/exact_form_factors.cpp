@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <ranges>
 
 #include "core/rng.h"
 #include "geometry/sampling.h"
@@ -55,59 +56,101 @@ std::vector<QuadraturePoint> midpointRule(const PatchMesh& mesh, uint32_t patch,
   return q;
 }
 
+// The exact estimator's pair computation for the rows of any set of columns.
+class ExactKernel {
+ public:
+  ExactKernel(const PatchMesh& mesh, const RayCaster& caster)
+      : mesh_(mesh), caster_(caster), polygons_(mesh.size()), offset_(mesh.rayOffset()) {
+    for (uint32_t j = 0; j < mesh.size(); ++j) {
+      std::array<Vec3, 4> c;
+      const int k = mesh.corners(j, c);
+      for (int m = 0; m < k; ++m) polygons_[j].push_back(Vec3d(c[m]));
+    }
+  }
+
+  /// (j, F_ij) for each patch j != i of `columns` (ascending) with F_ij > 0.
+  template <class Columns>
+  std::vector<FormFactorEntry> row(uint32_t i, int points, Rng& rng, const Columns& columns) const {
+    const Patch& pi = mesh_.patches()[i];
+    const std::vector<QuadraturePoint> q = midpointRule(mesh_, i, points);
+    std::vector<Ray> rays(q.size());
+    std::vector<uint8_t> blocked(q.size());
+    std::vector<double> f(q.size());
+    std::vector<FormFactorEntry> row;
+    for (const uint32_t j : columns) {
+      if (j == i) continue;
+      // The kernel first: it is 0 wherever j does not face the point, and then no ray is needed.
+      double any = 0.0;
+      for (size_t k = 0; k < q.size(); ++k) {
+        f[k] = pointPolygonFormFactor(Vec3d(q[k].position), Vec3d(pi.normal), polygons_[j]);
+        any += f[k];
+      }
+      if (any <= 0.0) {
+        // Skip the targets' random numbers all the same, so that each pair keeps its targets.
+        for (size_t k = 0; k < 2 * q.size(); ++k) rng.next();
+        continue;
+      }
+      const Patch& pj = mesh_.patches()[j];
+      for (size_t k = 0; k < q.size(); ++k) {
+        float w;
+        const Vec3 target = mesh_.samplePoint(j, uniformSquare(rng), w) + offset_ * pj.normal;
+        const Vec3 origin = q[k].position + offset_ * pi.normal;
+        rays[k] = {origin, target - origin, 0.0f, 1.0f};
+      }
+      caster_.occluded(rays, blocked);
+      double sum = 0.0;
+      for (size_t k = 0; k < q.size(); ++k) sum += blocked[k] ? 0.0 : q[k].weight * f[k];
+      if (sum > 0.0) row.push_back({j, float(sum)});
+    }
+    return row;
+  }
+
+ private:
+  const PatchMesh& mesh_;
+  const RayCaster& caster_;
+  std::vector<std::vector<Vec3d>> polygons_;
+  float offset_;
+};
+
 }  // namespace
 
 FormFactorRows exactFormFactors(const PatchMesh& mesh, const RayCaster& caster,
                                 const FormFactorSettings& settings,
                                 const ProgressCallback& progress) {
-  const size_t n = mesh.size();
-  std::vector<std::vector<Vec3d>> polygons(n);
-  for (uint32_t j = 0; j < n; ++j) {
-    std::array<Vec3, 4> c;
-    const int k = mesh.corners(j, c);
-    for (int m = 0; m < k; ++m) polygons[j].push_back(Vec3d(c[m]));
-  }
-  const float offset = mesh.rayOffset();
-  FormFactorRows rows(n);
-  ProgressTicker ticker(progress, n);
-  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+  const ExactKernel kernel(mesh, caster);
+  const auto all = std::views::iota(uint32_t(0), uint32_t(mesh.size()));
+  FormFactorRows rows(mesh.size());
+  ProgressTicker ticker(progress, rows.size());
+  tbb::parallel_for(size_t(0), rows.size(), [&](size_t i) {
     if (ticker.cancelled()) return;
     Rng rng(settings.seed, i);
-    const Patch& pi = mesh.patches()[i];
-    const std::vector<QuadraturePoint> points = midpointRule(mesh, uint32_t(i), settings.rays);
-    std::vector<Ray> rays(points.size());
-    std::vector<uint8_t> blocked(points.size());
-    std::vector<double> f(points.size());
-    for (uint32_t j = 0; j < n; ++j) {
-      if (j == i) continue;
-      // The kernel first: it is 0 wherever j does not face the point, and then no ray is needed.
-      double any = 0.0;
-      for (size_t k = 0; k < points.size(); ++k) {
-        f[k] = pointPolygonFormFactor(Vec3d(points[k].position), Vec3d(pi.normal), polygons[j]);
-        any += f[k];
-      }
-      if (any <= 0.0) {
-        // Skip the targets' random numbers all the same, so that each pair keeps its targets.
-        for (size_t k = 0; k < 2 * points.size(); ++k) rng.next();
-        continue;
-      }
-      const Patch& pj = mesh.patches()[j];
-      for (size_t k = 0; k < points.size(); ++k) {
-        float w;
-        const Vec3 target =
-            mesh.samplePoint(j, uniformSquare(rng), w) + offset * pj.normal;
-        const Vec3 origin = points[k].position + offset * pi.normal;
-        rays[k] = {origin, target - origin, 0.0f, 1.0f};
-      }
-      caster.occluded(rays, blocked);
-      double sum = 0.0;
-      for (size_t k = 0; k < points.size(); ++k) sum += blocked[k] ? 0.0 : points[k].weight * f[k];
-      if (sum > 0.0) rows[i].push_back({j, float(sum)});
-    }
+    rows[i] = kernel.row(uint32_t(i), settings.rays, rng, all);
     ticker.tick();
   });
   ticker.throwIfCancelled();
   return rows;
+}
+
+ExactColumns exactColumns(const PatchMesh& mesh, const RayCaster& caster,
+                          const std::vector<uint32_t>& columns, uint64_t seed) {
+  const ExactKernel kernel(mesh, caster);
+  ExactColumns exact;
+  exact.isExact.assign(mesh.size(), 0);
+  for (const uint32_t j : columns) exact.isExact[j] = 1;
+  exact.toExact.resize(mesh.size());
+  tbb::parallel_for(size_t(0), mesh.size(), [&](size_t i) {
+    // A stream of its own, apart from the hemisphere rays' (seed, i).
+    Rng rng(seed ^ 0x6578616374636f6cull, i);
+    exact.toExact[i] = kernel.row(uint32_t(i), kExactColumnPoints, rng, columns);
+  });
+  // The exact patches' rows by reciprocity, in ascending column order (i ascends).
+  exact.exactRows.resize(mesh.size());
+  const std::vector<Patch>& patches = mesh.patches();
+  for (uint32_t i = 0; i < mesh.size(); ++i)
+    for (const FormFactorEntry& e : exact.toExact[i])
+      if (!exact.isExact[i])
+        exact.exactRows[e.column].push_back({i, e.value * patches[i].area / patches[e.column].area});
+  return exact;
 }
 
 }  // namespace rad

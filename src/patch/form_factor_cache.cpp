@@ -17,7 +17,7 @@ namespace rad {
 namespace {
 
 constexpr char kMagic[8] = {'R', 'A', 'D', 'F', 'F', 'T', 'B', 'L'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: the emitters' columns exact (ExactColumns)
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 16 + 16 + 16;
 
 uint64_t mix(uint64_t z) {
@@ -123,6 +123,8 @@ FormFactorCacheKey formFactorCacheKey(const Scene& scene, float patchSize,
   }
   h.value(patchSize);
   h.value(int(settings.estimator));
+  h.value(uint64_t(settings.exactColumns.size()));
+  h.bytes(settings.exactColumns.data(), settings.exactColumns.size() * sizeof(uint32_t));
   h.value(settings.rays);
   h.value(settings.seed);
   h.value(threshold);

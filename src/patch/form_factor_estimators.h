@@ -29,13 +29,35 @@ struct FormFactorSettings {
   /// exact: points per patch (rounded up to a square), each with one visibility ray per patch.
   int rays = 256;
   uint64_t seed = 1;
+  /// hemisphere: patches whose columns are computed exactly instead (the emitters, see
+  /// ExactColumns), ascending; empty: none.
+  std::vector<uint32_t> exactColumns = {};
 };
 
 using FormFactorRows = std::vector<std::vector<FormFactorEntry>>;
 
-/// One row by hemisphere ray casting (entries merged by column). Thread-safe.
+/// The columns of a few patches (the emitters) by the exact estimator, for the hemisphere one:
+/// a small light is found by few of a patch's rays (a 2% solid angle by 5 of 256), so its light
+/// on each patch varies by tens of percent from patch to patch (a mottled picture), while the
+/// exact kernel with one visibility ray per point is exact wherever the light is wholly seen or
+/// hidden. The rows of those patches follow from their columns by reciprocity, so that the
+/// table's symmetrization averages equal values.
+struct ExactColumns {
+  std::vector<uint8_t> isExact;  ///< per patch: its column is exact
+  FormFactorRows toExact;        ///< per patch i: (j, F_ij) for the exact columns j
+  FormFactorRows exactRows;      ///< per exact patch j: (i, F_ji = F_ij A_i / A_j); else empty
+};
+/// Points per patch for the exact columns (a 4 x 4 midpoint rule).
+constexpr int kExactColumnPoints = 16;
+/// Computes the exact columns `columns` (ascending) for every patch. Thread-safe.
+ExactColumns exactColumns(const PatchMesh& mesh, const RayCaster& caster,
+                          const std::vector<uint32_t>& columns, uint64_t seed);
+
+/// One row by hemisphere ray casting (entries merged by column), with the exact columns
+/// `exact` (if any) in place of what its rays find there. Thread-safe.
 std::vector<FormFactorEntry> hemisphereRow(const PatchMesh& mesh, const RayCaster& caster,
-                                           uint32_t patch, int rays, uint64_t seed);
+                                           uint32_t patch, int rays, uint64_t seed,
+                                           const ExactColumns* exact = nullptr);
 
 /// Every row by settings.estimator, the one place that maps the kind to its estimator (below).
 /// Throws rad::Cancelled if `progress` returns false.

@@ -3,11 +3,13 @@
 // 4.9.4; P. Shirley, "Radiosity via ray tracing", Graphics Gems II (1991). A cosine-weighted
 // direction from a uniform point of patch i lands on patch j with probability F_ij. Points and
 // directions are each stratified (jittered grids), their strata paired by a random permutation.
+// The emitters' columns can be computed exactly instead (ExactColumns): direct light without noise.
 #include <radiosity/error.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/rng.h"
 #include "geometry/sampling.h"
@@ -16,8 +18,31 @@
 
 namespace rad {
 
+namespace {
+
+// Sorts a row by column and adds up repeated columns: the rows leave here as fromRows takes them.
+void mergeByColumn(std::vector<FormFactorEntry>& row) {
+  std::sort(row.begin(), row.end(), [](auto& a, auto& b) { return a.column < b.column; });
+  size_t out = 0;
+  for (size_t k = 0; k < row.size();) {
+    FormFactorEntry e = row[k++];
+    while (k < row.size() && row[k].column == e.column) e.value += row[k++].value;
+    row[out++] = e;
+  }
+  row.resize(out);
+}
+
+}  // namespace
+
 std::vector<FormFactorEntry> hemisphereRow(const PatchMesh& mesh, const RayCaster& caster,
-                                           uint32_t patch, int rays, uint64_t seed) {
+                                           uint32_t patch, int rays, uint64_t seed,
+                                           const ExactColumns* exact) {
+  if (exact && exact->isExact[patch]) {
+    std::vector<FormFactorEntry> row = exact->exactRows[patch];
+    row.insert(row.end(), exact->toExact[patch].begin(), exact->toExact[patch].end());
+    mergeByColumn(row);
+    return row;
+  }
   const int side = strataPerSide(rays);
   const int n = side * side;
   Rng rng(seed, patch);
@@ -41,28 +66,28 @@ std::vector<FormFactorEntry> hemisphereRow(const PatchMesh& mesh, const RayCaste
     if (!hits[k].valid()) continue;
     const Vec3 at = batch[k].origin + hits[k].distance * batch[k].direction;
     const uint32_t j = mesh.locate(hits[k].triangle, hits[k].frontFace, at).patch;
-    if (j != kNoPatch && j != patch) row.push_back({j, weight[k] / float(n)});
+    // What lands on an exact column is left to its exact value.
+    if (j != kNoPatch && j != patch && !(exact && exact->isExact[j]))
+      row.push_back({j, weight[k] / float(n)});
   }
-  // The one place where repeated columns are merged: the rows leave here as fromRows takes them.
-  std::sort(row.begin(), row.end(), [](auto& a, auto& b) { return a.column < b.column; });
-  size_t out = 0;
-  for (size_t k = 0; k < row.size();) {
-    FormFactorEntry e = row[k++];
-    while (k < row.size() && row[k].column == e.column) e.value += row[k++].value;
-    row[out++] = e;
-  }
-  row.resize(out);
+  if (exact) row.insert(row.end(), exact->toExact[patch].begin(), exact->toExact[patch].end());
+  mergeByColumn(row);
   return row;
 }
 
 FormFactorRows hemisphereFormFactors(const PatchMesh& mesh, const RayCaster& caster,
                                      const FormFactorSettings& settings,
                                      const ProgressCallback& progress) {
+  const std::optional<ExactColumns> exact =
+      settings.exactColumns.empty()
+          ? std::nullopt
+          : std::optional(exactColumns(mesh, caster, settings.exactColumns, settings.seed));
   FormFactorRows rows(mesh.size());
   ProgressTicker ticker(progress, rows.size());
   tbb::parallel_for(size_t(0), rows.size(), [&](size_t i) {
     if (ticker.cancelled()) return;
-    rows[i] = hemisphereRow(mesh, caster, uint32_t(i), settings.rays, settings.seed);
+    rows[i] = hemisphereRow(mesh, caster, uint32_t(i), settings.rays, settings.seed,
+                            exact ? &*exact : nullptr);
     ticker.tick();
   });
   ticker.throwIfCancelled();

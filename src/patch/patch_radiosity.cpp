@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 #include <glm/gtc/constants.hpp>
 
@@ -28,6 +29,7 @@ struct PatchRadiosity::Impl {
   std::vector<Color> vertexIrradiance;
   PatchRadiosityStats stats;
 
+  FormFactorSettings formFactorSettings() const;
   FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);
   FormFactorTable computeTable(const RayCaster& caster, const ProgressCallback& progress);
   void solve(const RayCaster& caster, const ProgressCallback& progress);
@@ -82,11 +84,28 @@ void recordRowSums(const std::vector<double>& sums, PatchRadiosityStats& stats) 
   stats.rowSumMean = total / double(sums.size());
 }
 
+// Emitter columns beyond this many (patch, emitter) pairs are left to the hemisphere rays: the
+// exact columns cost 16 kernel evaluations a pair (about 1 s per million pairs on 2 cores).
+constexpr double kExactColumnPairs = 2e6;
+
 }  // namespace
+
+FormFactorSettings PatchRadiosity::Impl::formFactorSettings() const {
+  FormFactorSettings ff{settings.estimator, settings.formFactorRays, settings.seed, {}};
+  // The hemisphere estimator takes the emitters' columns exactly (ExactColumns), while they are
+  // few: large emitters are found by enough of every patch's rays anyway.
+  if (settings.estimator != PatchFormFactorEstimator::Hemisphere) return ff;
+  for (uint32_t p = 0; p < mesh->size(); ++p)
+    if (maxComponent(scene->materials[mesh->patches()[p].material].emission) > 0.0f)
+      ff.exactColumns.push_back(p);
+  if (double(ff.exactColumns.size()) * double(mesh->size()) > kExactColumnPairs)
+    ff.exactColumns.clear();
+  return ff;
+}
 
 FormFactorTable PatchRadiosity::Impl::computeTable(const RayCaster& caster,
                                                    const ProgressCallback& progress) {
-  const FormFactorSettings ff{settings.estimator, settings.formFactorRays, settings.seed};
+  const FormFactorSettings ff = formFactorSettings();
   FormFactorRows rows = estimateFormFactors(*mesh, caster, ff, progress);
   // Pairwise estimates are reciprocal by construction; the others average both directions,
   // then drop what falls below the threshold.
@@ -102,7 +121,8 @@ FormFactorTable PatchRadiosity::Impl::computeTable(const RayCaster& caster,
 FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
                                                   const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
-  const FormFactorSettings ff{settings.estimator, settings.formFactorRays, settings.seed};
+  const FormFactorSettings ff = formFactorSettings();
+  stats.exactColumns = ff.exactColumns.size();
   const FormFactorCacheKey key =
       formFactorCacheKey(*scene, mesh->patchSize(), ff, settings.formFactorThreshold);
   std::filesystem::path file;
@@ -130,10 +150,17 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
   std::vector<std::vector<uint32_t>> columns(mesh->size());
   std::vector<std::vector<float>> values(mesh->size());
   std::vector<double> sums;
+  const auto start = std::chrono::steady_clock::now();
+  const FormFactorSettings ff = formFactorSettings();
+  stats.exactColumns = ff.exactColumns.size();
+  const std::optional<ExactColumns> exact =
+      ff.exactColumns.empty() ? std::nullopt
+                              : std::optional(exactColumns(*mesh, caster, ff.exactColumns, ff.seed));
+  stats.formFactorSeconds += secondsSince(start);
   auto row = [&](uint32_t i) {
     const auto start = std::chrono::steady_clock::now();
-    for (const FormFactorEntry& e :
-         hemisphereRow(*mesh, caster, i, settings.formFactorRays, settings.seed)) {
+    for (const FormFactorEntry& e : hemisphereRow(*mesh, caster, i, ff.rays, ff.seed,
+                                                  exact ? &*exact : nullptr)) {
       if (!(e.value >= settings.formFactorThreshold)) continue;
       columns[i].push_back(e.column);
       values[i].push_back(e.value);

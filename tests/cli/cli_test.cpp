@@ -238,7 +238,13 @@ TEST(Cli, SolvesWithPatchesExportsAndCaches) {
   const nlohmann::json j = readJson(stats);
   EXPECT_EQ(j["method"], "patch");
   EXPECT_GE(j["counts"]["patches"].get<int>(), 500);
-  EXPECT_EQ(j["counts"]["rays"].get<double>(), 64.0 * j["counts"]["patches"].get<double>());
+  // 64 hemisphere rays a patch, plus one visibility ray per quadrature point (16) for each pair
+  // of a patch and a light patch facing it, the light's columns being exact.
+  const double patches = j["counts"]["patches"].get<double>(), rays = j["counts"]["rays"].get<double>();
+  const double exactColumns = j["patch"]["exact_columns"].get<double>();
+  EXPECT_GE(exactColumns, 1.0);
+  EXPECT_GT(rays, 64.0 * patches);
+  EXPECT_LE(rays, 64.0 * patches + 16.0 * patches * exactColumns);
   EXPECT_GE(j["iterations"].get<int>(), 1);
   EXPECT_LT(j["residual"].get<double>(), 1e-3);  // the default tolerance
   ASSERT_EQ(j["objects"].size(), 8u);
