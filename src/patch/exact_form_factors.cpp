@@ -76,7 +76,7 @@ class ExactKernel {
     std::vector<Ray> rays(q.size());
     std::vector<uint8_t> blocked(q.size());
     std::vector<double> f(q.size());
-    std::vector<FormFactorEntry> row;
+    std::vector<FormFactorEntry> entries;
     for (const uint32_t j : columns) {
       if (j == i) continue;
       // The kernel first: it is 0 wherever j does not face the point, and then no ray is needed.
@@ -100,9 +100,9 @@ class ExactKernel {
       caster_.occluded(rays, blocked);
       double sum = 0.0;
       for (size_t k = 0; k < q.size(); ++k) sum += blocked[k] ? 0.0 : q[k].weight * f[k];
-      if (sum > 0.0) row.push_back({j, float(sum)});
+      if (sum > 0.0) entries.push_back({j, float(sum)});
     }
-    return row;
+    return entries;
   }
 
  private:
