@@ -148,7 +148,7 @@ ExactColumns exactColumns(const PatchMesh& mesh, const RayCaster& caster,
   const std::vector<Patch>& patches = mesh.patches();
   for (uint32_t i = 0; i < mesh.size(); ++i)
     for (const FormFactorEntry& e : exact.toExact[i])
-      if (!exact.isExact[i])
+      if (!exact.isExact[i] && patches[e.column].area > 0.0f)
         exact.exactRows[e.column].push_back({i, e.value * patches[i].area / patches[e.column].area});
   return exact;
 }

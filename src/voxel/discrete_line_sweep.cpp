@@ -35,7 +35,7 @@ inline void forEach(uint32_t begin, uint32_t end, bool ascending, F&& f) {
 }  // namespace
 
 DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings& settings)
-    : grid_(grid), settings_(settings), visibility_(grid) {
+    : grid_(grid), settings_(settings), visibility_(std::make_shared<const SideVisibility>(grid)) {
   // Waiting sides are chained by 29-bit entry indices.
   if (grid.entryCount() >= kNoPending)
     throw InputError("voxel grid", std::to_string(grid.entryCount()) +
@@ -188,13 +188,13 @@ inline Sight DiscreteLineSweep::look(uint32_t e, const Vec3& centroid, const Slo
                                      const Vec3& unit, const Source& source, Color& light) const {
   if (holdsCell(s.normal)) {
     uint32_t side = 0;
-    const Sight sight = visibility_.look(e, slotCell(s.offset), unit, side);
+    const Sight sight = visibility_->look(e, slotCell(s.offset), unit, side);
     if (sight == Sight::Source) light = sentRadiosity(source[side]);
     return sight;
   }
   const Vec3 n = slotNormal(s);
   const Sight sight =
-      planeSight(glm::dot(n, centroid) - s.offset, glm::dot(n, unit), visibility_.planeTolerance());
+      planeSight(glm::dot(n, centroid) - s.offset, glm::dot(n, unit), visibility_->planeTolerance());
   if (sight == Sight::Source) light = sentRadiosity(s);
   return sight;
 }
@@ -288,7 +288,7 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
   const bool continues = kTangentCorrection && state.recentRef != kNoVoxel &&
                          std::abs(dominant - state.lastDominant) == 1 &&
                          holdsCell(state.recent.normal) &&
-                         visibility_.continuesPlanes(cell, state.recentRef & ~kCellRef);
+                         visibility_->continuesPlanes(cell, state.recentRef & ~kCellRef);
   if (!continues && state.pending != kNoPending)
     resolvePending<kTangentCorrection>(view, state, slot);
   const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
@@ -298,8 +298,8 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
     const float w = std::abs(facing) * view.weight;
     // The cell's own other sides first (the faces of an inner edge see each other).
     uint32_t own = 0;
-    if (visibility_.hasFold(e) &&
-        visibility_.lookWithinCell(e, cell, facing < 0.0f ? unit : -unit, own)) {
+    if (visibility_->hasFold(e) &&
+        visibility_->lookWithinCell(e, cell, facing < 0.0f ? unit : -unit, own)) {
       view.gathered[e] += sentRadiosity(source[own]) * w;
     } else if (facing > 0.0f) {
       wait(view, state, e, false);
@@ -426,7 +426,7 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
                       &later_,
                       unit,
                       weight,
-                      visibility_.planeTolerance()};
+                      visibility_->planeTolerance()};
   LineState* const lines = lines_.data();
   const uint16_t stamp = stamp_;
   // Line records are scattered over a table the size of the scene's cross-section, and the

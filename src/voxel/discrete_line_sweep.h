@@ -28,6 +28,7 @@
 #include "voxel/voxel_grid.h"
 
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -77,10 +78,11 @@ class DiscreteLineSweep {
   /// Cells in the order a pass along `step` visits them (for tests).
   std::vector<uint32_t> passOrder(const IVec3& step);
   size_t lineTableSize() const { return lines_.size(); }
-  /// Working memory: the line records, the waiting sides' links, the deferred light and the fold
-  /// masks.
+  const SideVisibility& visibility() const { return *visibility_; }
+  /// Working memory of this sweep: the line records, the waiting sides' links and the deferred
+  /// light (the fold masks, shared by its copies, are visibility().memoryBytes()).
   size_t workingBytes() const {
-    return visibility_.memoryBytes() + lines_.capacity() * sizeof(LineState) +
+    return lines_.capacity() * sizeof(LineState) +
            pendingNext_.capacity() * sizeof(uint32_t) +
            later_.items.capacity() * sizeof(DeferredGathers::Item);
   }
@@ -180,7 +182,8 @@ class DiscreteLineSweep {
 
   const VoxelGrid& grid_;
   SweepSettings settings_;
-  SideVisibility visibility_;
+  /// Read-only and the same for every direction: one for a sweep and all its copies (threads).
+  std::shared_ptr<const SideVisibility> visibility_;
   std::vector<int32_t> lineTable_[3];  ///< per axis: contribution to the flat line index
   std::vector<int32_t>
       dominantTable_[3];  ///< per axis: contribution to the signed dominant coordinate

@@ -169,6 +169,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   solution.workingBytes = slotCount * n * sizeof(Color) + weights.size() * sizeof(float) +
                           (direct.size() + n) * sizeof(Color) + n * sizeof(DiscreteLineSweep::Slot);
   for (const DiscreteLineSweep& s : sweeps) solution.workingBytes += s.workingBytes();
+  solution.workingBytes += sweeps[0].visibility().memoryBytes();
   // The working arrays go before the result's B is made, so they never coexist.
   slots = {};
   sweeps.clear();
