@@ -5,6 +5,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
@@ -87,6 +88,23 @@ void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset
   }
   const size_t lineCount = size_t((uSpan + 1) * nv);
   if (lines_.size() < lineCount) lines_.resize(lineCount);
+}
+
+size_t DiscreteLineSweep::maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps) {
+  // prepareLines' spans: per non-dominant axis its extent plus the dominant axis's shear of it,
+  // ceil(b (D0 - 1) / a), and one more for a line offset.
+  size_t most = 0;
+  for (const IVec3& step : steps) {
+    std::array<int, 3> d{0, 1, 2};
+    std::stable_sort(d.begin(), d.end(),
+                     [&](int i, int j) { return std::abs(step[i]) > std::abs(step[j]); });
+    const int64_t a = std::abs(step[d[0]]), d0 = grid.dims[d[0]] - 1;
+    auto span = [&](int k) {
+      return int64_t(grid.dims[d[k]] - 1) + ceilDiv(std::abs(step[d[k]]) * d0, a) + 1;
+    };
+    most = std::max(most, size_t((span(1) + 1) * (span(2) + 1)));
+  }
+  return most;
 }
 
 namespace {

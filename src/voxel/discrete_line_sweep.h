@@ -73,6 +73,15 @@ class DiscreteLineSweep {
   void sweepPair(const DiscreteDirection& direction, const Source& source,
                  std::span<Color> gathered, const LineOffset& offset = {});
 
+  /// An upper bound of the line table's size over the directions `steps` and any LineOffset, and
+  /// the bytes a sweep holds for a grid of `entries` sides with that many lines: what each
+  /// thread's sweep will need, known before it is built.
+  static size_t maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps);
+  static size_t workingBytesFor(size_t entries, size_t lines) {
+    return lines * sizeof(LineState) + entries * sizeof(uint32_t) +
+           DeferredGathers::kCapacity * sizeof(DeferredGathers::Item);
+  }
+
   /// The naive line of every cell for a direction (for tests): lines[cell].
   std::vector<uint32_t> lineOfEachCell(const IVec3& step, const LineOffset& offset = {});
   /// Cells in the order a pass along `step` visits them (for tests).

@@ -67,6 +67,7 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
 
   VoxelRadiosityStats& s = impl_->stats;
   const VoxelSolution& solution = impl_->solution;
+  s.warnings.insert(s.warnings.end(), solution.warnings.begin(), solution.warnings.end());
   if (!settings.directFirstShot && !scene.lights.empty())
     s.warnings.push_back(fmt::format("{} point/spot/IES light(s) ignored: only the first shot "
                                      "(--first-shot) lights voxels from lights", scene.lights.size()));

@@ -1,11 +1,15 @@
 #include "voxel/voxel_solver.h"
 
+#include <radiosity/error.h>
+
+#include "core/memory_usage.h"
 #include "core/rng.h"
 #include "geometry/ray_caster.h"
 #include "render/path_integrator.h"
 #include "render/progress_ticker.h"
 #include "voxel/direction_set.h"
 
+#include <fmt/format.h>
 #include <glm/gtc/constants.hpp>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -109,7 +113,41 @@ void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLin
     for (size_t e = 0; e < slots[0].size(); ++e) slots[0][e] += slots[slot][e];
 }
 
+// The sweeps' memory, known before anything is allocated: per thread an accumulator and a sweep
+// (its line table sized for the widest direction), shared the packed sides, B's parts and the
+// normalization.
+size_t sweepSlots(const VoxelGrid& grid, const DirectionSet& directions, VoxelSolution& solution) {
+  const size_t threads = size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  std::vector<IVec3> steps;
+  for (size_t k = 0; k < directions.pairCount(); ++k) steps.push_back(directions.pairFirst(k).step);
+  const size_t n = grid.entryCount();
+  const uint64_t perSlot = n * sizeof(Color) + DiscreteLineSweep::workingBytesFor(
+                                                   n, DiscreteLineSweep::maxLineCount(grid, steps));
+  const uint64_t shared =
+      n * (2 * sizeof(Color) + sizeof(DiscreteLineSweep::Slot) + sizeof(float) + sizeof(uint16_t));
+  const uint64_t available = availableMemoryBytes();
+  const size_t slots = sweepSlotsThatFit(threads, perSlot, shared, available);
+  constexpr double kGB = 1e9;
+  if (slots == 0)
+    throw InputError("voxel grid",
+                     fmt::format("{} voxel sides need about {:.2f} GB to sweep and {:.2f} GB is "
+                                 "available; use a larger voxel size or fewer voxels",
+                                 n, double(shared + perSlot) / kGB, double(available) / kGB));
+  if (slots < threads)
+    solution.warnings.push_back(fmt::format(
+        "{} of {} threads sweep: each needs {:.2f} GB and {:.2f} GB is available (results differ "
+        "from an all-thread run by rounding)",
+        slots, threads, double(perSlot) / kGB, double(available) / kGB));
+  return slots;
+}
+
 }  // namespace
+
+size_t sweepSlotsThatFit(size_t threads, uint64_t perSlot, uint64_t shared, uint64_t available) {
+  if (available == 0) return threads;
+  if (available < shared + perSlot) return 0;
+  return size_t(std::min<uint64_t>(threads, (available - shared) / std::max<uint64_t>(perSlot, 1)));
+}
 
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const VoxelSolverSettings& settings,
@@ -120,6 +158,11 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     return glm::pi<float>() * grid.materials[grid.material[e]].emission;
   };
   auto rho = [&](size_t e) { return grid.materials[grid.material[e]].rho; };
+  const DirectionSet directions(settings.sphereRadius);
+  solution.directions = directions.size();
+  // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
+  const size_t slotCount = sweepSlots(grid, directions, solution);
+  solution.sweepSlots = slotCount;
   std::vector<Color> direct(settings.directFirstShot ? n : 0);
   if (settings.directFirstShot) {
     const auto start = std::chrono::steady_clock::now();
@@ -128,9 +171,6 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   }
   auto directAt = [&](size_t e) { return direct.empty() ? Color(0.0f) : direct[e]; };
 
-  const DirectionSet directions(settings.sphereRadius);
-  solution.directions = directions.size();
-  const size_t slotCount = size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
   std::vector<DiscreteLineSweep> sweeps(slotCount, DiscreteLineSweep(grid, settings.sweep));
   std::vector<std::vector<Color>> slots(slotCount, std::vector<Color>(n));
   const std::vector<float> weights =

@@ -14,6 +14,7 @@
 #include "voxel/voxel_grid.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace rad {
@@ -39,10 +40,19 @@ struct VoxelSolution {
   uint64_t shadowRays = 0;
   double directSeconds = 0.0, sweepSeconds = 0.0;
   size_t workingBytes = 0;        ///< solver arrays beyond the grid (accumulators, line tables)
+  size_t sweepSlots = 0;          ///< threads that swept at once (fewer than asked when memory was short)
+  std::vector<std::string> warnings;
 };
 
-/// Solves the scene on a voxelization of it. Deterministic for a given thread count.
-/// Throws rad::Cancelled if `progress` returns false.
+/// How many threads can sweep at once when each holds `perSlot` bytes beyond `shared` ones:
+/// `threads` when that fits in `available` bytes (or `available` is 0, unknown), fewer when not,
+/// 0 when not even one does.
+size_t sweepSlotsThatFit(size_t threads, uint64_t perSlot, uint64_t shared, uint64_t available);
+
+/// Solves the scene on a voxelization of it. Deterministic for a given thread count (and sweep
+/// slots: fewer threads sweep when memory would not hold one sweep each, with a warning).
+/// Throws InputError if memory would not hold even one, before any work, and rad::Cancelled if
+/// `progress` returns false.
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const VoxelSolverSettings& settings,
                                   const ProgressCallback& progress = {});

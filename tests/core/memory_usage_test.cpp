@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <fstream>
+#include <string>
 #include <vector>
 
 namespace {
@@ -26,6 +28,20 @@ TEST(MemoryUsage, TouchingSixtyFourMebibytesRaisesThePeak) {
   const uint64_t peak = rad::peakResidentBytes();
   EXPECT_GE(during, before + 60 * kMiB);
   EXPECT_GE(peak, before + 60 * kMiB);
+}
+
+TEST(MemoryUsage, AvailableMemoryIsSomeOfTheMachines) {
+  // Some memory is free on any machine that runs the tests, and never more than it has: MemTotal,
+  // read here on its own.
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key, unit;
+  uint64_t totalKiB = 0;
+  while (meminfo >> key >> totalKiB >> unit && key != "MemTotal:") {
+  }
+  ASSERT_EQ(key, "MemTotal:");
+  const uint64_t available = rad::availableMemoryBytes();
+  EXPECT_GT(available, 64 * kMiB);
+  EXPECT_LE(available, totalKiB * 1024);
 }
 
 }  // namespace

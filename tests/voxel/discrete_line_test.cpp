@@ -104,6 +104,22 @@ TEST(DiscreteLines, PartitionMatchesTheNaiveLineDefinition) {
   }
 }
 
+// The solver sizes its memory before sweeping from this bound: each direction's table, with any
+// line shift, must fit in it.
+TEST(DiscreteLines, LineTableFitsTheBoundGivenBeforehand) {
+  const VoxelGrid grid = sphereAndBoxGrid();
+  std::mt19937 rng(3);
+  for (const IVec3& step : randomSteps(100, 13)) {
+    SCOPED_TRACE(testing::Message() << "step " << step.x << " " << step.y << " " << step.z);
+    const int64_t a = std::max({std::abs(step.x), std::abs(step.y), std::abs(step.z)});
+    DiscreteLineSweep sweep(grid, {});
+    sweep.lineOfEachCell(step, LineOffset{int64_t(rng() % a), int64_t(rng() % a)});
+    const size_t bound = DiscreteLineSweep::maxLineCount(grid, std::span(&step, 1));
+    EXPECT_LE(sweep.lineTableSize(), bound);
+    EXPECT_GE(double(sweep.lineTableSize()), 0.8 * double(bound));  // and not far above it
+  }
+}
+
 TEST(DiscreteLines, SweepOrderAdvancesAlongTheDirection) {
   const VoxelGrid grid = sphereAndBoxGrid();
   DiscreteLineSweep sweep(grid, {});

@@ -135,5 +135,14 @@ TEST(VoxelSolver, DeterministicForAThreadCount) {
     for (int c = 0; c < 3; ++c) ASSERT_NEAR(serial[e][c], first[e][c], 1e-3f * (1.0f + first[e][c]));
 }
 
+TEST(VoxelSolver, SweepSlotsFitTheMemoryAvailable) {
+  constexpr uint64_t kGB = 1000000000;
+  EXPECT_EQ(sweepSlotsThatFit(8, 2 * kGB, 1 * kGB, 0), 8u);         // unknown: all threads
+  EXPECT_EQ(sweepSlotsThatFit(8, 2 * kGB, 1 * kGB, 100 * kGB), 8u);  // plenty
+  EXPECT_EQ(sweepSlotsThatFit(8, 2 * kGB, 1 * kGB, 8 * kGB), 3u);    // (8 - 1) / 2
+  EXPECT_EQ(sweepSlotsThatFit(8, 2 * kGB, 1 * kGB, 3 * kGB), 1u);
+  EXPECT_EQ(sweepSlotsThatFit(8, 2 * kGB, 1 * kGB, 2 * kGB), 0u);  // not even one
+}
+
 }  // namespace
 }  // namespace rad
