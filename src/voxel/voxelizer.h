@@ -21,11 +21,14 @@ struct VoxelizerSettings {
 };
 
 /// Voxelizes every triangle of the scene. Throws InputError if the resolution would exceed the
-/// grid limit (32767 voxels per axis) or the scene has no triangles.
+/// grid limit (32767 voxels per axis) or the memory this process may still allocate, or the
+/// scene has no triangles.
 VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
                         const ProgressCallback& progress = {});
 
 /// The voxel size that gives about `targetVoxels` surface voxels for this scene.
 float voxelSizeForCount(const Scene& scene, size_t targetVoxels);
+/// About how many surface voxels this scene has at `voxelSize` (the inverse of the above).
+double expectedVoxelCount(const Scene& scene, float voxelSize);
 
 }  // namespace rad
