@@ -210,6 +210,7 @@ VoxelRadiosity solveVoxels(const Scene& scene, const VoxelRadiositySettings& set
                          {"visits", v.visits},
                          {"visits_per_s", double(v.visits) / std::max(v.sweepSeconds, 1e-9)},
                          {"shadow_rays", v.shadowRays},
+                         {"sweep_threads", v.sweepThreads},
                          {"memory_bytes", v.memoryBytes},
                          {"bytes_per_side", double(v.memoryBytes) / double(std::max<size_t>(v.sides, 1))},
                          {"seconds", {{"voxelize", v.voxelizeSeconds}, {"first_shot", v.directSeconds},

@@ -41,7 +41,10 @@ struct VoxelRadiosityStats {
   std::vector<double> residuals;  ///< relative change of B at each iteration
   double voxelizeSeconds = 0.0, directSeconds = 0.0, sweepSeconds = 0.0;
   size_t memoryBytes = 0;  ///< grid and solver arrays
-  std::vector<std::string> warnings;  ///< settings that lose light, and why
+  /// Threads that swept at once, each its own directions (results are the same for the same
+  /// number); fewer than asked when memory would not hold a sweep each (then a warning says so).
+  size_t sweepThreads = 0;
+  std::vector<std::string> warnings;  ///< settings that lose light or speed, and why
 };
 
 /// The solved scene; a SurfaceRadiance that interpolates the voxels' irradiance smoothly.

@@ -74,6 +74,7 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
   s.voxels = impl_->grid.cellCount();
   s.sides = impl_->grid.entryCount();
   s.directions = solution.directions;
+  s.sweepThreads = solution.sweepSlots;
   s.voxelSize = impl_->grid.voxelSize;
   s.visits = solution.cellVisits;
   s.shadowRays = solution.shadowRays;

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 #include <glm/gtc/constants.hpp>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -117,7 +118,10 @@ void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLin
 // (its line table sized for the widest direction), shared the packed sides, B's parts and the
 // normalization.
 size_t sweepSlots(const VoxelGrid& grid, const DirectionSet& directions, VoxelSolution& solution) {
-  const size_t threads = size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
+  // The arena's threads, or fewer when a global limit (--threads) says so.
+  const size_t threads =
+      std::min(size_t(std::max(1, tbb::this_task_arena::max_concurrency())),
+               tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
   std::vector<IVec3> steps;
   for (size_t k = 0; k < directions.pairCount(); ++k) steps.push_back(directions.pairFirst(k).step);
   const size_t n = grid.entryCount();

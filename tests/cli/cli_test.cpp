@@ -216,6 +216,16 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
   std::getline(plyIn, magic);
   EXPECT_EQ(magic, "ply");
   EXPECT_GT(fs::file_size(ply), count * 39);  // 6 floats, 3 bytes, 3 floats a vertex
+
+  // --threads bounds the sweeps' threads (each holds its own accumulator and line table).
+  std::vector<std::string> oneThread = {"--threads", "1"};
+  oneThread.insert(oneThread.end(), args.begin(), args.end());
+  oneThread[7] = csv;
+  ASSERT_EQ(run(oneThread).status, 0);
+  const nlohmann::json serial = readJson(stats);
+  EXPECT_EQ(serial["voxel"]["sweep_threads"].get<int>(), 1);
+  EXPECT_GE(j["voxel"]["sweep_threads"].get<int>(), 1);
+  EXPECT_LE(serial["voxel"]["bytes_per_side"].get<double>(), j["voxel"]["bytes_per_side"].get<double>());
 }
 
 TEST(Cli, RendersWithVoxels) {
