@@ -29,7 +29,8 @@ struct PatchRadiosity::Impl {
   std::vector<Color> vertexIrradiance;
   PatchRadiosityStats stats;
 
-  FormFactorSettings formFactorSettings() const;
+  FormFactorSettings ff;  ///< the estimator's settings, fixed once per solve
+  void chooseFormFactorSettings();
   FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);
   FormFactorTable computeTable(const RayCaster& caster, const ProgressCallback& progress);
   void solve(const RayCaster& caster, const ProgressCallback& progress);
@@ -85,27 +86,33 @@ void recordRowSums(const std::vector<double>& sums, PatchRadiosityStats& stats) 
 }
 
 // Emitter columns beyond this many (patch, emitter) pairs are left to the hemisphere rays: the
-// exact columns cost 16 kernel evaluations a pair (about 1 s per million pairs on 2 cores).
-constexpr double kExactColumnPairs = 2e6;
+// exact columns cost 16 kernel evaluations a pair, about 1 s per million pairs on 2 cores.
+constexpr double kExactColumnPairs = 2e6, kExactPairsPerSecond = 1e6;
 
 }  // namespace
 
-FormFactorSettings PatchRadiosity::Impl::formFactorSettings() const {
-  FormFactorSettings ff{settings.estimator, settings.formFactorRays, settings.seed, {}};
+void PatchRadiosity::Impl::chooseFormFactorSettings() {
+  ff = {settings.estimator, settings.formFactorRays, settings.seed, {}};
   // The hemisphere estimator takes the emitters' columns exactly (ExactColumns), while they are
   // few: large emitters are found by enough of every patch's rays anyway.
-  if (settings.estimator != PatchFormFactorEstimator::Hemisphere) return ff;
+  if (settings.estimator != PatchFormFactorEstimator::Hemisphere) return;
   for (uint32_t p = 0; p < mesh->size(); ++p)
     if (maxComponent(scene->materials[mesh->patches()[p].material].emission) > 0.0f)
       ff.exactColumns.push_back(p);
-  if (double(ff.exactColumns.size()) * double(mesh->size()) > kExactColumnPairs)
+  const double pairs = double(ff.exactColumns.size()) * double(mesh->size());
+  if (pairs > kExactColumnPairs) {
+    stats.warnings.push_back(fmt::format(
+        "direct light from {} emitter patches by hemisphere rays alone (exact, its {:.3g} "
+        "patch-emitter pairs would take about {:.0f} s): expect it to vary from patch to patch; "
+        "fewer patches make it exact",
+        ff.exactColumns.size(), pairs, pairs / kExactPairsPerSecond));
     ff.exactColumns.clear();
-  return ff;
+  }
+  stats.exactColumns = ff.exactColumns.size();
 }
 
 FormFactorTable PatchRadiosity::Impl::computeTable(const RayCaster& caster,
                                                    const ProgressCallback& progress) {
-  const FormFactorSettings ff = formFactorSettings();
   FormFactorRows rows = estimateFormFactors(*mesh, caster, ff, progress);
   // Pairwise estimates are reciprocal by construction; the others average both directions,
   // then drop what falls below the threshold.
@@ -121,8 +128,6 @@ FormFactorTable PatchRadiosity::Impl::computeTable(const RayCaster& caster,
 FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
                                                   const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
-  const FormFactorSettings ff = formFactorSettings();
-  stats.exactColumns = ff.exactColumns.size();
   const FormFactorCacheKey key =
       formFactorCacheKey(*scene, mesh->patchSize(), ff, settings.formFactorThreshold);
   std::filesystem::path file;
@@ -151,8 +156,6 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
   std::vector<std::vector<float>> values(mesh->size());
   std::vector<double> sums;
   const auto start = std::chrono::steady_clock::now();
-  const FormFactorSettings ff = formFactorSettings();
-  stats.exactColumns = ff.exactColumns.size();
   const std::optional<ExactColumns> exact =
       ff.exactColumns.empty() ? std::nullopt
                               : std::optional(exactColumns(*mesh, caster, ff.exactColumns, ff.seed));
@@ -190,6 +193,7 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
 void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback& progress) {
   const PatchSystem system = systemOf(*scene, *mesh);
   const PatchSolverControl control{settings.tolerance, settings.maxIterations};
+  chooseFormFactorSettings();
   const bool lazy = settings.solver == PatchSolverKind::Progressive &&
                     settings.estimator == PatchFormFactorEstimator::Hemisphere &&
                     settings.cacheDir.empty();

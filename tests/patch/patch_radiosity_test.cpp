@@ -77,6 +77,27 @@ Scene smallRoom() {
   return b.build();
 }
 
+// A large emitter in fine patches is left to the hemisphere rays (its exact columns would cost
+// too much), and the user is told: faces split in 32 x 32 patches make the lamp face 1024 of 6144
+// patches, 6.3M pairs, above the 2M the exact columns take; at 16 x 16, 256 x 1536 = 0.39M pairs,
+// they are exact.
+TEST(PatchRadiosity, LargeEmittersFallBackToRaysWithAWarning) {
+  const Scene scene = smallRoom();
+  PatchRadiositySettings settings;
+  settings.cacheDir.clear();
+  settings.patchSize = 1.0f / 32.0f;
+  const PatchRadiosity fine(scene, settings);
+  EXPECT_EQ(fine.stats().patches, 6u * 32u * 32u);
+  EXPECT_EQ(fine.stats().exactColumns, 0u);
+  ASSERT_EQ(fine.stats().warnings.size(), 1u);
+  EXPECT_NE(fine.stats().warnings[0].find("1024 emitter patches"), std::string::npos)
+      << fine.stats().warnings[0];
+  settings.patchSize = 1.0f / 16.0f;
+  const PatchRadiosity coarse(scene, settings);
+  EXPECT_EQ(coarse.stats().exactColumns, 256u);
+  EXPECT_TRUE(coarse.stats().warnings.empty());
+}
+
 std::vector<ObjectRadiometry> solveWith(const Scene& scene, const fs::path& cache,
                                         PatchRadiosityStats& stats) {
   PatchRadiositySettings settings;
