@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <ranges>
 
 #include "core/rng.h"
@@ -131,8 +132,10 @@ FormFactorRows exactFormFactors(const PatchMesh& mesh, const RayCaster& caster,
   return rows;
 }
 
-ExactColumns exactColumns(const PatchMesh& mesh, const RayCaster& caster,
-                          const std::vector<uint32_t>& columns, uint64_t seed) {
+std::optional<ExactColumns> exactColumns(const PatchMesh& mesh, const RayCaster& caster,
+                                         const FormFactorSettings& settings) {
+  const std::vector<uint32_t>& columns = settings.exactColumns;
+  if (columns.empty()) return std::nullopt;
   const ExactKernel kernel(mesh, caster);
   ExactColumns exact;
   exact.isExact.assign(mesh.size(), 0);
@@ -140,7 +143,7 @@ ExactColumns exactColumns(const PatchMesh& mesh, const RayCaster& caster,
   exact.toExact.resize(mesh.size());
   tbb::parallel_for(size_t(0), mesh.size(), [&](size_t i) {
     // A stream of its own, apart from the hemisphere rays' (seed, i).
-    Rng rng(seed ^ 0x6578616374636f6cull, i);
+    Rng rng(settings.seed ^ 0x6578616374636f6cull, i);
     exact.toExact[i] = kernel.row(uint32_t(i), kExactColumnPoints, rng, columns);
   });
   // The exact patches' rows by reciprocity, in ascending column order (i ascends).

@@ -13,6 +13,7 @@
 #include <radiosity/progress.h>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "geometry/ray_caster.h"
@@ -49,9 +50,9 @@ struct ExactColumns {
 };
 /// Points per patch for the exact columns (a 4 x 4 midpoint rule).
 constexpr int kExactColumnPoints = 16;
-/// Computes the exact columns `columns` (ascending) for every patch. Thread-safe.
-ExactColumns exactColumns(const PatchMesh& mesh, const RayCaster& caster,
-                          const std::vector<uint32_t>& columns, uint64_t seed);
+/// Computes settings.exactColumns for every patch; nullopt when there are none. Thread-safe.
+std::optional<ExactColumns> exactColumns(const PatchMesh& mesh, const RayCaster& caster,
+                                         const FormFactorSettings& settings);
 
 /// One row by hemisphere ray casting (entries merged by column), with the exact columns
 /// `exact` (if any) in place of what its rays find there. Thread-safe.

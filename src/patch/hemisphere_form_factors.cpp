@@ -78,10 +78,7 @@ std::vector<FormFactorEntry> hemisphereRow(const PatchMesh& mesh, const RayCaste
 FormFactorRows hemisphereFormFactors(const PatchMesh& mesh, const RayCaster& caster,
                                      const FormFactorSettings& settings,
                                      const ProgressCallback& progress) {
-  const std::optional<ExactColumns> exact =
-      settings.exactColumns.empty()
-          ? std::nullopt
-          : std::optional(exactColumns(mesh, caster, settings.exactColumns, settings.seed));
+  const std::optional<ExactColumns> exact = exactColumns(mesh, caster, settings);
   FormFactorRows rows(mesh.size());
   ProgressTicker ticker(progress, rows.size());
   tbb::parallel_for(size_t(0), rows.size(), [&](size_t i) {

@@ -156,9 +156,7 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
   std::vector<std::vector<float>> values(mesh->size());
   std::vector<double> sums;
   const auto start = std::chrono::steady_clock::now();
-  const std::optional<ExactColumns> exact =
-      ff.exactColumns.empty() ? std::nullopt
-                              : std::optional(exactColumns(*mesh, caster, ff.exactColumns, ff.seed));
+  const std::optional<ExactColumns> exact = exactColumns(*mesh, caster, ff);
   stats.formFactorSeconds += secondsSince(start);
   auto row = [&](uint32_t i) {
     const auto start = std::chrono::steady_clock::now();

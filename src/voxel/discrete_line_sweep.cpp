@@ -23,6 +23,14 @@ int64_t ceilDiv(int64_t n, int64_t d) {
   return -floorDiv(-n, d);
 }
 
+// The axes by decreasing |component| of a step: d[0] dominant (ties keep axis order).
+std::array<int, 3> axesByMagnitude(const IVec3& step) {
+  std::array<int, 3> d{0, 1, 2};
+  std::stable_sort(d.begin(), d.end(),
+                   [&](int i, int j) { return std::abs(step[i]) > std::abs(step[j]); });
+  return d;
+}
+
 // Calls f(i) for i in [begin, end), ascending or descending.
 template <typename F>
 inline void forEach(uint32_t begin, uint32_t end, bool ascending, F&& f) {
@@ -46,10 +54,8 @@ DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings&
 }
 
 void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset) {
-  // Axes by decreasing |component|: d[0] dominant. Components a >= b >= c >= 0 after signing.
-  std::array<int, 3> d{0, 1, 2};
-  std::stable_sort(d.begin(), d.end(),
-                   [&](int i, int j) { return std::abs(step[i]) > std::abs(step[j]); });
+  // Components a >= b >= c >= 0 after signing.
+  const std::array<int, 3> d = axesByMagnitude(step);
   const int64_t a = std::abs(step[d[0]]), b = std::abs(step[d[1]]), c = std::abs(step[d[2]]);
   int64_t uSpan = 0, vSpan = 0;
   std::array<int64_t, 3> uMin{}, vMin{};
@@ -95,9 +101,7 @@ size_t DiscreteLineSweep::maxLineCount(const VoxelGrid& grid, std::span<const IV
   // ceil(b (D0 - 1) / a), and one more for a line offset.
   size_t most = 0;
   for (const IVec3& step : steps) {
-    std::array<int, 3> d{0, 1, 2};
-    std::stable_sort(d.begin(), d.end(),
-                     [&](int i, int j) { return std::abs(step[i]) > std::abs(step[j]); });
+    const std::array<int, 3> d = axesByMagnitude(step);
     const int64_t a = std::abs(step[d[0]]), d0 = grid.dims[d[0]] - 1;
     auto span = [&](int k) {
       return int64_t(grid.dims[d[k]] - 1) + ceilDiv(std::abs(step[d[k]]) * d0, a) + 1;

@@ -261,7 +261,8 @@ VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
                                              "32767 per axis)", grid.voxelSize, cells.x, cells.y, cells.z));
   grid.dims = IVec3(cells);
   // Refused before the fragments are made, rather than killed for memory while making them.
-  const double expected = expectedVoxelCount(scene, grid.voxelSize);
+  const double expected = settings.voxelSize > 0.0f ? expectedVoxelCount(scene, grid.voxelSize)
+                                                   : double(settings.targetVoxels);
   const uint64_t available = availableMemoryBytes();
   if (available > 0 && expected * kVoxelizeBytesPerVoxel > double(available))
     throw InputError(scene.name, fmt::format("voxel size {:g} gives about {:.0f} voxels, which need "

@@ -142,21 +142,6 @@ TEST(PairwiseFormFactors, WithinThreeStandardErrors) {
   expectWithinThreeStandardErrors({FormFactorEstimator::Pairwise, 16, 1}, 2.0f);
 }
 
-// 1(d) by superposition: the factor from a point (px, py) of the floor z = 0 (normal +z) to the
-// rectangle [x0, x1] x [y0, y1] of the plane z = c, from the corner form of VALIDATION.md.
-double pointToParallelRectangle(double px, double py, double x0, double x1, double y0, double y1,
-                                double c) {
-  auto corner = [&](double u, double v) {
-    const double a = std::abs(u) / c, b = std::abs(v) / c;
-    const double f = (a / std::sqrt(1 + a * a) * std::atan(b / std::sqrt(1 + a * a)) +
-                      b / std::sqrt(1 + b * b) * std::atan(a / std::sqrt(1 + b * b))) /
-                     (2 * glm::pi<double>());
-    return (u < 0) != (v < 0) ? -f : f;
-  };
-  return corner(x1 - px, y1 - py) - corner(x0 - px, y1 - py) - corner(x1 - px, y0 - py) +
-         corner(x0 - px, y0 - py);
-}
-
 // A small light over a floor: each floor patch's factor to it, against the closed form averaged
 // over the patch (32 x 32 points). By hemisphere rays alone a 256-ray patch finds a light of
 // F = 0.01 about 2.6 times, an error of 60% per patch (the mottled picture); with the light's
@@ -195,9 +180,10 @@ TEST(HemisphereFormFactors, EmitterColumnsExactPerPatch) {
     constexpr int kSide = 32;
     for (int y = 0; y < kSide; ++y)
       for (int x = 0; x < kSide; ++x)
-        reference += pointToParallelRectangle(lo3.x + (hi3.x - lo3.x) * (x + 0.5) / kSide,
-                                              lo3.y + (hi3.y - lo3.y) * (y + 0.5) / kSide, lo, hi,
-                                              lo, hi, c);
+        reference +=
+            test::pointToParallelRectangleF(lo3.x + (hi3.x - lo3.x) * (x + 0.5) / kSide,
+                                            lo3.y + (hi3.y - lo3.y) * (y + 0.5) / kSide, lo, hi,
+                                            lo, hi, c);
     reference /= kSide * kSide;
     double value = 0.0;
     const auto columns = table.columns(i);

@@ -79,7 +79,7 @@ inline double objectFormFactor(const PatchMesh& mesh, const FormFactorTable& tab
   return flux / area;
 }
 
-// Closed forms of VALIDATION.md 1(a), 1(b), 1(c), 1(d).
+// Closed forms of VALIDATION.md 1(a), 1(b), 1(c) (1(d) is in render/test_scenes.h).
 inline double parallelRectanglesF(double a, double b, double c) {
   const double X = a / c, Y = b / c, pi = glm::pi<double>();
   return 2.0 / (pi * X * Y) *
@@ -100,12 +100,6 @@ inline double perpendicularRectanglesF(double w, double h, double l) {
 inline double coaxialDiscsF(double r1, double r2, double a) {
   const double R1 = r1 / a, R2 = r2 / a, X = 1 + (1 + R2 * R2) / (R1 * R1);
   return (X - std::sqrt(X * X - 4 * (R2 / R1) * (R2 / R1))) / 2;
-}
-inline double cornerElementF(double a, double b, double c) {
-  const double X = a / c, Y = b / c;
-  return (X / std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) +
-          Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y))) /
-         (2 * glm::pi<double>());
 }
 
 }  // namespace rad::test

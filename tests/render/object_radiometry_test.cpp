@@ -49,25 +49,6 @@ TEST(ObjectRadiometry, WhiteFurnaceRadiosityIsPiKeOverOneMinusRho) {
   EXPECT_GT(stats.rays, stats.paths);
 }
 
-// VALIDATION.md 1(d): view factor from a point to a parallel rectangle, the normal through a
-// corner (Siegel & Howell via EES FDiff_1), and its superposition for any point under it.
-double cornerFactor(double a, double b, double c) {
-  const double x = a / c, y = b / c;
-  const double sx = std::sqrt(1 + x * x), sy = std::sqrt(1 + y * y);
-  return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2 * kPi);
-}
-
-double signedCorner(double u, double v, double c) {
-  const double s = (u < 0 ? -1.0 : 1.0) * (v < 0 ? -1.0 : 1.0);
-  return s * cornerFactor(std::abs(u), std::abs(v), c);
-}
-
-double pointToRectangle(double px, double pz, double x0, double x1, double z0, double z1,
-                        double c) {
-  return signedCorner(x1 - px, z1 - pz, c) - signedCorner(x0 - px, z1 - pz, c) -
-         signedCorner(x1 - px, z0 - pz, c) + signedCorner(x0 - px, z0 - pz, c);
-}
-
 TEST(ObjectRadiometry, DirectIrradianceFromSquareEmitterMatchesViewFactor) {
   // A black unit-square emitter at height 1 facing down over tiny floor probes (side 1e-3):
   // H = pi Ke F(point -> square); nothing reflects back (the emitter is black), so B = rho H.
@@ -90,9 +71,9 @@ TEST(ObjectRadiometry, DirectIrradianceFromSquareEmitterMatchesViewFactor) {
   const auto objects = estimateObjectRadiometry(b.build(), 4, settings);
   ASSERT_EQ(objects.size(), 1 + probes.size());
   // Table 1(d), a = b = c = 1: the corner value 0.138531606 checks the formula as coded.
-  ASSERT_NEAR(cornerFactor(1, 1, 1), 0.138531606, 1e-9);
+  ASSERT_NEAR(test::cornerElementF(1, 1, 1), 0.138531606, 1e-9);
   for (size_t i = 0; i < probes.size(); ++i) {
-    const double f = pointToRectangle(probes[i].x, probes[i].y, 0, 1, 0, 1, 1);
+    const double f = test::pointToParallelRectangleF(probes[i].x, probes[i].y, 0, 1, 0, 1, 1);
     const double expected = kPi * ke * f;
     const ObjectRadiometry& o = objects[1 + i];
     std::printf("probe %zu: F %.6f, relative error %.4f\n", i, f,

@@ -4,11 +4,35 @@
 #include <radiosity/path_tracer.h>
 #include <radiosity/scene_builder.h>
 
+#include <glm/gtc/constants.hpp>
+
 #include <array>
+#include <cmath>
 #include <map>
 #include <string>
 
 namespace rad::test {
+
+/// VALIDATION.md 1(d): the view factor from a point to a parallel a x b rectangle at height c,
+/// the point's normal through a corner (Siegel & Howell via EES FDiff_1).
+inline double cornerElementF(double a, double b, double c) {
+  const double X = a / c, Y = b / c;
+  return (X / std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) +
+          Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y))) /
+         (2 * glm::pi<double>());
+}
+
+/// 1(d) by superposition: from the point (pu, pv) of a plane to the rectangle [u0, u1] x [v0, v1]
+/// of the parallel plane at height c facing it.
+inline double pointToParallelRectangleF(double pu, double pv, double u0, double u1, double v0,
+                                        double v1, double c) {
+  auto corner = [c](double u, double v) {
+    const double f = cornerElementF(std::abs(u), std::abs(v), c);
+    return (u < 0) != (v < 0) ? -f : f;
+  };
+  return corner(u1 - pu, v1 - pv) - corner(u0 - pu, v1 - pv) - corner(u1 - pu, v0 - pv) +
+         corner(u0 - pu, v0 - pv);
+}
 
 /// Adds the quad p0 p1 p2 p3 (a planar, convex outline in either winding), oriented so that its
 /// front faces `front`.
