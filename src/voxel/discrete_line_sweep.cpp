@@ -53,60 +53,88 @@ DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings&
                                        "; use a larger voxel size");
 }
 
-void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset) {
+void DiscreteLineSweep::layoutLines(const IVec3& dims, const IVec3& step,
+                                    const LineOffset& offset, LineLayout& layout) {
   // Components a >= b >= c >= 0 after signing.
   const std::array<int, 3> d = axesByMagnitude(step);
+  layout.axes = d;
   const int64_t a = std::abs(step[d[0]]), b = std::abs(step[d[1]]), c = std::abs(step[d[2]]);
-  int64_t uSpan = 0, vSpan = 0;
-  std::array<int64_t, 3> uMin{}, vMin{};
   for (int k = 0; k < 3; ++k) {
     const int64_t sign = step[d[k]] >= 0 ? 1 : -1;
-    std::vector<int64_t>& u = scratchU_[k];
-    std::vector<int64_t>& v = scratchV_[k];
-    u.resize(size_t(grid_.dims[d[k]]));
+    std::vector<int64_t>& u = layout.u[size_t(k)];
+    std::vector<int64_t>& v = layout.v[size_t(k)];
+    u.resize(size_t(dims[d[k]]));
     v.resize(u.size());
     for (size_t t = 0; t < u.size(); ++t) {
-      const int64_t m =
-          sign * int64_t(t);  // coordinate in the frame where the direction is positive
+      const int64_t m = sign * int64_t(t);  // coordinate in the frame where the step is positive
       // floor((a y - b x + u) / a) = y - ceil((b x - u) / a), likewise for z.
       u[t] = k == 0 ? -ceilDiv(b * m - offset.u, a) : (k == 1 ? m : 0);
       v[t] = k == 0 ? -ceilDiv(c * m - offset.v, a) : (k == 2 ? m : 0);
     }
-    const auto [ulo, uhi] = std::minmax_element(u.begin(), u.end());
-    const auto [vlo, vhi] = std::minmax_element(v.begin(), v.end());
-    uMin[size_t(k)] = *ulo;
-    vMin[size_t(k)] = *vlo;
-    uSpan += *uhi - *ulo;
-    vSpan += *vhi - *vlo;
+    const int64_t uMin = *std::min_element(u.begin(), u.end());
+    const int64_t vMin = *std::min_element(v.begin(), v.end());
+    for (size_t t = 0; t < u.size(); ++t) u[t] -= uMin, v[t] -= vMin;
   }
-  const int64_t nv = vSpan + 1;
+  // Along the dominant axis the shear (u[0], v[0]) moves monotonically, by at most 1 per step:
+  // the t0 whose rows [u0, u0 + D1) cover U form one run, whose ends hold the extreme v0.
+  const std::vector<int64_t>& u0 = layout.u[0];
+  const std::vector<int64_t>& v0 = layout.v[0];
+  const int64_t d1 = dims[d[1]], d2 = dims[d[2]], n0 = int64_t(u0.size());
+  const bool rising = u0.front() <= u0.back();
+  auto at = [&](int64_t i) { return size_t(rising ? i : n0 - 1 - i); };  // u0 non-decreasing in i
+  const int64_t uCount = *std::max_element(u0.begin(), u0.end()) + d1;
+  layout.vLow.resize(size_t(uCount));
+  layout.vHigh.resize(size_t(uCount));
+  int64_t first = 0, last = 0;  // the covering run [first, last] in i
+  for (int64_t row = 0; row < uCount; ++row) {
+    while (u0[at(first)] < row - d1 + 1) ++first;
+    while (last + 1 < n0 && u0[at(last + 1)] <= row) ++last;
+    const int64_t va = v0[at(first)], vb = v0[at(last)];
+    layout.vLow[size_t(row)] = std::min(va, vb);
+    layout.vHigh[size_t(row)] = std::max(va, vb) + d2 - 1;
+  }
+}
+
+void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset) {
+  layoutLines(grid_.dims, step, offset, layout_);
   for (int k = 0; k < 3; ++k) {
-    const int axis = d[k];
+    const int axis = layout_.axes[size_t(k)];
     const int64_t sign = step[axis] >= 0 ? 1 : -1;
-    const std::vector<int64_t>& u = scratchU_[k];
-    const std::vector<int64_t>& v = scratchV_[k];
+    const std::vector<int64_t>& u = layout_.u[size_t(k)];
+    const std::vector<int64_t>& v = layout_.v[size_t(k)];
     lineTable_[axis].resize(u.size());
     dominantTable_[axis].resize(u.size());
     for (size_t t = 0; t < u.size(); ++t) {
-      lineTable_[axis][t] = int32_t((u[t] - uMin[size_t(k)]) * nv + (v[t] - vMin[size_t(k)]));
+      lineTable_[axis][t] = uint64_t(u[t]) << 32 | uint64_t(v[t]);
       dominantTable_[axis][t] = k == 0 ? int32_t(sign * int64_t(t)) : 0;
     }
   }
-  const size_t lineCount = size_t((uSpan + 1) * nv);
-  if (lines_.size() < lineCount) lines_.resize(lineCount);
+  // Row U's lines follow row U - 1's: line = rowStart_[U] + V.
+  rowStart_.resize(layout_.vLow.size());
+  int64_t lineCount = 0;
+  for (size_t row = 0; row < rowStart_.size(); ++row) {
+    rowStart_[row] = int32_t(lineCount - layout_.vLow[row]);
+    lineCount += layout_.vHigh[row] - layout_.vLow[row] + 1;
+  }
+  if (lines_.size() < size_t(lineCount)) lines_.resize(size_t(lineCount));
 }
 
 size_t DiscreteLineSweep::maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps) {
-  // prepareLines' spans: per non-dominant axis its extent plus the dominant axis's shear of it,
-  // ceil(b (D0 - 1) / a), and one more for a line offset.
+  // A line offset moves each dominant-axis shear by 0 or 1 in U and in V: every shifted layout
+  // lies in the unshifted one grown by one row and one column, whose row ranges bound it.
+  LineLayout layout;
   size_t most = 0;
   for (const IVec3& step : steps) {
-    const std::array<int, 3> d = axesByMagnitude(step);
-    const int64_t a = std::abs(step[d[0]]), d0 = grid.dims[d[0]] - 1;
-    auto span = [&](int k) {
-      return int64_t(grid.dims[d[k]] - 1) + ceilDiv(std::abs(step[d[k]]) * d0, a) + 1;
-    };
-    most = std::max(most, size_t((span(1) + 1) * (span(2) + 1)));
+    layoutLines(grid.dims, step, {}, layout);
+    const size_t rows = layout.vLow.size();
+    size_t count = 0;
+    for (size_t row = 0; row <= rows; ++row) {
+      const size_t here = std::min(row, rows - 1), below = row == 0 ? 0 : row - 1;
+      const int64_t low = std::min(layout.vLow[here], layout.vLow[below]);
+      const int64_t high = std::max(layout.vHigh[here], layout.vHigh[below]) + 1;
+      count += size_t(high - low + 1);
+    }
+    most = std::max(most, count);
   }
   return most;
 }
@@ -231,7 +259,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
   const float facing = glm::dot(n, view.unit);  // < 0: e looks back along the line, > 0: ahead
   const RecentVoxel& recent = state.recent;
   const bool hasRecent = state.recentRef != kNoVoxel;
-  const bool recentIsSide = hasRecent && !holdsCell(recent.normal);
+  const bool recentIsSide = (state.recentRef & kCellRef) == 0;  // kNoVoxel has the bit too
   Vec3 recentNormal(0.0f);
   float height = 0.0f, recentFacing = 0.0f;
   bool inRecentPlane = false;
@@ -417,14 +445,17 @@ template <typename F>
 void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, F&& f) const {
   const VoxelGrid& g = grid_;
   forEach(0, uint32_t(g.dims.x), step.x >= 0, [&](uint32_t x) {
-    const int32_t slabLine = lineTable_[0][x], slabDominant = dominantTable_[0][x];
+    const uint64_t slabLine = lineTable_[0][x];
+    const int32_t slabDominant = dominantTable_[0][x];
     forEach(g.slabRowBegin[x], g.slabRowBegin[x + 1], step.y >= 0, [&](uint32_t row) {
       const size_t y = size_t(g.rowY[row]);
-      const int32_t rowLine = slabLine + lineTable_[1][y];
+      const uint64_t rowLine = slabLine + lineTable_[1][y];
       const int32_t rowDominant = slabDominant + dominantTable_[1][y];
       forEach(g.rowCellBegin[row], g.rowCellBegin[row + 1], step.z >= 0, [&](uint32_t cell) {
         const size_t z = size_t(g.cellZ[cell]);
-        f(cell, uint32_t(rowLine + lineTable_[2][z]), rowDominant + dominantTable_[2][z]);
+        const uint64_t uv = rowLine + lineTable_[2][z];
+        f(cell, uint32_t(rowStart_[uv >> 32] + int32_t(uint32_t(uv))),
+          rowDominant + dominantTable_[2][z]);
       });
     });
   });

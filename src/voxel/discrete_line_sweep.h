@@ -27,6 +27,7 @@
 #include "voxel/side_visibility.h"
 #include "voxel/voxel_grid.h"
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <span>
@@ -136,6 +137,19 @@ class DiscreteLineSweep {
   /// The recent voxel as a slot (the cell's index for a cell of several sides).
   static Slot recentSlot(const LineState& state);
 
+  /// A direction's lines as coordinates (U, V) >= 0, U = u[0][t0] + u[1][t1] (+ u[2][t2] = 0)
+  /// and likewise V, with t_k the cell's coordinate along axes[k] (the axes by decreasing step
+  /// component): the naive line (floor((a y - b x + u) / a), floor((a z - c x + v) / a)) shifted
+  /// to start at 0. The lines of row U lie in [vLow[U], vHigh[U]]: the grid's box seen along
+  /// the direction, a hexagon rather than its bounding parallelogram (a quarter fewer lines for
+  /// a diagonal).
+  struct LineLayout {
+    std::array<int, 3> axes;
+    std::array<std::vector<int64_t>, 3> u, v;
+    std::vector<int64_t> vLow, vHigh;
+  };
+  static void layoutLines(const IVec3& dims, const IVec3& step, const LineOffset& offset,
+                          LineLayout& layout);
   void prepareLines(const IVec3& step, const LineOffset& offset = {});
   template <bool kTangentCorrection>
   void pass(const IVec3& step, const Vec3& unit, float weight, const Source& source,
@@ -193,13 +207,15 @@ class DiscreteLineSweep {
   SweepSettings settings_;
   /// Read-only and the same for every direction: one for a sweep and all its copies (threads).
   std::shared_ptr<const SideVisibility> visibility_;
-  std::vector<int32_t> lineTable_[3];  ///< per axis: contribution to the flat line index
+  /// Per axis: contribution to the line's (U, V) as U << 32 | V (the sum never carries).
+  std::vector<uint64_t> lineTable_[3];
+  std::vector<int32_t> rowStart_;  ///< per U: the index of line (U, 0); rows hold only lines met
   std::vector<int32_t>
       dominantTable_[3];  ///< per axis: contribution to the signed dominant coordinate
   std::vector<LineState> lines_;
   std::vector<uint32_t> pendingNext_;  ///< per entry: the chain of sides waiting on a line
   DeferredGathers later_;
-  std::vector<int64_t> scratchU_[3], scratchV_[3];  ///< per-direction tables, reused
+  LineLayout layout_;  ///< per-direction scratch, reused
   uint16_t stamp_ = 0;
 };
 
