@@ -181,29 +181,34 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
       settings.normalize ? facingWeights(grid, directions) : std::vector<float>{};
 
   // The sweeps carry what surfaces send: all of B, or only its reflected part when the first
-  // shot has already delivered the emitters' light. H starts as the direct light (or none).
-  std::vector<Color> irradiance(n);
-  for (size_t e = 0; e < n; ++e) irradiance[e] = directAt(e);
-  auto radiosityOf = [&](size_t e) { return emitted(e) + rho(e) * irradiance[e]; };
+  // shot has already delivered the emitters' light. H is the direct light (or none) plus the
+  // last iteration's gathered light, read from the first slot, which holds their sum: no array
+  // of its own while the sweeps run.
+  bool swept = false;
+  auto irradianceAt = [&](size_t e) {
+    if (!swept) return directAt(e);
+    const float norm = settings.normalize && weights[e] > 0.0f ? weights[e] : 1.0f;
+    return directAt(e) + slots[0][e] / norm;
+  };
+  auto radiosityOf = [&](size_t e) { return emitted(e) + rho(e) * irradianceAt(e); };
   auto sends = [&](size_t e) {
-    return settings.directFirstShot ? rho(e) * irradiance[e] : radiosityOf(e);
+    return settings.directFirstShot ? rho(e) * irradianceAt(e) : radiosityOf(e);
   };
   std::vector<DiscreteLineSweep::Slot> packed(n);
+  std::vector<float> luminanceBefore(n);
   ProgressTicker ticker(progress,
                         directions.pairCount() * size_t(std::max(settings.iterations, 1)));
   const auto start = std::chrono::steady_clock::now();
   for (int iteration = 0; iteration < settings.iterations; ++iteration) {
     DiscreteLineSweep::packSides(grid, sends, packed);
+    for (size_t e = 0; e < n; ++e) luminanceBefore[e] = luminance(radiosityOf(e));
     gatherAllDirections(directions, sweeps, slots, packed, settings, iteration, ticker);
-    const std::vector<Color>& gathered = slots[0];
+    swept = true;
     double change = 0.0, total = 0.0;
     for (size_t e = 0; e < n; ++e) {
-      const Color before = radiosityOf(e);
-      const float norm = settings.normalize && weights[e] > 0.0f ? weights[e] : 1.0f;
-      irradiance[e] = directAt(e) + gathered[e] / norm;
-      const Color after = radiosityOf(e);
-      change += grid.area[e] * std::abs(luminance(after) - luminance(before));
-      total += grid.area[e] * std::abs(luminance(after));
+      const float after = luminance(radiosityOf(e));
+      change += grid.area[e] * std::abs(after - luminanceBefore[e]);
+      total += grid.area[e] * std::abs(after);
     }
     solution.residuals.push_back(total > 0.0 ? change / total : 0.0);
     solution.cellVisits += uint64_t(grid.cellCount()) * directions.size();
@@ -211,16 +216,21 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   }
   solution.sweepSeconds = secondsSince(start);
   solution.workingBytes = slotCount * n * sizeof(Color) + weights.size() * sizeof(float) +
-                          (direct.size() + n) * sizeof(Color) + n * sizeof(DiscreteLineSweep::Slot);
+                          direct.size() * sizeof(Color) + n * sizeof(float) +
+                          n * sizeof(DiscreteLineSweep::Slot);
   for (const DiscreteLineSweep& s : sweeps) solution.workingBytes += s.workingBytes();
   solution.workingBytes += sweeps[0].visibility().memoryBytes();
-  // The working arrays go before the result's B is made, so they never coexist.
-  slots = {};
+  // The working arrays go before the results are made, so they never coexist.
+  slots.resize(1);
   sweeps.clear();
   packed = {};
+  luminanceBefore = {};
+  solution.irradiance.resize(n);
+  for (size_t e = 0; e < n; ++e) solution.irradiance[e] = irradianceAt(e);
+  slots = {};
   solution.radiosity.resize(n);
-  for (size_t e = 0; e < n; ++e) solution.radiosity[e] = radiosityOf(e);
-  solution.irradiance = std::move(irradiance);
+  for (size_t e = 0; e < n; ++e)
+    solution.radiosity[e] = emitted(e) + rho(e) * solution.irradiance[e];
   return solution;
 }
 
