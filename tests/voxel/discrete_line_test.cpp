@@ -13,6 +13,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <set>
 
 namespace rad {
 namespace {
@@ -118,6 +119,31 @@ TEST(DiscreteLines, LineTableFitsTheBoundGivenBeforehand) {
     EXPECT_LE(sweep.lineTableSize(), bound);
     EXPECT_GE(double(sweep.lineTableSize()), 0.8 * double(bound));  // and not far above it
   }
+}
+
+// The table holds a record for exactly the lines that cross the grid's box, counted here one
+// voxel at a time. Seen along the diagonal (1, 1, 1) an X x Y x Z box is a hexagon of
+// XY + YZ + ZX - X - Y - Z + 1 lines, where its bounding parallelogram has (X + Y - 1)(X + Z - 1).
+TEST(DiscreteLines, LineTableHoldsOnlyTheLinesThroughTheBox) {
+  const VoxelGrid grid = sphereAndBoxGrid();
+  const IVec3 n = grid.dims;
+  std::mt19937 rng(9);
+  for (const IVec3& step : randomSteps(24, 17)) {
+    SCOPED_TRACE(testing::Message() << "step " << step.x << " " << step.y << " " << step.z);
+    const int64_t a = std::max({std::abs(step.x), std::abs(step.y), std::abs(step.z)});
+    const LineOffset offset{int64_t(rng() % a), int64_t(rng() % a)};
+    std::set<std::pair<int64_t, int64_t>> met;
+    for (int x = 0; x < n.x; ++x)
+      for (int y = 0; y < n.y; ++y)
+        for (int z = 0; z < n.z; ++z) met.insert(naiveLine(IVec3(x, y, z), step, offset));
+    DiscreteLineSweep sweep(grid, {});
+    sweep.lineOfEachCell(step, offset);
+    EXPECT_EQ(sweep.lineTableSize(), met.size());
+  }
+  DiscreteLineSweep diagonal(grid, {});
+  diagonal.lineOfEachCell(IVec3(1, 1, 1));
+  EXPECT_EQ(diagonal.lineTableSize(),
+            size_t(n.x * n.y + n.y * n.z + n.z * n.x - n.x - n.y - n.z + 1));
 }
 
 TEST(DiscreteLines, SweepOrderAdvancesAlongTheDirection) {
