@@ -213,6 +213,7 @@ VoxelRadiosity solveVoxels(const Scene& scene, const VoxelRadiositySettings& set
                          {"sweep_threads", v.sweepThreads},
                          {"memory_bytes", v.memoryBytes},
                          {"bytes_per_side", double(v.memoryBytes) / double(std::max<size_t>(v.sides, 1))},
+                         {"bytes_per_voxel", double(v.memoryBytes) / double(std::max<size_t>(v.voxels, 1))},
                          {"seconds", {{"voxelize", v.voxelizeSeconds}, {"first_shot", v.directSeconds},
                                       {"sweeps", v.sweepSeconds}}}};
   stats.counts.voxels = v.sides;

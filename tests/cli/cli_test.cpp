@@ -226,6 +226,8 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
   EXPECT_EQ(serial["voxel"]["sweep_threads"].get<int>(), 1);
   EXPECT_GE(j["voxel"]["sweep_threads"].get<int>(), 1);
   EXPECT_LE(serial["voxel"]["bytes_per_side"].get<double>(), j["voxel"]["bytes_per_side"].get<double>());
+  // Per voxel (cell) and per side: a cell holds one side or more.
+  EXPECT_GE(j["voxel"]["bytes_per_voxel"].get<double>(), j["voxel"]["bytes_per_side"].get<double>());
 }
 
 TEST(Cli, RendersWithVoxels) {
