@@ -61,9 +61,7 @@ int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solut
                 const std::string& ext, const Stopwatch& total, RunStats& stats, Console& console) {
   if (ext == ".csv") solution.exportCsv(o.exportPath);
   if (ext == ".ply") solution.exportPly(o.exportPath);
-  if constexpr (std::is_same_v<Solution, PatchRadiosity>) {
-    if (ext == ".glb") solution.exportGlb(o.exportPath);
-  }
+  if (ext == ".glb") solution.exportGlb(o.exportPath);
   if (!o.stats.empty()) writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
   console.info(fmt::format("solved {} with {}: {}{}{}", o.scene, o.method.method(),
                            describeRun(solution.stats(), total.seconds()),
@@ -81,9 +79,6 @@ int runSolve(SolveOptions& o, Console& console) {
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, console, stats);
   o.method.resolve(scene);
-  // The method can come from the scene file, so this is known only now; refuse before solving.
-  if (ext == ".glb" && o.method.method() != "patch")
-    throw InputError("--export " + o.exportPath, ".glb export needs --method patch");
   InterruptGuard interruptible;
   const bool objectMeans = !o.stats.empty();
   if (o.method.method() == "patch")
@@ -101,7 +96,8 @@ void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
   addSceneArgument(*sub, o->scene);
   sub->add_option("--export", o->exportPath,
                   "Per-element results: .csv (a row per voxel side or patch), .ply (a point cloud) "
-                  "or, with --method patch, .glb (the lit mesh, vertex colours = radiance)");
+                  "or .glb (the lit mesh, vertex colours = radiance: the patches, or with --method "
+                  "voxel the scene's triangles cut to the voxel size)");
   addStatsOption(*sub, o->stats);
   sub->callback([o, &console, &action] { action = [o, &console] { return runSolve(*o, console); }; });
 }

@@ -67,6 +67,10 @@ class VoxelRadiosity : public SurfaceRadiance {
   void exportCsv(const std::string& path) const;
   /// A binary PLY point cloud: position, normal, sRGB colour of B / pi, radiosity B.
   void exportPly(const std::string& path) const;
+  /// The scene's triangles as binary glTF with the solution baked in: each cut into triangles
+  /// no longer than a voxel, vertex colours the radiance radiance() gives there (linear,
+  /// clamped to [0, 1]), one node per object; written atomically.
+  void exportGlb(const std::string& path) const;
 
  private:
   struct Impl;

@@ -2,6 +2,7 @@
 #include <radiosity/error.h>
 #include <radiosity/voxel_radiosity.h>
 
+#include "output/baked_mesh.h"
 #include "output/surface_samples.h"
 #include "voxel/voxel_irradiance_field.h"
 #include "voxel/voxel_solver.h"
@@ -119,6 +120,10 @@ void VoxelRadiosity::exportCsv(const std::string& path) const {
 
 void VoxelRadiosity::exportPly(const std::string& path) const {
   writeSurfaceSamplesPly(path, impl_->samples());
+}
+
+void VoxelRadiosity::exportGlb(const std::string& path) const {
+  writeLitMeshGlb(path, bakeSurfaceRadiance(*impl_->scene, *this, impl_->grid.voxelSize));
 }
 
 }  // namespace rad

@@ -341,9 +341,9 @@ TEST(Cli, SceneSolverKeysChooseSettings) {
   EXPECT_NE(r.err.find("/solver/solver"), std::string::npos) << r.err;
 }
 
-// The lit patch mesh as a .glb that viewers open (the content is checked in tests/patch); the
-// voxel method has no mesh to export and says so before solving.
-TEST(Cli, SolveExportsPatchMeshAsGlb) {
+// The lit mesh as a .glb that viewers open, from either method (the content is checked in
+// tests/patch and tests/voxel).
+TEST(Cli, SolveExportsLitMeshAsGlb) {
   const fs::path dir = freshDir("patch_glb");
   const std::string glb = (dir / "x.glb").string();
   const CliResult r = run({"solve", "cornell", "--method", "patch", "--patches", "300",
@@ -353,11 +353,13 @@ TEST(Cli, SolveExportsPatchMeshAsGlb) {
   char magic[4] = {};
   in.read(magic, 4);
   EXPECT_EQ(std::string(magic, 4), "glTF");
-  const CliResult voxel = run({"solve", "cornell", "--method", "voxel", "--export",
-                               (dir / "v.glb").string()});
-  EXPECT_EQ(voxel.status, 2);
-  EXPECT_NE(voxel.err.find("--method patch"), std::string::npos) << voxel.err;
-  EXPECT_FALSE(fs::exists(dir / "v.glb"));
+  const CliResult voxel = run({"solve", "cornell", "--method", "voxel", "--voxels", "5000",
+                               "--sphere-radius", "4", "--export", (dir / "v.glb").string(),
+                               "--quiet"});
+  ASSERT_EQ(voxel.status, 0) << voxel.err;
+  std::ifstream voxelIn(dir / "v.glb", std::ios::binary);
+  voxelIn.read(magic, 4);
+  EXPECT_EQ(std::string(magic, 4), "glTF");
 }
 
 TEST(Cli, SolveRejectsUnknownExportFormat) {

@@ -4,18 +4,13 @@
 #include <gtest/gtest.h>
 #include <radiosity/patch_radiosity.h>
 
-// Declarations only, with the switches of the one implementation in src/scene/io/gltf_loader.cpp.
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
 
+#include "output/glb_reader.h"
 #include "output/gltf_export.h"
 #include "patch_test_scenes.h"
 
@@ -24,15 +19,12 @@ namespace fs = std::filesystem;
 namespace rad {
 namespace {
 
-// The unit cube seen from inside: a lamp ceiling (radiance above 1, so its colours clamp), a red
-// two-sided wall (face 0, x = 0) and grey one-sided walls.
+using test::loadGlb;
+using test::readAccessor;
+
+// The lit cube room, its lamp's radiance above 1 so that its colours clamp.
 Scene litRoom() {
-  SceneBuilder b("room");
-  const uint32_t wall = b.addMaterial({"wall", Color(0.6f), Color(0.0f), false});
-  const uint32_t red = b.addMaterial({"red", Color(0.7f, 0.1f, 0.1f), Color(0.0f), true});
-  const uint32_t lamp = b.addMaterial({"lamp", Color(0.3f), Color(1.5f), false});
-  test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : face == 0 ? red : wall; });
-  return b.build();
+  return test::litCubeRoom(Color(0.3f), Color(1.5f));
 }
 
 // litRoom() solved with the default settings but the patch size.
@@ -55,28 +47,6 @@ fs::path freshDir(const std::string& name) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-// Tightly packed accessor data (the exporter writes no strides) as `count x components` values.
-template <typename T>
-std::vector<T> readAccessor(const tinygltf::Model& model, int index, int components) {
-  const tinygltf::Accessor& a = model.accessors.at(index);
-  const tinygltf::BufferView& view = model.bufferViews.at(a.bufferView);
-  const std::vector<unsigned char>& data = model.buffers.at(view.buffer).data;
-  std::vector<T> out(a.count * components);
-  const size_t offset = view.byteOffset + a.byteOffset;
-  EXPECT_LE(offset + out.size() * sizeof(T), data.size());
-  std::memcpy(out.data(), data.data() + offset, out.size() * sizeof(T));
-  return out;
-}
-
-tinygltf::Model loadGlb(const fs::path& path) {
-  tinygltf::TinyGLTF loader;
-  tinygltf::Model model;
-  std::string err, warn;
-  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, path.string())) << err;
-  EXPECT_TRUE(err.empty()) << err;
-  return model;
 }
 
 std::vector<std::string> filesIn(const fs::path& dir) {

@@ -75,6 +75,18 @@ void addInwardCube(SceneBuilder& b, MaterialOf materialOf) {
     }
 }
 
+/// The unit cube seen from inside, lit by its ceiling (face 3, the lamp's reflectance and
+/// radiance given), with a red two-sided wall (face 0, x = 0) and grey one-sided walls: what the
+/// mesh exports are checked on.
+inline Scene litCubeRoom(const Color& lampRho, const Color& lampEmission) {
+  SceneBuilder b("room");
+  const uint32_t wall = b.addMaterial({"wall", Color(0.6f), Color(0.0f), false});
+  const uint32_t red = b.addMaterial({"red", Color(0.7f, 0.1f, 0.1f), Color(0.0f), true});
+  const uint32_t lamp = b.addMaterial({"lamp", lampRho, lampEmission, false});
+  addInwardCube(b, [&](int face) { return face == 3 ? lamp : face == 0 ? red : wall; });
+  return b.build();
+}
+
 /// The path tracer's per-object means, by object name: the reference the radiosity methods are
 /// compared with. Where its points fall matters more than how many paths each gets (shadows make
 /// irradiance discontinuous), so callers ask for many points and few paths.

@@ -1,0 +1,24 @@
+#pragma once
+// A solution's light baked into the scene's own triangles: each triangle is cut into smaller
+// ones, fine enough to follow the solution (no edge longer than `maxEdge`), and every vertex
+// takes the radiance the renderer shows there. Works for any SurfaceRadiance; the
+// voxel method uses it for its .glb export (the patch method exports its own patch mesh).
+
+#include <radiosity/scene.h>
+#include <radiosity/surface_radiance.h>
+
+#include "output/gltf_export.h"
+
+namespace rad {
+
+/// The scene's triangles, front sides, one group per scene object, each cut (longest-edge
+/// bisection, slivers into strips) until no edge is longer than maxEdge, vertex colours the
+/// linear radiance leaving the front. Two-sided materials are marked double-sided (their front's radiance shows on both
+/// sides, as in the patch export). Evaluates `radiance` in parallel. Throws
+/// std::invalid_argument, before any work, when the cut would exceed kMaxBakedTriangles.
+LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance, float maxEdge);
+
+/// The most triangles a bake may make (about 1 GB of glTF).
+inline constexpr double kMaxBakedTriangles = 3e7;
+
+}  // namespace rad
