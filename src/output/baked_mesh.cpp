@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -113,24 +114,24 @@ TrianglePieces cutTriangle(const Scene& scene, uint32_t triangle, float maxEdge)
   return pieces;
 }
 
-}  // namespace
-
-LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance, float maxEdge) {
-  if (!(maxEdge > 0.0f)) throw std::invalid_argument("bake: the longest edge must be positive");
-  // Triangles grouped by object.
+// The scene's triangles in object order; `groups` gets each object's range of them.
+std::vector<uint32_t> trianglesByObject(const Scene& scene, std::vector<LitMeshGroup>& groups) {
   std::vector<uint32_t> order;
-  LitMesh out;
   for (uint32_t o = 0; o < scene.objects.size(); ++o) {
     const uint32_t first = uint32_t(order.size());
     for (const Face& face : scene.faces)
       if (face.object == o)
         for (uint32_t t = 0; t < face.triangleCount; ++t) order.push_back(face.firstTriangle + t);
-    out.groups.push_back({scene.objects[o].name, first, uint32_t(order.size()) - first});
+    groups.push_back({scene.objects[o].name, first, uint32_t(order.size()) - first});
   }
-  // An estimate of the pieces from above (bisection's cover at least maxEdge^2 / 16 each, a
-  // strip's about a quarter of maxEdge of the triangle's edges each), checked before any is made.
+  return order;
+}
+
+// An estimate of the pieces from above (bisection's cover at least maxEdge^2 / 16 each, a
+// strip's about a quarter of maxEdge of the triangle's edges each), checked before any is made.
+void checkPieceCount(const Scene& scene, std::span<const uint32_t> triangles, float maxEdge) {
   double estimate = 0.0;
-  for (const uint32_t t : order) {
+  for (const uint32_t t : triangles) {
     const UVec3& tri = scene.triangles[t];
     const Vec3 a = scene.positions[tri.x], b = scene.positions[tri.y], c = scene.positions[tri.z];
     const double perimeter = glm::length(b - a) + glm::length(c - b) + glm::length(a - c);
@@ -141,10 +142,19 @@ LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance,
         fmt::format("bake: cutting the scene to {} would make about {:.3g} triangles (at most "
                     "{:.3g}); use larger voxels",
                     maxEdge, estimate, kMaxBakedTriangles));
+}
+
+}  // namespace
+
+LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance, float maxEdge) {
+  if (!(maxEdge > 0.0f)) throw std::invalid_argument("bake: the longest edge must be positive");
+  LitMesh out;
+  const std::vector<uint32_t> order = trianglesByObject(scene, out.groups);
+  checkPieceCount(scene, order, maxEdge);
   std::vector<TrianglePieces> pieces(order.size());
   tbb::parallel_for(size_t(0), order.size(),
                     [&](size_t i) { pieces[i] = cutTriangle(scene, order[i], maxEdge); });
-  // Where each triangle's vertices and pieces go.
+  // Where each triangle's vertices and pieces go; the groups then count pieces.
   std::vector<uint64_t> vertexStart(order.size() + 1, 0), pieceStart(order.size() + 1, 0);
   for (size_t i = 0; i < order.size(); ++i) {
     vertexStart[i + 1] = vertexStart[i] + pieces[i].positions.size();
