@@ -154,11 +154,13 @@ LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance,
   std::vector<TrianglePieces> pieces(order.size());
   tbb::parallel_for(size_t(0), order.size(),
                     [&](size_t i) { pieces[i] = cutTriangle(scene, order[i], maxEdge); });
-  // Where each triangle's vertices and pieces go; the groups then count pieces.
+  // Where each triangle's vertices and pieces go (a two-sided one's twice: its back side has
+  // light of its own); the groups then count pieces.
   std::vector<uint64_t> vertexStart(order.size() + 1, 0), pieceStart(order.size() + 1, 0);
   for (size_t i = 0; i < order.size(); ++i) {
-    vertexStart[i + 1] = vertexStart[i] + pieces[i].positions.size();
-    pieceStart[i + 1] = pieceStart[i] + pieces[i].indices.size() / 3;
+    const uint64_t sides = scene.materialOf(order[i]).twoSided ? 2 : 1;
+    vertexStart[i + 1] = vertexStart[i] + sides * pieces[i].positions.size();
+    pieceStart[i + 1] = pieceStart[i] + sides * pieces[i].indices.size() / 3;
   }
   if (vertexStart.back() > UINT32_MAX)
     throw std::invalid_argument("bake: more than 2^32 vertices; use a longer edge");
@@ -171,22 +173,27 @@ LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance,
   out.normals.resize(vertexStart.back());
   out.colors.resize(vertexStart.back());
   out.indices.resize(3 * pieceStart.back());
-  out.doubleSided.resize(pieceStart.back());
   tbb::parallel_for(size_t(0), order.size(), [&](size_t i) {
     const uint32_t triangle = order[i];
     const Vec3 normal = scene.triangleNormal(triangle);
-    const uint32_t base = uint32_t(vertexStart[i]);
     TrianglePieces& p = pieces[i];
-    for (size_t v = 0; v < p.positions.size(); ++v) {
-      out.positions[base + v] = p.positions[v];
-      out.normals[base + v] = normal;
-      out.colors[base + v] = radiance.radiance({p.positions[v], normal, triangle, true});
+    uint32_t* index = out.indices.data() + 3 * pieceStart[i];
+    const int sides = scene.materialOf(triangle).twoSided ? 2 : 1;
+    for (int side = 0; side < sides; ++side) {
+      const bool front = side == 0;
+      const uint32_t base = uint32_t(vertexStart[i] + size_t(side) * p.positions.size());
+      for (size_t v = 0; v < p.positions.size(); ++v) {
+        out.positions[base + v] = p.positions[v];
+        out.normals[base + v] = front ? normal : -normal;
+        out.colors[base + v] = radiance.radiance({p.positions[v], normal, triangle, front});
+      }
+      // The back side is wound the other way round, so that it faces out of its own side.
+      for (size_t k = 0; k < p.indices.size(); k += 3) {
+        *index++ = base + p.indices[k];
+        *index++ = base + p.indices[k + (front ? 1 : 2)];
+        *index++ = base + p.indices[k + (front ? 2 : 1)];
+      }
     }
-    std::transform(p.indices.begin(), p.indices.end(),
-                   out.indices.begin() + ptrdiff_t(3 * pieceStart[i]),
-                   [base](uint32_t v) { return base + v; });
-    std::fill_n(out.doubleSided.begin() + ptrdiff_t(pieceStart[i]), p.indices.size() / 3,
-                scene.materialOf(triangle).twoSided ? 1 : 0);
     p = {};
   });
   return out;

@@ -11,11 +11,12 @@
 
 namespace rad {
 
-/// The scene's triangles, front sides, one group per scene object, each cut (longest-edge
-/// bisection, slivers into strips) until no edge is longer than maxEdge, vertex colours the
-/// linear radiance leaving the front. Two-sided materials are marked double-sided (their front's radiance shows on both
-/// sides, as in the patch export). Evaluates `radiance` in parallel. Throws
-/// std::invalid_argument, before any work, when the cut would exceed kMaxBakedTriangles.
+/// The scene's triangles, one group per scene object, each cut (longest-edge bisection, slivers
+/// into strips) until no edge is longer than maxEdge, vertex colours the linear radiance leaving
+/// the front. A two-sided material's back side comes as pieces of its own (wound the other way,
+/// coloured with the back's radiance), so every triangle is one-sided: a wall lit on one side
+/// stays dark on the other. Evaluates `radiance` in parallel. Throws std::invalid_argument,
+/// before any work, when the cut would exceed kMaxBakedTriangles.
 LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance, float maxEdge);
 
 /// The most triangles a bake may make (about 1 GB of glTF).

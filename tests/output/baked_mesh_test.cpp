@@ -13,11 +13,15 @@
 namespace rad {
 namespace {
 
-// Radiance that varies across space, so that a vertex given another's colour shows.
+// Radiance that varies across space and between the sides, so that a vertex given another's
+// colour shows.
+Color linearRadiance(const Vec3& point, uint32_t triangle, bool front) {
+  return Color(point.x, point.y, float(triangle) + (front ? 0.0f : 100.0f));
+}
 class LinearRadiance : public SurfaceRadiance {
  public:
   Color radiance(const SurfaceHit& hit) const override {
-    return Color(hit.point.x, hit.point.y, float(hit.triangle));
+    return linearRadiance(hit.point, hit.triangle, hit.frontFace);
   }
 };
 
@@ -46,37 +50,39 @@ TEST(BakedMesh, CutsEachTriangleIntoPiecesNoLongerThanAsked) {
   const float maxEdge = 0.1f;
   const LitMesh mesh = bakeSurfaceRadiance(scene, radiance, maxEdge);
   ASSERT_EQ(mesh.groups.size(), 2u);
-  ASSERT_EQ(mesh.doubleSided.size(), mesh.indices.size() / 3);
+  EXPECT_TRUE(mesh.doubleSided.empty());  // every piece one-sided: the back has its own
   for (size_t g = 0; g < 2; ++g) {
     const LitMeshGroup& group = mesh.groups[g];
     EXPECT_EQ(group.name, scene.objects[g].name);
-    const uint32_t triangle = scene.faces[g].firstTriangle;
-    double area = 0.0;
+    const Face& face = scene.faces[g];
+    double area[2] = {0.0, 0.0};  // front, back
     for (uint32_t t = group.firstTriangle; t < group.firstTriangle + group.triangleCount; ++t) {
       const Vec3 a = mesh.positions[mesh.indices[3 * t]];
       const Vec3 b = mesh.positions[mesh.indices[3 * t + 1]];
       const Vec3 c = mesh.positions[mesh.indices[3 * t + 2]];
       EXPECT_LE(std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)}),
                 maxEdge * 1.0001f);
-      EXPECT_GT(glm::dot(glm::cross(b - a, c - a), scene.faces[g].normal), 0.0f);
-      EXPECT_EQ(mesh.doubleSided[t], g == 1 ? 1 : 0);
-      area += triangleArea(a, b, c);
+      const bool front = glm::dot(glm::cross(b - a, c - a), face.normal) > 0.0f;
+      area[front ? 0 : 1] += triangleArea(a, b, c);
       for (int k = 0; k < 3; ++k) {
+        // Wound to face the way of its side, coloured with that side's radiance.
         const uint32_t v = mesh.indices[3 * t + size_t(k)];
-        EXPECT_EQ(mesh.colors[v], Color(mesh.positions[v].x, mesh.positions[v].y, float(triangle)));
-        EXPECT_EQ(mesh.normals[v], scene.faces[g].normal);
+        EXPECT_EQ(mesh.normals[v], front ? face.normal : -face.normal);
+        EXPECT_EQ(mesh.colors[v], linearRadiance(mesh.positions[v], face.firstTriangle, front));
       }
     }
-    EXPECT_NEAR(area, scene.faces[g].area, 1e-4 * scene.faces[g].area);
+    EXPECT_NEAR(area[0], face.area, 1e-4 * face.area);
+    // Only the two-sided sliver has a back.
+    EXPECT_NEAR(area[1], g == 1 ? face.area : 0.0, 1e-4 * face.area);
   }
   // The right triangle of area 1/2 in pieces of about maxEdge^2 / 4 (halved squares of side
   // maxEdge / sqrt 2): 200 when cut to the limit, at most twice that.
   EXPECT_GE(mesh.groups[0].triangleCount, 200u);
   EXPECT_LE(mesh.groups[0].triangleCount, 400u);
   // The sliver, 10 long and 0.01 wide: a strip, two rows of steps of half the limit (about
-  // 400 pieces), not the 100^2 of a regular grid nor the fan of bisection (2,187).
-  EXPECT_GE(mesh.groups[1].triangleCount, 200u);
-  EXPECT_LE(mesh.groups[1].triangleCount, 450u);
+  // 400 pieces a side), not the 100^2 of a regular grid nor the fan of bisection (2,187).
+  EXPECT_GE(mesh.groups[1].triangleCount, 2 * 200u);
+  EXPECT_LE(mesh.groups[1].triangleCount, 2 * 450u);
 }
 
 TEST(BakedMesh, RefusesACutTooFineBeforeMakingIt) {

@@ -6,6 +6,7 @@
 #include <radiosity/voxel_radiosity.h>
 
 #include <glm/gtc/constants.hpp>
+#include <glm/gtx/component_wise.hpp>
 
 #include <algorithm>
 #include <filesystem>
@@ -50,11 +51,13 @@ TEST(VoxelGlbExport, BakesTheSolutionIntoTheSceneTriangles) {
     EXPECT_EQ(node.name, scene.objects[o].name);
     const Face& face = *std::find_if(scene.faces.begin(), scene.faces.end(),
                                      [&](const Face& f) { return f.object == o; });
-    double objectArea = 0.0;
-    Vec3d radianceTimesArea(0.0);
+    // Front and back pieces: area and radiance times area.
+    double sideArea[2] = {0.0, 0.0};
+    Vec3d radianceTimesArea[2] = {Vec3d(0.0), Vec3d(0.0)};
     for (const tinygltf::Primitive& prim : model.meshes.at(size_t(node.mesh)).primitives) {
-      EXPECT_EQ(model.materials.at(size_t(prim.material)).doubleSided, o == 0) << node.name;
+      EXPECT_FALSE(model.materials.at(size_t(prim.material)).doubleSided) << node.name;
       const auto positions = test::readAccessor<float>(model, prim.attributes.at("POSITION"), 3);
+      const auto normals = test::readAccessor<float>(model, prim.attributes.at("NORMAL"), 3);
       const auto colors = test::readAccessor<float>(model, prim.attributes.at("COLOR_0"), 3);
       const auto indices = test::readAccessor<uint32_t>(model, prim.indices, 1);
       ASSERT_EQ(colors.size(), positions.size());
@@ -62,27 +65,36 @@ TEST(VoxelGlbExport, BakesTheSolutionIntoTheSceneTriangles) {
         const Vec3 a = at(positions, indices[t]), b = at(positions, indices[t + 1]);
         const Vec3 c = at(positions, indices[t + 2]);
         const Vec3 n = glm::cross(b - a, c - a);
-        EXPECT_GT(glm::dot(n, face.normal), 0.0f) << "triangle wound against the front side";
+        const int side = glm::dot(n, face.normal) > 0.0f ? 0 : 1;
+        // Wound to face the way its vertex normals point.
+        EXPECT_GT(glm::dot(n, at(normals, indices[t])), 0.0f);
         // Cut to the voxel size: the baked light can follow what the voxels resolve.
         const float longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
         EXPECT_LE(longest, settings.voxelSize * 1.0001f);
         const double triangleArea = 0.5 * glm::length(n);
-        objectArea += triangleArea;
-        radianceTimesArea += triangleArea / 3.0 *
-                             Vec3d(at(colors, indices[t]) + at(colors, indices[t + 1]) +
-                                   at(colors, indices[t + 2]));
+        sideArea[side] += triangleArea;
+        radianceTimesArea[side] += triangleArea / 3.0 *
+                                   Vec3d(at(colors, indices[t]) + at(colors, indices[t + 1]) +
+                                         at(colors, indices[t + 2]));
       }
-      // Probes: a vertex's colour is the radiance the renderer shows there.
+      // Probes: a vertex's colour is the radiance the renderer shows there, from its side.
       for (uint32_t v = 0; 3 * v < positions.size(); v += 17, ++probes) {
+        const bool front = glm::dot(at(normals, v), face.normal) > 0.0f;
         const Color expected = solution.radiance({at(positions, v), face.normal,
-                                                  face.firstTriangle, true});
+                                                  face.firstTriangle, front});
         for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(at(colors, v)[ch], expected[ch], 1e-5f);
       }
     }
-    area += objectArea;
+    area += sideArea[0];
+    EXPECT_NEAR(sideArea[0], face.area, 1e-4 * face.area);
+    // The two-sided wall's back, outside the closed room, gets no light; the rest has no back.
+    EXPECT_NEAR(sideArea[1], o == 0 ? face.area : 0.0, 1e-4 * face.area);
+    if (o == 0) {
+      EXPECT_LT(glm::compMax(radianceTimesArea[1]), 1e-6) << "light outside the room";
+    }
     // The mean over the voxel sides of the object (B / pi), an independent reduction of the
     // solution: interpolation between voxels moves it by under 1% here (2% allowed).
-    const Vec3d baked = radianceTimesArea / objectArea;
+    const Vec3d baked = radianceTimesArea[0] / sideArea[0];
     const Vec3d expected = Vec3d(sides[o].meanRadiosity) / glm::pi<double>();
     for (int ch = 0; ch < 3; ++ch)
       EXPECT_NEAR(baked[ch], expected[ch], 0.02 * expected[ch] + 1e-4)
