@@ -100,8 +100,9 @@ class PatchRadiosity : public SurfaceRadiance {
   /// A binary PLY point cloud of the patch centroids.
   void exportPly(const std::string& path) const;
   /// The lit patch mesh as binary glTF 2.0 (.glb), written atomically: one node per scene
-  /// object (named after it), the front sides of the patches, COLOR_0 = Ke + rho H / pi per
-  /// vertex clamped to [0, 1] (H as radiance() interpolates it), under an unlit white material.
+  /// object (named after it), its patches (a two-sided face's back as its mirrored patches, with
+  /// the back's own light; every triangle one-sided), COLOR_0 = Ke + rho H / pi per vertex
+  /// clamped to [0, 1] (H as radiance() interpolates it), under an unlit white material.
   void exportGlb(const std::string& path) const;
 
  private:

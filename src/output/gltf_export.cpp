@@ -14,7 +14,6 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -84,22 +83,21 @@ class ModelBuilder {
     return index;
   }
 
-  /// The white unlit material, one-sided or double-sided, made on first use.
-  int material(bool doubleSided) {
-    int& index = materials_[doubleSided ? 1 : 0];
-    if (index >= 0) return index;
+  /// The white unlit one-sided material (each side of a surface has triangles of its own),
+  /// made on first use.
+  int material() {
+    if (material_ >= 0) return material_;
     tinygltf::Material m;
-    m.name = doubleSided ? "radiosity_double_sided" : "radiosity";
+    m.name = "radiosity";
     m.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
     // What viewers without KHR_materials_unlit fall back to: a rough dielectric, the closest
     // lit look to the baked colours (the extension's own recommendation).
     m.pbrMetallicRoughness.metallicFactor = 0.0;
     m.pbrMetallicRoughness.roughnessFactor = 1.0;
-    m.doubleSided = doubleSided;
     m.extensions[kUnlit] = tinygltf::Value(tinygltf::Value::Object());
     model_.materials.push_back(m);
     if (model_.extensionsUsed.empty()) model_.extensionsUsed.push_back(kUnlit);
-    return index = int(model_.materials.size()) - 1;
+    return material_ = int(model_.materials.size()) - 1;
   }
 
   void addNode(const std::string& name, tinygltf::Mesh mesh) {
@@ -116,7 +114,7 @@ class ModelBuilder {
 
  private:
   tinygltf::Model model_;
-  std::array<int, 2> materials_{-1, -1};
+  int material_ = -1;
 };
 
 void validate(const LitMesh& mesh) {
@@ -127,8 +125,6 @@ void validate(const LitMesh& mesh) {
                      mesh.normals.size(), mesh.colors.size()));
   if (mesh.indices.size() % 3 != 0) fail("index count is not a multiple of 3");
   const size_t triangles = mesh.indices.size() / 3;
-  if (!mesh.doubleSided.empty() && mesh.doubleSided.size() != triangles)
-    fail("doubleSided needs one flag per triangle");
   for (uint32_t i : mesh.indices)
     if (i >= vertices) fail(fmt::format("index {} out of range ({} vertices)", i, vertices));
   for (const Vec3& p : mesh.positions)
@@ -140,14 +136,13 @@ void validate(const LitMesh& mesh) {
 }
 
 // Each group becomes a mesh of its own vertices (so that a node stands alone, e.g. when Blender
-// splits the import into objects) with a primitive per sidedness sharing them.
+// splits the import into objects), one primitive.
 void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& group,
               std::vector<uint32_t>& local) {
   std::vector<Vec3> positions, normals, colors;
-  std::array<std::vector<uint32_t>, 2> indices;  // one-sided, double-sided
+  std::vector<uint32_t> indices;
   std::vector<uint32_t> touched;
   for (uint32_t t = group.firstTriangle; t < group.firstTriangle + group.triangleCount; ++t) {
-    const bool twoSided = !mesh.doubleSided.empty() && mesh.doubleSided[t] != 0;
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = mesh.indices[3 * size_t(t) + k];
       if (local[v] == ~0u) {
@@ -158,7 +153,7 @@ void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& gr
         const Color& c = mesh.colors[v];
         colors.emplace_back(unitColor(c.r), unitColor(c.g), unitColor(c.b));
       }
-      indices[twoSided ? 1 : 0].push_back(local[v]);
+      indices.push_back(local[v]);
     }
   }
   for (uint32_t v : touched) local[v] = ~0u;  // ready for the next group without an O(V) reset
@@ -170,16 +165,13 @@ void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& gr
                                       TINYGLTF_TARGET_ARRAY_BUFFER);
   const int color = builder.accessor(colors, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
                                      TINYGLTF_TARGET_ARRAY_BUFFER);
-  for (int side = 0; side < 2; ++side) {
-    if (indices[side].empty()) continue;
-    tinygltf::Primitive p;
-    p.attributes = {{"POSITION", position}, {"NORMAL", normal}, {"COLOR_0", color}};
-    p.indices = builder.accessor(indices[side], TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                 TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    p.material = builder.material(side == 1);
-    p.mode = TINYGLTF_MODE_TRIANGLES;
-    gltfMesh.primitives.push_back(p);
-  }
+  tinygltf::Primitive p;
+  p.attributes = {{"POSITION", position}, {"NORMAL", normal}, {"COLOR_0", color}};
+  p.indices = builder.accessor(indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
+                               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  p.material = builder.material();
+  p.mode = TINYGLTF_MODE_TRIANGLES;
+  gltfMesh.primitives.push_back(p);
   builder.addNode(group.name, std::move(gltfMesh));
 }
 

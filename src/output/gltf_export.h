@@ -23,10 +23,9 @@ struct LitMesh {
   std::vector<Vec3> positions;  ///< scene units
   std::vector<Vec3> normals;    ///< per vertex; normalised on write
   std::vector<Color> colors;    ///< linear RGB per vertex; clamped to [0, 1] on write
-  std::vector<uint32_t> indices;  ///< 3 per triangle, CCW about the front side
-  /// Per triangle, nonzero where it should be visible from its back too (glTF doubleSided);
-  /// empty: every triangle is one-sided.
-  std::vector<uint8_t> doubleSided;
+  /// 3 per triangle, CCW about the side it shows (one-sided: a surface seen from both sides
+  /// has a triangle for each, with that side's light).
+  std::vector<uint32_t> indices;
   /// Triangle ranges, one node each; empty: a single node "radiosity" with every triangle.
   std::vector<LitMeshGroup> groups;
 };

@@ -315,14 +315,14 @@ void PatchRadiosity::exportPly(const std::string& path) const {
 // The mesh a viewer sees: what radiance() returns, baked into vertex colours. Smooth shading
 // shares a vertex between the patches welded there, but only within one object and material
 // (radiance() uses the hit's own material, so colour edges and emitters stay sharp); flat shading
-// gives every patch its own corners. Only front sides are written: a two-sided face's mirrored
-// patches would coincide with its front and flicker, so its material is doubleSided instead.
+// gives every patch its own corners. A two-sided face's mirrored back patches are written too,
+// with the back's own light: glTF culls the side a one-sided triangle turns away, so each side
+// shows its own.
 LitMesh PatchRadiosity::Impl::litMesh() const {
   const bool smooth = settings.shading == PatchShading::Smooth;
   std::vector<std::vector<uint32_t>> byObject(scene->objects.size());
-  for (uint32_t p = 0; p < mesh->size(); ++p)
-    if (!mesh->roots()[mesh->nodeOf(p).root].back)
-      byObject[mesh->patches()[p].object].push_back(p);
+  // Both sides of a two-sided face: the back's mirrored patches carry the back's own light.
+  for (uint32_t p = 0; p < mesh->size(); ++p) byObject[mesh->patches()[p].object].push_back(p);
 
   LitMesh out;
   std::unordered_map<uint64_t, uint32_t> vertexOf;  // (vertex, material) -> index; per object
@@ -349,10 +349,8 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
         out.colors.push_back(material.emission + material.rho * h / glm::pi<float>());
       }
       // Corners are CCW about the side's normal, so the fans keep the front facing out.
-      for (int t = 0; t + 2 < node.cornerCount(); ++t) {
+      for (int t = 0; t + 2 < node.cornerCount(); ++t)
         out.indices.insert(out.indices.end(), {corner[0], corner[t + 1], corner[t + 2]});
-        out.doubleSided.push_back(material.twoSided ? 1 : 0);
-      }
     }
     out.groups.push_back(
         {scene->objects[o].name, firstTriangle, uint32_t(out.indices.size() / 3) - firstTriangle});

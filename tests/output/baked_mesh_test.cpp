@@ -50,7 +50,6 @@ TEST(BakedMesh, CutsEachTriangleIntoPiecesNoLongerThanAsked) {
   const float maxEdge = 0.1f;
   const LitMesh mesh = bakeSurfaceRadiance(scene, radiance, maxEdge);
   ASSERT_EQ(mesh.groups.size(), 2u);
-  EXPECT_TRUE(mesh.doubleSided.empty());  // every piece one-sided: the back has its own
   for (size_t g = 0; g < 2; ++g) {
     const LitMeshGroup& group = mesh.groups[g];
     EXPECT_EQ(group.name, scene.objects[g].name);

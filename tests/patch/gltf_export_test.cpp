@@ -68,15 +68,14 @@ TEST(PatchGlbExport, IsTheLitPatchMesh) {
   EXPECT_EQ(filesIn(dir), std::vector<std::string>{"room.glb"});
   const tinygltf::Model model = loadGlb(file);
 
-  // The same mesh the solver built: front sides only (the two-sided wall's mirrored patches are
-  // its material's doubleSided instead), a quad patch being 2 triangles.
+  // The same mesh the solver built, the two-sided wall's mirrored back patches included (with
+  // their own light), a quad patch being 2 triangles.
   const PatchMesh mesh(scene, {settings.patchSize, settings.targetPatches});
   size_t expectedTriangles = 0;
-  for (uint32_t p = 0; p < mesh.size(); ++p)
-    if (!mesh.roots()[mesh.nodeOf(p).root].back)
-      expectedTriangles += mesh.nodeOf(p).cornerCount() - 2;
-  double sceneArea = 0.0;
-  for (const Face& f : scene.faces) sceneArea += f.area;
+  for (uint32_t p = 0; p < mesh.size(); ++p) expectedTriangles += mesh.nodeOf(p).cornerCount() - 2;
+  double sceneArea = 0.0;  // both sides of the two-sided faces
+  for (const Face& f : scene.faces)
+    sceneArea += (scene.materials[f.material].twoSided ? 2.0 : 1.0) * f.area;
 
   ASSERT_EQ(model.scenes.size(), 1u);
   ASSERT_EQ(model.nodes.size(), scene.objects.size());
@@ -94,7 +93,7 @@ TEST(PatchGlbExport, IsTheLitPatchMesh) {
     for (const tinygltf::Primitive& prim : model.meshes.at(node.mesh).primitives) {
       EXPECT_EQ(prim.mode, TINYGLTF_MODE_TRIANGLES);
       const tinygltf::Material& material = model.materials.at(prim.material);
-      EXPECT_EQ(material.doubleSided, o == 0) << node.name;
+      EXPECT_FALSE(material.doubleSided) << node.name;  // each side has triangles of its own
       EXPECT_EQ(material.extensions.count("KHR_materials_unlit"), 1u);
       EXPECT_EQ(material.pbrMetallicRoughness.baseColorFactor,
                 (std::vector<double>{1.0, 1.0, 1.0, 1.0}));
@@ -117,20 +116,29 @@ TEST(PatchGlbExport, IsTheLitPatchMesh) {
         const Vec3 c = at(positions, indices[t + 2]);
         const Vec3 n = glm::cross(b - a, c - a);
         area += 0.5 * glm::length(n);
-        EXPECT_GT(glm::dot(n, face.normal), 0.0f) << "triangle wound against the front side";
+        // Wound to face the way its side does (the back's triangles against the face normal).
+        EXPECT_GT(glm::dot(n, at(normals, indices[t])), 0.0f) << "triangle wound against its side";
+        if (o != 0) {
+          EXPECT_GT(glm::dot(n, face.normal), 0.0f) << "a one-sided face's back";
+        }
       }
       // Probes: the colour is what radiance() gives at the vertex (Ke + rho H / pi, H the
       // average at the welded vertex), clamped to [0, 1].
       const uint32_t vertices = uint32_t(positions.size() / 3);
       for (uint32_t v = 0; v < vertices; v += 13, ++probes) {
+        const bool front = glm::dot(at(normals, v), face.normal) > 0.0f;
         const Color expected = solution.radiance({at(positions, v), face.normal,
-                                                  face.firstTriangle, true});
+                                                  face.firstTriangle, front});
         const Color clamped = glm::clamp(expected, Color(0.0f), Color(1.0f));
+        // The two-sided wall's back faces out of the closed room: no light reaches it.
+        if (!front) {
+          EXPECT_LT(maxComponent(at(colors, v)), 1e-6f) << node.name;
+        }
         for (int ch = 0; ch < 3; ++ch)
           EXPECT_NEAR(at(colors, v)[ch], clamped[ch], 1e-5f)
               << node.name << " vertex " << v << " channel " << ch;
         EXPECT_NEAR(glm::length(at(normals, v)), 1.0f, 1e-5f);
-        EXPECT_GT(glm::dot(at(normals, v), face.normal), 0.99f);
+        EXPECT_GT(std::abs(glm::dot(at(normals, v), face.normal)), 0.99f);
       }
     }
   }
