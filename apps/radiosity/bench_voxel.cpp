@@ -27,7 +27,7 @@ constexpr const char* kScene = "room:16";
 
 struct SweepMeasurement {
   size_t voxels = 0, sides = 0, directions = 0;
-  double secondsPerIteration = 0.0, visitsPerSecond = 0.0, bytesPerSide = 0.0;
+  double secondsPerIteration = 0.0, visitsPerSecond = 0.0, bytesPerSide = 0.0, bytesPerVoxel = 0.0;
 };
 
 // One sweep iteration (no first shot, so the time is the sweep's alone), at a voxel count or,
@@ -43,8 +43,13 @@ SweepMeasurement measureSweep(const Scene& scene, size_t voxels, int sphereRadiu
   const VoxelRadiosity solution(scene, settings, console.progress(fmt::format("sweep {} voxels", voxels)));
   console.finishProgress();
   const VoxelRadiosityStats& s = solution.stats();
-  return {s.voxels, s.sides, s.directions, s.sweepSeconds, double(s.visits) / s.sweepSeconds,
-          double(s.memoryBytes) / double(s.sides)};
+  return {s.voxels,
+          s.sides,
+          s.directions,
+          s.sweepSeconds,
+          double(s.visits) / s.sweepSeconds,
+          double(s.memoryBytes) / double(s.sides),
+          double(s.memoryBytes) / double(s.voxels)};
 }
 
 std::string svgPlot(const std::vector<SweepMeasurement>& points, double slope) {
@@ -92,13 +97,15 @@ nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius) {
           {"seconds_per_iteration", m.secondsPerIteration},
           {"visits_per_s", m.visitsPerSecond},
           {"bytes_per_side", m.bytesPerSide},
+          {"bytes_per_voxel", m.bytesPerVoxel},
           {"paper_workload_s", paperSeconds},
           {"speedup_over_paper", kPaperSeconds / paperSeconds},
           {"summary",
-           fmt::format("{:.1f} M visits/s ({} {} voxels, {} directions, {:.2f} s/iteration, {:.0f} B/side); "
+           fmt::format("{:.1f} M visits/s ({} {} voxels, {} directions, {:.2f} s/iteration, {:.0f} B/side, "
+                       "{:.0f} B/voxel); "
                        "paper workload (2e6 voxels, R 38, 6 it.) extrapolated: {:.0f} s = {:.0f}x the paper",
                        m.visitsPerSecond * 1e-6, kScene, m.voxels, m.directions, m.secondsPerIteration,
-                       m.bytesPerSide, paperSeconds, kPaperSeconds / paperSeconds)}};
+                       m.bytesPerSide, m.bytesPerVoxel, paperSeconds, kPaperSeconds / paperSeconds)}};
 }
 
 nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxVoxels,
