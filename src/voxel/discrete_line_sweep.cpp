@@ -234,11 +234,11 @@ DiscreteLineSweep::Slot DiscreteLineSweep::recentSlot(const LineState& state) {
   return slot;
 }
 
-inline Sight DiscreteLineSweep::look(uint32_t e, const Vec3& centroid, const Slot& s,
-                                     const Vec3& unit, const Source& source, Color& light) const {
+inline Sight DiscreteLineSweep::look(const Vec3& centroid, const Slot& s, const Vec3& unit,
+                                     const Source& source, Color& light) const {
   if (holdsCell(s.normal)) {
     uint32_t side = 0;
-    const Sight sight = visibility_->look(e, slotCell(s.offset), unit, side);
+    const Sight sight = visibility_->look(centroid, slotCell(s.offset), unit, side);
     if (sight == Sight::Source) light = sentRadiosity(source[side]);
     return sight;
   }
@@ -295,10 +295,10 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
       sight = planeSight(height, recentFacing, view.tolerance);
       if (sight == Sight::Source) light = halfColor(recent);
     } else {
-      sight = look(e, c, recentSlot(state), view.unit, view.source, light);
+      sight = look(c, recentSlot(state), view.unit, view.source, light);
     }
     if (kTangentCorrection && sight == Sight::Through)
-      sight = lookOlder(e, c, state, view.unit, view.source, light);
+      sight = lookOlder(c, state, view.unit, view.source, light);
     if (sight == Sight::Source) view.gathered[e] += light * (-facing * view.weight);
   } else if (facing > 0.0f) {
     wait(view, state, e, continues && state.pending == state.recentRef);
@@ -356,9 +356,9 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
     } else if (state.recentRef != kNoVoxel) {
       Color light(0.0f);
       const Vec3 c = view.centroid[e];
-      Sight sight = look(e, c, recentSlot(state), unit, source, light);
+      Sight sight = look(c, recentSlot(state), unit, source, light);
       if (kTangentCorrection && sight == Sight::Through)
-        sight = lookOlder(e, c, state, unit, source, light);
+        sight = lookOlder(c, state, unit, source, light);
       if (sight == Sight::Source) view.gathered[e] += light * w;
     }
   }
@@ -400,7 +400,7 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
     if (!sameRunAsBefore) {
       const bool recent = m == state.recentRef;
       const Vec3 centroid = recent ? state.recent.centroid : view.centroid[m];
-      sight = look(m, centroid, slot, back, view.source, light);
+      sight = look(centroid, slot, back, view.source, light);
       if (sight == Sight::Source) {
         const Vec3 normal = recent ? slotNormal(state.recent) : view.normal[m];
         weight = glm::dot(normal, view.unit) * view.weight;
@@ -428,14 +428,14 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
   state.pendingLink = waitingLink;
 }
 
-Sight DiscreteLineSweep::lookOlder(uint32_t e, const Vec3& centroid, const LineState& state,
+Sight DiscreteLineSweep::lookOlder(const Vec3& centroid, const LineState& state,
                                    const Vec3& unit, const Source& source, Color& light) const {
   // With the tangent correction a grazed voxel is looked through: the two voxels before it
   // decide (a slot for a cell of several sides is made from its reference).
   for (const uint32_t ref : state.olderRef) {
     if (ref == kNoVoxel) break;
     const Slot older = ref & kCellRef ? cellSlot(ref & ~kCellRef) : source[ref];
-    const Sight sight = look(e, centroid, older, unit, source, light);
+    const Sight sight = look(centroid, older, unit, source, light);
     if (sight != Sight::Through) return sight;
   }
   return Sight::Through;

@@ -187,12 +187,13 @@ class DiscreteLineSweep {
   /// Lets the sides waiting on the line's record look at the voxel in `slot`.
   template <bool kTangentCorrection>
   void resolvePending(const PassView& view, LineState& state, const Slot& slot) const;
-  /// What entry e (its centroid given) sees in slot s; `light` gets the source's radiosity when
-  /// it is Source.
-  Sight look(uint32_t e, const Vec3& centroid, const Slot& s, const Vec3& unit,
-             const Source& source, Color& light) const;
-  /// What entry e sees past the line's recent voxel (the two voxels before it).
-  Sight lookOlder(uint32_t e, const Vec3& centroid, const LineState& state, const Vec3& unit,
+  /// What a side sees in slot s from its centroid (passed, not looked up: the side may have been
+  /// visited long ago, and the caller holds it); `light` gets the source's radiosity when it is
+  /// Source.
+  Sight look(const Vec3& centroid, const Slot& s, const Vec3& unit, const Source& source,
+             Color& light) const;
+  /// What a side sees past the line's recent voxel (the two voxels before it).
+  Sight lookOlder(const Vec3& centroid, const LineState& state, const Vec3& unit,
                   const Source& source, Color& light) const;
   /// Queues light for side e (a side that waited) in the pass's deferred batch.
   static void gatherLater(const PassView& view, uint32_t e, const Color& light);

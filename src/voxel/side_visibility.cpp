@@ -28,9 +28,8 @@ SideVisibility::SideVisibility(const VoxelGrid& grid)
   }
 }
 
-Sight SideVisibility::look(uint32_t e, uint32_t q, const Vec3& unit, uint32_t& source) const {
+Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_t& source) const {
   const float tolerance = tolerance_;
-  const Vec3 ce = grid_.centroid[e];
   Sight sight = Sight::Through;
   float nearest = std::numeric_limits<float>::max();
   for (uint32_t f = grid_.cellEntryBegin[q]; f < grid_.cellEntryBegin[q + 1]; ++f) {

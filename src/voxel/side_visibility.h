@@ -31,9 +31,10 @@ class SideVisibility {
  public:
   explicit SideVisibility(const VoxelGrid& grid);
 
-  /// How the backward ray from entry e (along -unit) meets the sides of `cell`; `source` gets
-  /// the side it sees when the answer is Source.
-  Sight look(uint32_t e, uint32_t cell, const Vec3& unit, uint32_t& source) const;
+  /// How the backward ray from a point (along -unit) meets the sides of `cell`; `source` gets
+  /// the side it sees when the answer is Source. The point is a side's centroid, which the
+  /// caller often holds already (the side was visited long ago).
+  Sight look(const Vec3& point, uint32_t cell, const Vec3& unit, uint32_t& source) const;
   /// The side of e's own cell that e sees along -unit, if any (the faces of an inner edge).
   bool lookWithinCell(uint32_t e, uint32_t cell, const Vec3& unit, uint32_t& source) const;
   /// False when no other side of e's cell stands in front of e: e sees nothing within its cell.
