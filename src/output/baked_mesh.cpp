@@ -128,14 +128,17 @@ std::vector<uint32_t> trianglesByObject(const Scene& scene, std::vector<LitMeshG
 }
 
 // An estimate of the pieces from above (bisection's cover at least maxEdge^2 / 16 each, a
-// strip's about a quarter of maxEdge of the triangle's edges each), checked before any is made.
+// strip's about a quarter of maxEdge of the triangle's edges each; a two-sided triangle's twice),
+// checked before any is made.
 void checkPieceCount(const Scene& scene, std::span<const uint32_t> triangles, float maxEdge) {
   double estimate = 0.0;
   for (const uint32_t t : triangles) {
     const UVec3& tri = scene.triangles[t];
     const Vec3 a = scene.positions[tri.x], b = scene.positions[tri.y], c = scene.positions[tri.z];
     const double perimeter = glm::length(b - a) + glm::length(c - b) + glm::length(a - c);
-    estimate += 16.0 * scene.triangleArea(t) / (maxEdge * maxEdge) + 8.0 * perimeter / maxEdge + 1.0;
+    const double sides = scene.materialOf(t).twoSided ? 2.0 : 1.0;
+    estimate += sides * (16.0 * scene.triangleArea(t) / (maxEdge * maxEdge) +
+                         8.0 * perimeter / maxEdge + 1.0);
   }
   if (estimate > kMaxBakedTriangles)
     throw std::invalid_argument(

@@ -97,7 +97,7 @@ void PatchRadiosity::Impl::chooseFormFactorSettings() {
   // few: large emitters are found by enough of every patch's rays anyway.
   if (settings.estimator != PatchFormFactorEstimator::Hemisphere) return;
   for (uint32_t p = 0; p < mesh->size(); ++p)
-    if (maxComponent(scene->materials[mesh->patches()[p].material].emission) > 0.0f)
+    if (scene->materials[mesh->patches()[p].material].emits())
       ff.exactColumns.push_back(p);
   const double pairs = double(ff.exactColumns.size()) * double(mesh->size());
   if (pairs > kExactColumnPairs) {

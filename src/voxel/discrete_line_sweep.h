@@ -88,9 +88,8 @@ class DiscreteLineSweep {
   /// Cells in the order a pass along `step` visits them (for tests).
   std::vector<uint32_t> passOrder(const IVec3& step);
   size_t lineTableSize() const { return lines_.size(); }
-  const SideVisibility& visibility() const { return *visibility_; }
   /// Working memory of this sweep: the line records, the waiting sides' links and the deferred
-  /// light (the fold masks, shared by its copies, are visibility().memoryBytes()).
+  /// light (the fold masks, shared by its copies, are counted once by the solver).
   size_t workingBytes() const {
     return lines_.capacity() * sizeof(LineState) +
            pendingNext_.capacity() * sizeof(uint32_t) +

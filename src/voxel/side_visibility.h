@@ -42,8 +42,6 @@ class SideVisibility {
   /// True when cell p holds the same planes as cell q (a floor, or the two faces of an edge):
   /// consecutive such cells on a line are one run.
   bool continuesPlanes(uint32_t p, uint32_t q) const;
-  /// Bytes held (the fold masks).
-  size_t memoryBytes() const { return frontOf_.capacity() * sizeof(uint16_t); }
   /// Distance under which a point lies in a plane: a grazing line runs inside it.
   float planeTolerance() const { return tolerance_; }
 

@@ -114,10 +114,20 @@ void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLin
     for (size_t e = 0; e < slots[0].size(); ++e) slots[0][e] += slots[slot][e];
 }
 
+// What the solver holds per side besides each thread's accumulator and sweep: the one account
+// of its shared arrays, for the memory check before solving and the memory reported after.
+uint64_t sharedBytesPerSide(const VoxelSolverSettings& settings) {
+  return (settings.directFirstShot ? sizeof(Color) : 0) +  // direct light
+         sizeof(DiscreteLineSweep::Slot) +                  // packed sides
+         (settings.normalize ? sizeof(float) : 0) +         // normalization weights
+         sizeof(float) +                                    // luminance before the iteration
+         sizeof(uint16_t);                                  // fold masks (SideVisibility)
+}
+
 // The sweeps' memory, known before anything is allocated: per thread an accumulator and a sweep
-// (its line table sized for the widest direction), shared the packed sides, B's parts and the
-// normalization.
-size_t sweepSlots(const VoxelGrid& grid, const DirectionSet& directions, VoxelSolution& solution) {
+// (its line table sized for the widest direction), and the shared arrays.
+size_t sweepSlots(const VoxelGrid& grid, const DirectionSet& directions,
+                  const VoxelSolverSettings& settings, VoxelSolution& solution) {
   // The arena's threads, or fewer when a global limit (--threads) says so.
   const size_t threads =
       std::min(size_t(std::max(1, tbb::this_task_arena::max_concurrency())),
@@ -127,8 +137,7 @@ size_t sweepSlots(const VoxelGrid& grid, const DirectionSet& directions, VoxelSo
   const size_t n = grid.entryCount();
   const uint64_t perSlot = n * sizeof(Color) + DiscreteLineSweep::workingBytesFor(
                                                    n, DiscreteLineSweep::maxLineCount(grid, steps));
-  const uint64_t shared =
-      n * (2 * sizeof(Color) + sizeof(DiscreteLineSweep::Slot) + sizeof(float) + sizeof(uint16_t));
+  const uint64_t shared = n * sharedBytesPerSide(settings);
   const uint64_t available = availableMemoryBytes();
   const size_t slots = sweepSlotsThatFit(threads, perSlot, shared, available);
   constexpr double kGB = 1e9;
@@ -165,7 +174,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   const DirectionSet directions(settings.sphereRadius);
   solution.directions = directions.size();
   // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
-  const size_t slotCount = sweepSlots(grid, directions, solution);
+  const size_t slotCount = sweepSlots(grid, directions, settings, solution);
   solution.sweepSlots = slotCount;
   std::vector<Color> direct(settings.directFirstShot ? n : 0);
   if (settings.directFirstShot) {
@@ -215,11 +224,8 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     if (settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance) break;
   }
   solution.sweepSeconds = secondsSince(start);
-  solution.workingBytes = slotCount * n * sizeof(Color) + weights.size() * sizeof(float) +
-                          direct.size() * sizeof(Color) + n * sizeof(float) +
-                          n * sizeof(DiscreteLineSweep::Slot);
+  solution.workingBytes = slotCount * n * sizeof(Color) + n * sharedBytesPerSide(settings);
   for (const DiscreteLineSweep& s : sweeps) solution.workingBytes += s.workingBytes();
-  solution.workingBytes += sweeps[0].visibility().memoryBytes();
   // The working arrays go before the results are made, so they never coexist.
   slots.resize(1);
   sweeps.clear();
