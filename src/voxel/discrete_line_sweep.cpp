@@ -510,6 +510,7 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
     __builtin_prefetch(&view.normal[first]);
     __builtin_prefetch(&view.centroid[first]);
     __builtin_prefetch(&view.gathered[first], 1);
+    __builtin_prefetch(&view.source[first]);
     const uint32_t i = count++ & kMask;
     if (count > kAhead) visit(i);
     ringCell[i] = cell, ringLine[i] = line, ringDominant[i] = dominant;
