@@ -485,7 +485,7 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
   // Line records are scattered over a table the size of the scene's cross-section, and the
   // cells' own data is read in an order that jumps back row by row: fetch both kAhead cells
   // ahead of the visit so that the misses overlap instead of queueing.
-  constexpr uint32_t kAhead = 16, kMask = kAhead - 1;
+  constexpr uint32_t kAhead = 32, kMask = kAhead - 1;
   uint32_t ringCell[kAhead], ringLine[kAhead];
   int32_t ringDominant[kAhead];
   uint32_t count = 0;
