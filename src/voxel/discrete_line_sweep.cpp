@@ -55,8 +55,16 @@ DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings&
 
 void DiscreteLineSweep::layoutLines(const IVec3& dims, const IVec3& step,
                                     const LineOffset& offset, LineLayout& layout) {
-  // Components a >= b >= c >= 0 after signing.
-  const std::array<int, 3> d = axesByMagnitude(step);
+  // The dominant component a after signing; the other two, b and c, in either order (the lines
+  // are the same). A row of the table holds the lines of one U, so V is taken along the
+  // innermost axis a pass walks (z, or y when z is dominant): the cells of a row then meet line
+  // records that lie side by side, not a row of the table apart.
+  std::array<int, 3> d = axesByMagnitude(step);
+  // The offsets stay with their axes (u shifts the one of component b): same lines either way.
+  const int inner = d[0] == 2 ? 1 : 2;
+  const bool swapped = d[1] == inner;
+  if (swapped) std::swap(d[1], d[2]);
+  const int64_t shiftU = swapped ? offset.v : offset.u, shiftV = swapped ? offset.u : offset.v;
   layout.axes = d;
   const int64_t a = std::abs(step[d[0]]), b = std::abs(step[d[1]]), c = std::abs(step[d[2]]);
   for (int k = 0; k < 3; ++k) {
@@ -68,8 +76,8 @@ void DiscreteLineSweep::layoutLines(const IVec3& dims, const IVec3& step,
     for (size_t t = 0; t < u.size(); ++t) {
       const int64_t m = sign * int64_t(t);  // coordinate in the frame where the step is positive
       // floor((a y - b x + u) / a) = y - ceil((b x - u) / a), likewise for z.
-      u[t] = k == 0 ? -ceilDiv(b * m - offset.u, a) : (k == 1 ? m : 0);
-      v[t] = k == 0 ? -ceilDiv(c * m - offset.v, a) : (k == 2 ? m : 0);
+      u[t] = k == 0 ? -ceilDiv(b * m - shiftU, a) : (k == 1 ? m : 0);
+      v[t] = k == 0 ? -ceilDiv(c * m - shiftV, a) : (k == 2 ? m : 0);
     }
     const int64_t uMin = *std::min_element(u.begin(), u.end());
     const int64_t vMin = *std::min_element(v.begin(), v.end());
