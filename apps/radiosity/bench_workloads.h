@@ -17,8 +17,9 @@ nlohmann::json benchPathTracer(Console& console);
 /// workloads (the Cornell box and a furnished room at ~10k patches, the Cornell box at ~100k).
 nlohmann::json benchPatch(Console& console);
 
-/// The voxel sweep on a furnished room: voxel-direction visits per second, bytes per voxel, and
-/// the paper's workload (2e6 voxels, R = 38, 6 iterations) extrapolated from the rate.
+/// The voxel sweep on a furnished room: voxel-direction visits per second (the median and the
+/// fastest of three iterations), bytes per voxel, and the paper's workload (2e6 voxels, R = 38,
+/// 6 iterations) extrapolated from the median rate.
 nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius);
 
 /// Time per sweep iteration against the voxel count (room:N at one voxel size, about 1e5 up to

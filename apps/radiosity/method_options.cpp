@@ -215,7 +215,7 @@ VoxelRadiosity solveVoxels(const Scene& scene, const VoxelRadiositySettings& set
                          {"bytes_per_side", double(v.memoryBytes) / double(std::max<size_t>(v.sides, 1))},
                          {"bytes_per_voxel", double(v.memoryBytes) / double(std::max<size_t>(v.voxels, 1))},
                          {"seconds", {{"voxelize", v.voxelizeSeconds}, {"first_shot", v.directSeconds},
-                                      {"sweeps", v.sweepSeconds}}}};
+                                      {"sweeps", v.sweepSeconds}, {"iterations", v.iterationSeconds}}}};
   stats.counts.voxels = v.sides;
   stats.counts.directions = v.directions;
   stats.counts.rays += v.shadowRays;

@@ -40,6 +40,8 @@ struct VoxelRadiosityStats {
   uint64_t shadowRays = 0;
   std::vector<double> residuals;  ///< relative change of B at each iteration
   double voxelizeSeconds = 0.0, directSeconds = 0.0, sweepSeconds = 0.0;
+  /// The sweeps' time in each iteration: their spread shows how steady the machine was.
+  std::vector<double> iterationSeconds;
   size_t memoryBytes = 0;  ///< grid and solver arrays
   /// Threads that swept at once, each its own directions (results are the same for the same
   /// number); fewer than asked when memory would not hold a sweep each (then a warning says so).

@@ -82,6 +82,7 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
   s.residuals = solution.residuals;
   s.directSeconds = solution.directSeconds;
   s.sweepSeconds = solution.sweepSeconds;
+  s.iterationSeconds = solution.iterationSeconds;
   s.memoryBytes = impl_->grid.memoryBytes() + solution.workingBytes;
 }
 

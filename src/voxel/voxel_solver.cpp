@@ -209,6 +209,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                         directions.pairCount() * size_t(std::max(settings.iterations, 1)));
   const auto start = std::chrono::steady_clock::now();
   for (int iteration = 0; iteration < settings.iterations; ++iteration) {
+    const auto iterationStart = std::chrono::steady_clock::now();
     DiscreteLineSweep::packSides(grid, sends, packed);
     for (size_t e = 0; e < n; ++e) luminanceBefore[e] = luminance(radiosityOf(e));
     gatherAllDirections(directions, sweeps, slots, packed, settings, iteration, ticker);
@@ -220,6 +221,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
       total += grid.area[e] * std::abs(after);
     }
     solution.residuals.push_back(total > 0.0 ? change / total : 0.0);
+    solution.iterationSeconds.push_back(secondsSince(iterationStart));
     solution.cellVisits += uint64_t(grid.cellCount()) * directions.size();
     if (settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance) break;
   }

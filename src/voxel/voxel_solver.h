@@ -39,6 +39,7 @@ struct VoxelSolution {
   uint64_t cellVisits = 0;        ///< voxel-direction visits of all sweeps
   uint64_t shadowRays = 0;
   double directSeconds = 0.0, sweepSeconds = 0.0;
+  std::vector<double> iterationSeconds;  ///< the sweeps' time in each iteration
   size_t workingBytes = 0;        ///< solver arrays beyond the grid (accumulators, line tables)
   size_t sweepSlots = 0;          ///< threads that swept at once (fewer than asked when memory was short)
   std::vector<std::string> warnings;

@@ -205,6 +205,15 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
   EXPECT_EQ(j["counts"]["directions"].get<int>(), 134);
   EXPECT_EQ(j["iterations"].get<int>(), 6);
   EXPECT_EQ(j["residuals"].size(), 6u);
+  // Each iteration's sweep time, adding up to no more than the sweeps' total.
+  const nlohmann::json& seconds = j["voxel"]["seconds"];
+  ASSERT_EQ(seconds["iterations"].size(), 6u);
+  double sum = 0.0;
+  for (const auto& t : seconds["iterations"]) {
+    EXPECT_GT(t.get<double>(), 0.0);
+    sum += t.get<double>();
+  }
+  EXPECT_LE(sum, seconds["sweeps"].get<double>());
   ASSERT_EQ(j["objects"].size(), 8u);
   const size_t count = csvRowCount(csv);
   EXPECT_EQ(count, j["counts"]["voxels"].get<size_t>());
