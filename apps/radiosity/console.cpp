@@ -2,10 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <unistd.h>
 
@@ -34,15 +37,42 @@ void Console::detail(const std::string& message) {
   if (verbose_) info(message);
 }
 
+std::string durationText(double seconds) {
+  const long s = std::lround(std::max(seconds, 0.0));
+  if (s < 60) return fmt::format("{} s", s);
+  if (s < 3600) return fmt::format("{} min {:02} s", s / 60, s % 60);
+  const long m = (s + 30) / 60;
+  return fmt::format("{} h {:02} min", m / 60, m % 60);
+}
+
+double secondsLeft(double startFraction, double fraction, double seconds) {
+  // Too little done (or too soon) for its rate to say anything yet.
+  constexpr double kLeastFraction = 0.01, kLeastSeconds = 1.0;
+  const double done = fraction - startFraction;
+  if (done < kLeastFraction || seconds < kLeastSeconds) return -1.0;
+  return seconds * (1.0 - fraction) / done;
+}
+
 ProgressCallback Console::progress(const std::string& label) {
   const bool draw = !quiet_ && &err_ == &std::cerr && isatty(STDERR_FILENO);
-  auto started = std::make_shared<Stopwatch>();
-  return [this, draw, label, started](double fraction) {
+  // The time left is judged from the first report on, so that setup before it (voxelizing, a
+  // first shot) does not count as the computation's own pace.
+  struct Pace {
+    Stopwatch sinceCreated;
+    std::optional<Stopwatch> sinceFirst;
+    double firstFraction = 0.0;
+  };
+  auto pace = std::make_shared<Pace>();
+  return [this, draw, label, pace](double fraction) {
+    if (!pace->sinceFirst) pace->sinceFirst.emplace(), pace->firstFraction = fraction;
     if (draw) {
       constexpr int kWidth = 40;
       const int filled = int(fraction * kWidth + 0.5);
-      err_ << fmt::format("\r{} [{}{}] {:5.1f}% {:6.1f} s", label, std::string(filled, '='),
-                          std::string(kWidth - filled, ' '), 100.0 * fraction, started->seconds())
+      const double left = secondsLeft(pace->firstFraction, fraction, pace->sinceFirst->seconds());
+      err_ << fmt::format("\r{} [{}{}] {:5.1f}% {:>10}{}\x1b[K", label, std::string(filled, '='),
+                          std::string(kWidth - filled, ' '), 100.0 * fraction,
+                          durationText(pace->sinceCreated.seconds()),
+                          left >= 0.0 ? ", about " + durationText(left) + " left" : "")
            << std::flush;
       barDrawn_ = true;
     }

@@ -47,6 +47,13 @@ class InterruptGuard {
   static bool interrupted();
 };
 
+/// A duration as a progress line shows it: "42 s", "3 min 05 s", "2 h 07 min".
+std::string durationText(double seconds);
+
+/// The time a computation still needs when it went from `startFraction` done to `fraction` done
+/// in `seconds`, at that rate; negative until it has made progress to judge by.
+double secondsLeft(double startFraction, double fraction, double seconds);
+
 /// Seconds elapsed since construction.
 class Stopwatch {
  public:
