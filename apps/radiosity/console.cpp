@@ -64,7 +64,10 @@ ProgressCallback Console::progress(const std::string& label) {
   };
   auto pace = std::make_shared<Pace>();
   return [this, draw, label, pace](double fraction) {
-    if (!pace->sinceFirst) pace->sinceFirst.emplace(), pace->firstFraction = fraction;
+    if (!pace->sinceFirst) {
+      pace->sinceFirst.emplace();
+      pace->firstFraction = fraction;
+    }
     if (draw) {
       constexpr int kWidth = 40;
       const int filled = int(fraction * kWidth + 0.5);
