@@ -30,13 +30,6 @@ const char* helpOf(PatchFormFactorEstimator e) {
 const char* helpOf(PatchSolverKind) { return ""; }
 const char* helpOf(PatchShading) { return ""; }
 
-template <class Enum, size_t N>
-std::vector<std::string> namesOf(const NamedChoice<Enum> (&choices)[N]) {
-  std::vector<std::string> names;
-  for (const NamedChoice<Enum>& c : choices) names.push_back(c.name);
-  return names;
-}
-
 // The flag, checked against the library's table of names (patch_radiosity.h), with the names
 // (and the default) listed in its help: "<what>: a (help, default), b, c".
 template <class Enum, size_t N>
@@ -50,7 +43,7 @@ CLI::Option* addNamedOption(CLI::App& command, const std::string& flag, std::str
     items.push_back(note.empty() ? c.name : fmt::format("{} ({})", c.name, note));
   }
   return command.add_option(flag, name, fmt::format("{}: {}", what, fmt::join(items, ", ")))
-      ->check(CLI::IsMember(namesOf(choices)));
+      ->check(CLI::IsMember(choiceNames(choices)));
 }
 
 // The value a name stands for. The flag and the scene loader check names against the same
@@ -58,9 +51,8 @@ CLI::Option* addNamedOption(CLI::App& command, const std::string& flag, std::str
 template <class Enum, size_t N>
 Enum valueOf(const NamedChoice<Enum> (&choices)[N], const std::string& name,
              const std::string& where) {
-  for (const NamedChoice<Enum>& c : choices)
-    if (name == c.name) return c.value;
-  throw InputError(where, fmt::format("'{}' is not one of {}", name, fmt::join(namesOf(choices), ", ")));
+  if (const std::optional<Enum> value = choiceNamed(choices, name)) return *value;
+  throw InputError(where, fmt::format("'{}' is not one of {}", name, fmt::join(choiceNames(choices), ", ")));
 }
 
 // The flag's value if it was given, else the scene's if it has one; `value` as it is otherwise.

@@ -14,7 +14,9 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rad {
@@ -30,6 +32,27 @@ struct NamedChoice {
   const char* name;
   Enum value;
 };
+/// The names of a table's choices, in its order.
+template <class Enum, size_t N>
+std::vector<std::string> choiceNames(const NamedChoice<Enum> (&choices)[N]) {
+  std::vector<std::string> names;
+  for (const NamedChoice<Enum>& c : choices) names.push_back(c.name);
+  return names;
+}
+/// The choice a name stands for, if any.
+template <class Enum, size_t N>
+std::optional<Enum> choiceNamed(const NamedChoice<Enum> (&choices)[N], std::string_view name) {
+  for (const NamedChoice<Enum>& c : choices)
+    if (name == c.name) return c.value;
+  return std::nullopt;
+}
+/// The name of a choice ("" for a value the table lacks).
+template <class Enum, size_t N>
+const char* choiceName(const NamedChoice<Enum> (&choices)[N], Enum value) {
+  for (const NamedChoice<Enum>& c : choices)
+    if (c.value == value) return c.name;
+  return "";
+}
 inline constexpr NamedChoice<PatchFormFactorEstimator> kFormFactorEstimatorNames[] = {
     {"hemisphere", PatchFormFactorEstimator::Hemisphere},
     {"pairwise", PatchFormFactorEstimator::Pairwise},

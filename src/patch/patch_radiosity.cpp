@@ -59,11 +59,6 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-const char* solverName(PatchSolverKind s) {
-  for (const NamedChoice<PatchSolverKind>& c : kPatchSolverNames)
-    if (c.value == s) return c.name;
-  return "";
-}
 
 PatchSystem systemOf(const Scene& scene, const PatchMesh& mesh) {
   PatchSystem s;
@@ -257,7 +252,7 @@ PatchRadiosity::PatchRadiosity(const Scene& scene, const PatchRadiositySettings&
   s.vertices = m.mesh->vertices().size();
   s.patchSize = m.mesh->patchSize();
   s.rays = caster.raysCast();
-  s.solver = solverName(settings.solver);
+  s.solver = choiceName(kPatchSolverNames, settings.solver);
   s.iterations = m.solution.iterations;
   s.shots = m.solution.shots;
   s.residuals = m.solution.residuals;

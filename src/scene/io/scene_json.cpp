@@ -288,13 +288,9 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
   if (j.contains("direct_samples")) s.directSamples = int(integer("direct_samples", 1, 1 << 20));
   auto choice = [&](const char* key, const auto& allowed) {
     const std::string v = r.string(j[key], ptr + "/" + key);
-    std::vector<std::string> names;
-    for (const auto& a : allowed) {
-      if (v == a.name) return v;
-      names.push_back(a.name);
-    }
-    r.fail(ptr + "/" + key,
-           fmt::format("unknown value '{}' (expected {})", v, fmt::join(names, ", ")));
+    if (!choiceNamed(allowed, v))
+      r.fail(ptr + "/" + key, fmt::format("unknown value '{}' (expected {})", v,
+                                          fmt::join(choiceNames(allowed), ", ")));
     return v;
   };
   if (j.contains("patch_size")) s.patchSize = float(positive("patch_size"));
