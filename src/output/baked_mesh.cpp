@@ -116,12 +116,14 @@ TrianglePieces cutTriangle(const Scene& scene, uint32_t triangle, float maxEdge)
 
 // The scene's triangles in object order; `groups` gets each object's range of them.
 std::vector<uint32_t> trianglesByObject(const Scene& scene, std::vector<LitMeshGroup>& groups) {
+  std::vector<std::vector<uint32_t>> facesOf(scene.objects.size());
+  for (uint32_t f = 0; f < scene.faces.size(); ++f) facesOf[scene.faces[f].object].push_back(f);
   std::vector<uint32_t> order;
   for (uint32_t o = 0; o < scene.objects.size(); ++o) {
     const uint32_t first = uint32_t(order.size());
-    for (const Face& face : scene.faces)
-      if (face.object == o)
-        for (uint32_t t = 0; t < face.triangleCount; ++t) order.push_back(face.firstTriangle + t);
+    for (const uint32_t f : facesOf[o])
+      for (uint32_t t = 0; t < scene.faces[f].triangleCount; ++t)
+        order.push_back(scene.faces[f].firstTriangle + t);
     groups.push_back({scene.objects[o].name, first, uint32_t(order.size()) - first});
   }
   return order;

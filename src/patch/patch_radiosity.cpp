@@ -59,7 +59,6 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-
 PatchSystem systemOf(const Scene& scene, const PatchMesh& mesh) {
   PatchSystem s;
   for (const Patch& p : mesh.patches()) {
@@ -316,7 +315,6 @@ void PatchRadiosity::exportPly(const std::string& path) const {
 LitMesh PatchRadiosity::Impl::litMesh() const {
   const bool smooth = settings.shading == PatchShading::Smooth;
   std::vector<std::vector<uint32_t>> byObject(scene->objects.size());
-  // Both sides of a two-sided face: the back's mirrored patches carry the back's own light.
   for (uint32_t p = 0; p < mesh->size(); ++p) byObject[mesh->patches()[p].object].push_back(p);
 
   LitMesh out;

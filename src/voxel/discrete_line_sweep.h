@@ -138,8 +138,8 @@ class DiscreteLineSweep {
 
   /// A direction's lines as coordinates (U, V) >= 0, U = u[0][t0] + u[1][t1] (+ u[2][t2] = 0)
   /// and likewise V, with t_k the cell's coordinate along axes[k] (axes[0] the dominant one,
-  /// axes[2] the innermost other axis a pass walks): the naive line (floor((a y - b x + u) / a), floor((a z - c x + v) / a)) shifted
-  /// to start at 0. The lines of row U lie in [vLow[U], vHigh[U]]: the grid's box seen along
+  /// axes[2] the innermost other axis a pass walks): the naive line
+  /// (floor((a y - b x + u) / a), floor((a z - c x + v) / a)) shifted to start at 0. The lines of row U lie in [vLow[U], vHigh[U]]: the grid's box seen along
   /// the direction, a hexagon rather than its bounding parallelogram (a quarter fewer lines for
   /// a diagonal).
   struct LineLayout {

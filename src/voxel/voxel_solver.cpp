@@ -199,7 +199,8 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     const float norm = settings.normalize && weights[e] > 0.0f ? weights[e] : 1.0f;
     return directAt(e) + slots[0][e] / norm;
   };
-  auto radiosityOf = [&](size_t e) { return emitted(e) + rho(e) * irradianceAt(e); };
+  auto radiosityFrom = [&](size_t e, const Color& h) { return emitted(e) + rho(e) * h; };
+  auto radiosityOf = [&](size_t e) { return radiosityFrom(e, irradianceAt(e)); };
   auto sends = [&](size_t e) {
     return settings.directFirstShot ? rho(e) * irradianceAt(e) : radiosityOf(e);
   };
@@ -237,8 +238,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   for (size_t e = 0; e < n; ++e) solution.irradiance[e] = irradianceAt(e);
   slots = {};
   solution.radiosity.resize(n);
-  for (size_t e = 0; e < n; ++e)
-    solution.radiosity[e] = emitted(e) + rho(e) * solution.irradiance[e];
+  for (size_t e = 0; e < n; ++e) solution.radiosity[e] = radiosityFrom(e, solution.irradiance[e]);
   return solution;
 }
 

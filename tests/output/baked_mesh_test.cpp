@@ -5,6 +5,7 @@
 #include <radiosity/scene_builder.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
