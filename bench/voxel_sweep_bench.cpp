@@ -3,6 +3,7 @@
 // and the voxelization in voxels per second.
 #include <benchmark/benchmark.h>
 #include <radiosity/scene_loader.h>
+#include <tbb/global_control.h>
 
 #include "voxel/direction_set.h"
 #include "voxel/discrete_line_sweep.h"
@@ -34,6 +35,8 @@ void BM_DiscreteLineSweepPair(benchmark::State& state) {
   std::vector<DiscreteLineSweep::Slot> slots(grid.entryCount());
   DiscreteLineSweep::packSides(grid, [](size_t) { return Color(1.0f); }, slots);
   std::vector<Color> gathered(grid.entryCount());
+  // One thread: the kernel's own rate (a sweep shares each direction among all threads).
+  const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
   DiscreteLineSweep sweep(grid, {});
   size_t k = 0, pairs = 0;
   for (auto _ : state) {

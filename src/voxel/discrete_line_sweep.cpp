@@ -3,6 +3,9 @@
 #include <radiosity/error.h>
 
 #include <immintrin.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -31,14 +34,37 @@ std::array<int, 3> axesByMagnitude(const IVec3& step) {
   return d;
 }
 
-// Calls f(i) for i in [begin, end), ascending or descending.
+// Calls f(i) for i in [begin, end), ascending or descending. One call site, so that the nested
+// loops of a pass inline into one body instead of eight copies of the innermost one.
 template <typename F>
 inline void forEach(uint32_t begin, uint32_t end, bool ascending, F&& f) {
-  if (ascending) {
-    for (uint32_t i = begin; i < end; ++i) f(i);
-  } else {
-    for (uint32_t i = end; i-- > begin;) f(i);
-  }
+  const uint32_t stride = ascending ? 1u : ~0u;  // -1 modulo 2^32
+  uint32_t i = ascending ? begin : end - 1;
+  for (uint32_t k = begin; k < end; ++k, i += stride) f(i);
+}
+
+// The indices of [range.first, range.second) whose row(i) lies in the band, for row(i)
+// monotone in i (rising or falling): a subrange, found by two binary searches.
+template <typename Band, typename Row>
+std::pair<uint32_t, uint32_t> withinBand(std::pair<uint32_t, uint32_t> range, const Band& band,
+                                         Row&& row) {
+  auto [begin, end] = range;
+  if (begin == end) return range;
+  const bool rising = row(begin) <= row(end - 1);
+  // The first index in [begin, end) whose row is past `bound` (before it when falling).
+  auto firstPast = [&](int64_t bound) {
+    uint32_t lo = begin, hi = end;
+    while (lo < hi) {
+      const uint32_t mid = lo + (hi - lo) / 2;
+      if (rising ? row(mid) >= bound : row(mid) < bound)
+        hi = mid;
+      else
+        lo = mid + 1;
+    }
+    return lo;
+  };
+  return rising ? std::pair(firstPast(band.uBegin), firstPast(band.uEnd))
+                : std::pair(firstPast(band.uEnd), firstPast(band.uBegin));
 }
 
 }  // namespace
@@ -51,6 +77,42 @@ DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings&
                                        " voxel sides exceed the sweep's limit of " +
                                        std::to_string(kNoPending - 1) +
                                        "; use a larger voxel size");
+  for (uint32_t x = 0; x < uint32_t(grid.dims.x); ++x)
+    for (uint32_t row = grid.slabRowBegin[x]; row < grid.slabRowBegin[x + 1]; ++row)
+      for (uint32_t cell = grid.rowCellBegin[row]; cell < grid.rowCellBegin[row + 1]; ++cell)
+        if (cell % kSampleStride == 0)
+          sampleCells_.push_back({int16_t(x), grid.rowY[row], grid.cellZ[cell]});
+  rowsAlongZ_ = {1, 2, grid.slabRowBegin, grid.rowY, grid.rowCellBegin, {}, grid.cellZ};
+  const RowsAlongY& y = rowsAlongYArrays_ = sortRowsAlongY(grid);
+  rowsAlongY_ = {2, 1, y.slabRowBegin, y.rowZ, y.rowCellBegin, y.cell, y.cellY};
+}
+
+size_t DiscreteLineSweep::threadCount() {
+  return std::min(
+      size_t(std::max(1, tbb::this_task_arena::max_concurrency())),
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+}
+
+void DiscreteLineSweep::cutBands(size_t count) {
+  bands_.assign(1, LineBand{});
+  if (count <= 1) return;
+  std::vector<uint32_t>& perRow = sampledPerRow_;
+  perRow.assign(rowStart_.size(), 0);
+  for (const auto& [x, y, z] : sampleCells_)
+    ++perRow[(lineTable_[0][size_t(x)] + lineTable_[1][size_t(y)] + lineTable_[2][size_t(z)]) >>
+             32];
+  // Band k ends at the first row where the running count reaches k / count of the sample.
+  bands_.clear();
+  const double total = double(sampleCells_.size());
+  int64_t begin = 0, seen = 0;
+  for (size_t row = 0; row < perRow.size() && bands_.size() + 1 < count; ++row) {
+    seen += perRow[row];
+    if (double(seen) >= total * double(bands_.size() + 1) / double(count)) {
+      bands_.push_back({begin, int64_t(row) + 1});
+      begin = int64_t(row) + 1;
+    }
+  }
+  bands_.push_back({begin, int64_t(perRow.size())});
 }
 
 void DiscreteLineSweep::layoutLines(const IVec3& dims, const IVec3& step,
@@ -449,42 +511,92 @@ Sight DiscreteLineSweep::lookOlder(const Vec3& centroid, const LineState& state,
   return Sight::Through;
 }
 
-template <typename F>
-void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, F&& f) const {
-  const VoxelGrid& g = grid_;
-  forEach(0, uint32_t(g.dims.x), step.x >= 0, [&](uint32_t x) {
+DiscreteLineSweep::RowsAlongY DiscreteLineSweep::sortRowsAlongY(const VoxelGrid& grid) {
+  RowsAlongY rows;
+  rows.slabRowBegin.push_back(0);
+  rows.rowCellBegin.push_back(0);
+  std::vector<std::array<uint32_t, 3>> slab;  // (z, y, cell)
+  for (uint32_t x = 0; x < uint32_t(grid.dims.x); ++x) {
+    slab.clear();
+    for (uint32_t row = grid.slabRowBegin[x]; row < grid.slabRowBegin[x + 1]; ++row)
+      for (uint32_t cell = grid.rowCellBegin[row]; cell < grid.rowCellBegin[row + 1]; ++cell)
+        slab.push_back({uint32_t(grid.cellZ[cell]), uint32_t(grid.rowY[row]), cell});
+    std::sort(slab.begin(), slab.end());
+    for (size_t i = 0; i < slab.size(); ++i) {
+      if (i == 0 || slab[i][0] != slab[i - 1][0]) {
+        if (i > 0) rows.rowCellBegin.push_back(uint32_t(rows.cell.size()));
+        rows.rowZ.push_back(int16_t(slab[i][0]));
+      }
+      rows.cell.push_back(slab[i][2]);
+      rows.cellY.push_back(int16_t(slab[i][1]));
+    }
+    if (!slab.empty()) rows.rowCellBegin.push_back(uint32_t(rows.cell.size()));
+    rows.slabRowBegin.push_back(uint32_t(rows.rowZ.size()));
+  }
+  return rows;
+}
+
+std::pair<uint32_t, uint32_t> DiscreteLineSweep::rowsInBand(const SlabRows& rows, uint32_t x,
+                                                            const LineBand& band) const {
+  const std::vector<uint64_t>& rowLines = lineTable_[rows.rowAxis];
+  return withinBand({rows.slabRowBegin[x], rows.slabRowBegin[x + 1]}, band, [&](uint32_t row) {
+    return int64_t((lineTable_[0][x] + rowLines[size_t(rows.rowCoordinate[row])]) >> 32);
+  });
+}
+
+template <bool kGridOrder, typename F>
+void DiscreteLineSweep::walkSlabs(const SlabRows& rows, const IVec3& step, const LineBand& band,
+                                  F&& f) const {
+  const bool whole = band.holdsAll(rowStart_.size());
+  const std::vector<uint64_t>& rowLines = lineTable_[rows.rowAxis];
+  const std::vector<uint64_t>& cellLines = lineTable_[rows.cellAxis];
+  const std::vector<int32_t>& rowDominants = dominantTable_[rows.rowAxis];
+  const std::vector<int32_t>& cellDominants = dominantTable_[rows.cellAxis];
+  forEach(0, uint32_t(grid_.dims.x), step.x >= 0, [&](uint32_t x) {
     const uint64_t slabLine = lineTable_[0][x];
     const int32_t slabDominant = dominantTable_[0][x];
-    forEach(g.slabRowBegin[x], g.slabRowBegin[x + 1], step.y >= 0, [&](uint32_t row) {
-      const size_t y = size_t(g.rowY[row]);
-      const uint64_t rowLine = slabLine + lineTable_[1][y];
-      const int32_t rowDominant = slabDominant + dominantTable_[1][y];
-      forEach(g.rowCellBegin[row], g.rowCellBegin[row + 1], step.z >= 0, [&](uint32_t cell) {
-        const size_t z = size_t(g.cellZ[cell]);
-        const uint64_t uv = rowLine + lineTable_[2][z];
-        f(cell, uint32_t(rowStart_[uv >> 32] + int32_t(uint32_t(uv))),
-          rowDominant + dominantTable_[2][z]);
-      });
+    const auto [rowBegin, rowEnd] = whole
+                                        ? std::pair(rows.slabRowBegin[x], rows.slabRowBegin[x + 1])
+                                        : rowsInBand(rows, x, band);
+    forEach(rowBegin, rowEnd, step[rows.rowAxis] >= 0, [&](uint32_t row) {
+      const size_t r = size_t(rows.rowCoordinate[row]);
+      const uint64_t rowLine = slabLine + rowLines[r];
+      const int32_t rowDominant = slabDominant + rowDominants[r];
+      forEach(rows.rowCellBegin[row], rows.rowCellBegin[row + 1], step[rows.cellAxis] >= 0,
+              [&](uint32_t k) {
+                const size_t c = size_t(rows.cellCoordinate[k]);
+                const uint64_t uv = rowLine + cellLines[c];
+                f(kGridOrder ? k : rows.cell[k],
+                  uint32_t(rowStart_[uv >> 32] + int32_t(uint32_t(uv))),
+                  rowDominant + cellDominants[c]);
+              });
     });
   });
 }
 
+template <typename F>
+void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, const LineBand& band,
+                                               F&& f) const {
+  // A line's row U depends on the dominant coordinate and the outer of the other two (layoutLines):
+  // a band's rows run along the third, z, or y when z is dominant. All lines at once take the
+  // grid's own order, whose cells' data lie in the order they are read.
+  if (layout_.axes[0] == 2 && !band.holdsAll(rowStart_.size()))
+    walkSlabs<false>(rowsAlongY_, step, band, f);
+  else
+    walkSlabs<true>(rowsAlongZ_, step, band, f);
+}
+
 template <bool kTangentCorrection>
-void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
-                             const Source& source, std::span<Color> gathered) {
-  // The 16-bit pass stamp tells this pass's line records from older ones; when it wraps, all
-  // records are cleared once (every 65,535 passes).
-  if (++stamp_ == 0) {
-    for (LineState& line : lines_) line.stamp = 0;
-    stamp_ = 1;
-  }
+void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3& unit,
+                             float weight, const Source& source, std::span<Color> gathered,
+                             DeferredGathers& later) {
   const PassView view{grid_.cellEntryBegin.data(),
                       grid_.normal.data(),
                       grid_.centroid.data(),
                       source,
                       gathered.data(),
                       pendingNext_.data(),
-                      &later_,
+                      &later,
                       unit,
                       weight,
                       visibility_->planeTolerance()};
@@ -510,7 +622,7 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
     else
       visitSeveralSides<kTangentCorrection>(view, cell, state, ringDominant[i]);
   };
-  forEachCellInPassOrder(step, [&](uint32_t cell, uint32_t line, int32_t dominant) {
+  forEachCellInPassOrder(step, band, [&](uint32_t cell, uint32_t line, int32_t dominant) {
     // A 48-byte record may straddle two cache lines: fetch both.
     __builtin_prefetch(&lines[line], 1);
     __builtin_prefetch(reinterpret_cast<const char*>(&lines[line]) + sizeof(LineState) - 1, 1);
@@ -524,34 +636,63 @@ void DiscreteLineSweep::pass(const IVec3& step, const Vec3& unit, float weight,
     ringCell[i] = cell, ringLine[i] = line, ringDominant[i] = dominant;
   });
   for (uint32_t i = count > kAhead ? count - kAhead : 0; i < count; ++i) visit(i & kMask);
-  later_.addTo(view.gathered);
+  later.addTo(view.gathered);
 }
 
 void DiscreteLineSweep::sweepPair(const DiscreteDirection& direction, const Source& source,
                                   std::span<Color> gathered, const LineOffset& offset) {
   prepareLines(direction.step, offset);
   pendingNext_.resize(grid_.entryCount());
+  // The 16-bit pass stamp tells this pass's line records from older ones; when it wraps, all
+  // records are cleared once (every 65,535 passes).
+  if (++stamp_ == 0) {
+    for (LineState& line : lines_) line.stamp = 0;
+    stamp_ = 1;
+  }
+  cutBands(bandCountFor(threadCount()));
   const float weight = float(direction.solidAngle / 3.14159265358979323846);
   const Vec3 unit(direction.unit);
-  if (settings_.tangentCorrection)
-    pass<true>(direction.step, unit, weight, source, gathered);
-  else
-    pass<false>(direction.step, unit, weight, source, gathered);
+  auto sweepBand = [&](size_t b) {
+    DeferredGathers& later = later_.local();
+    if (settings_.tangentCorrection)
+      pass<true>(direction.step, bands_[b], unit, weight, source, gathered, later);
+    else
+      pass<false>(direction.step, bands_[b], unit, weight, source, gathered, later);
+  };
+  if (bands_.size() == 1) return sweepBand(0);
+  // Bands touch disjoint line records and sides (a side gathers from its own line only).
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, bands_.size(), 1),
+      [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t b = r.begin(); b != r.end(); ++b) sweepBand(b);
+      },
+      tbb::simple_partitioner());
 }
 
 std::vector<uint32_t> DiscreteLineSweep::lineOfEachCell(const IVec3& step,
                                                         const LineOffset& offset) {
   prepareLines(step, offset);
   std::vector<uint32_t> lines(grid_.cellCount());
-  forEachCellInPassOrder(step, [&](uint32_t cell, uint32_t line, int32_t) { lines[cell] = line; });
+  forEachCellInPassOrder(step, {},
+                         [&](uint32_t cell, uint32_t line, int32_t) { lines[cell] = line; });
   return lines;
 }
 
 std::vector<uint32_t> DiscreteLineSweep::passOrder(const IVec3& step) {
+  return passOrderInBands(step, 1).front();
+}
+
+std::vector<std::vector<uint32_t>> DiscreteLineSweep::passOrderInBands(const IVec3& step,
+                                                                       size_t bands) {
   prepareLines(step);
-  std::vector<uint32_t> order;
-  forEachCellInPassOrder(step, [&](uint32_t cell, uint32_t, int32_t) { order.push_back(cell); });
-  return order;
+  cutBands(bands);
+  std::vector<std::vector<uint32_t>> orders;
+  for (const LineBand& band : bands_) {
+    std::vector<uint32_t>& order = orders.emplace_back();
+    forEachCellInPassOrder(step, band,
+                           [&](uint32_t cell, uint32_t, int32_t) { order.push_back(cell); });
+  }
+  return orders;
 }
 
 }  // namespace rad

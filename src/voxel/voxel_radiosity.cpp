@@ -68,14 +68,13 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
 
   VoxelRadiosityStats& s = impl_->stats;
   const VoxelSolution& solution = impl_->solution;
-  s.warnings.insert(s.warnings.end(), solution.warnings.begin(), solution.warnings.end());
   if (!settings.directFirstShot && !scene.lights.empty())
     s.warnings.push_back(fmt::format("{} point/spot/IES light(s) ignored: only the first shot "
                                      "(--first-shot) lights voxels from lights", scene.lights.size()));
   s.voxels = impl_->grid.cellCount();
   s.sides = impl_->grid.entryCount();
   s.directions = solution.directions;
-  s.sweepThreads = solution.sweepSlots;
+  s.sweepThreads = solution.sweepThreads;
   s.voxelSize = impl_->grid.voxelSize;
   s.visits = solution.cellVisits;
   s.shadowRays = solution.shadowRays;

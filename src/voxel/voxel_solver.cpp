@@ -11,15 +11,14 @@
 
 #include <fmt/format.h>
 #include <glm/gtc/constants.hpp>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstring>
 #include <map>
+#include <memory>
 
 namespace rad {
 
@@ -77,8 +76,6 @@ std::vector<float> facingWeights(const VoxelGrid& grid, const DirectionSet& dire
   return weights;
 }
 
-// One Jacobi step: every slot sweeps its share of the direction pairs (pair k goes to slot
-// k mod slots, so the sums do not depend on scheduling), then the slots are added in order.
 // The line shift of pair k in an iteration: fixed by the seed, so results are reproducible.
 LineOffset lineOffset(const DiscreteDirection& d, uint64_t seed, int iteration, size_t k) {
   Rng rng(seed ^ (uint64_t(iteration) << 32), k);
@@ -86,81 +83,55 @@ LineOffset lineOffset(const DiscreteDirection& d, uint64_t seed, int iteration, 
   return {int64_t(rng.next() % uint64_t(a)), int64_t(rng.next() % uint64_t(a))};
 }
 
-void gatherAllDirections(const DirectionSet& directions, std::vector<DiscreteLineSweep>& sweeps,
-                         std::vector<std::vector<Color>>& slots,
-                         const DiscreteLineSweep::Source& source,
+// One Jacobi step: the direction pairs in turn, each swept by all threads (over bands of its
+// lines), so that every side's sum runs over the pairs in the same order for any thread count.
+void gatherAllDirections(const DirectionSet& directions, DiscreteLineSweep& sweep,
+                         std::vector<Color>& gathered, const DiscreteLineSweep::Source& source,
                          const VoxelSolverSettings& settings, int iteration,
                          ProgressTicker& ticker) {
-  const size_t slotCount = slots.size();
-  // One task per slot: the simple partitioner splits down to single slots.
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, slotCount, 1),
-      [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t slot = range.begin(); slot != range.end(); ++slot) {
-          std::fill(slots[slot].begin(), slots[slot].end(), Color(0.0f));
-          for (size_t k = slot; k < directions.pairCount(); k += slotCount) {
-            if (ticker.cancelled()) return;
-            const DiscreteDirection& d = directions.pairFirst(k);
-            const LineOffset offset =
-                settings.jitterLines ? lineOffset(d, settings.seed, iteration, k) : LineOffset{};
-            sweeps[slot].sweepPair(d, source, slots[slot], offset);
-            ticker.tick();
-          }
-        }
-      },
-      tbb::simple_partitioner());
-  ticker.throwIfCancelled();
-  for (size_t slot = 1; slot < slotCount; ++slot)
-    for (size_t e = 0; e < slots[0].size(); ++e) slots[0][e] += slots[slot][e];
+  std::fill(gathered.begin(), gathered.end(), Color(0.0f));
+  for (size_t k = 0; k < directions.pairCount(); ++k) {
+    ticker.throwIfCancelled();
+    const DiscreteDirection& d = directions.pairFirst(k);
+    const LineOffset offset =
+        settings.jitterLines ? lineOffset(d, settings.seed, iteration, k) : LineOffset{};
+    sweep.sweepPair(d, source, gathered, offset);
+    ticker.tick();
+  }
 }
 
-// What the solver holds per side besides each thread's accumulator and sweep: the one account
-// of its shared arrays, for the memory check before solving and the memory reported after.
-uint64_t sharedBytesPerSide(const VoxelSolverSettings& settings) {
-  return (settings.directFirstShot ? sizeof(Color) : 0) +  // direct light
+// What the solver holds per side besides the sweep's working memory: the one account of its
+// arrays, for the memory check before solving and the memory reported after.
+uint64_t solverBytesPerSide(const VoxelSolverSettings& settings) {
+  return sizeof(Color) +                                    // gathered light
+         (settings.directFirstShot ? sizeof(Color) : 0) +  // direct light
          sizeof(DiscreteLineSweep::Slot) +                  // packed sides
          (settings.normalize ? sizeof(float) : 0) +         // normalization weights
          sizeof(float) +                                    // luminance before the iteration
          sizeof(uint16_t);                                  // fold masks (SideVisibility)
 }
 
-// The sweeps' memory, known before anything is allocated: per thread an accumulator and a sweep
-// (its line table sized for the widest direction), and the shared arrays.
-size_t sweepSlots(const VoxelGrid& grid, const DirectionSet& directions,
-                  const VoxelSolverSettings& settings, VoxelSolution& solution) {
-  // The arena's threads, or fewer when a global limit (--threads) says so.
-  const size_t threads =
-      std::min(size_t(std::max(1, tbb::this_task_arena::max_concurrency())),
-               tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+// The solve's memory, known before anything is allocated (the sweep's line table sized for the
+// widest direction): a grid that does not fit is an input error, not a kill by the OOM killer
+// an hour in.
+void checkMemory(const VoxelGrid& grid, const DirectionSet& directions,
+                 const VoxelSolverSettings& settings) {
   std::vector<IVec3> steps;
   for (size_t k = 0; k < directions.pairCount(); ++k) steps.push_back(directions.pairFirst(k).step);
   const size_t n = grid.entryCount();
-  const uint64_t perSlot = n * sizeof(Color) + DiscreteLineSweep::workingBytesFor(
-                                                   n, DiscreteLineSweep::maxLineCount(grid, steps));
-  const uint64_t shared = n * sharedBytesPerSide(settings);
+  const uint64_t needed =
+      n * solverBytesPerSide(settings) +
+      DiscreteLineSweep::workingBytesFor(grid, DiscreteLineSweep::maxLineCount(grid, steps));
   const uint64_t available = availableMemoryBytes();
-  const size_t slots = sweepSlotsThatFit(threads, perSlot, shared, available);
   constexpr double kGB = 1e9;
-  if (slots == 0)
+  if (available > 0 && needed > available)
     throw InputError("voxel grid",
                      fmt::format("{} voxel sides need about {:.2f} GB to sweep and {:.2f} GB is "
                                  "available; use a larger voxel size or fewer voxels",
-                                 n, double(shared + perSlot) / kGB, double(available) / kGB));
-  if (slots < threads)
-    solution.warnings.push_back(fmt::format(
-        "{} of {} threads sweep: each needs {:.2f} GB and {:.2f} GB is available (results differ "
-        "from an all-thread run by rounding)",
-        slots, threads, double(perSlot) / kGB, double(available) / kGB));
-  return slots;
+                                 n, double(needed) / kGB, double(available) / kGB));
 }
 
 }  // namespace
-
-size_t sweepSlotsThatFit(size_t threads, uint64_t perSlot, uint64_t shared, uint64_t available) {
-  if (available == 0) return threads;
-  if (available < shared + perSlot) return 0;
-  return size_t(std::min<uint64_t>(threads, (available - shared) / std::max<uint64_t>(perSlot, 1)));
-}
 
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const VoxelSolverSettings& settings,
@@ -174,8 +145,8 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   const DirectionSet directions(settings.sphereRadius);
   solution.directions = directions.size();
   // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
-  const size_t slotCount = sweepSlots(grid, directions, settings, solution);
-  solution.sweepSlots = slotCount;
+  checkMemory(grid, directions, settings);
+  solution.sweepThreads = DiscreteLineSweep::threadCount();
   std::vector<Color> direct(settings.directFirstShot ? n : 0);
   if (settings.directFirstShot) {
     const auto start = std::chrono::steady_clock::now();
@@ -184,20 +155,19 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   }
   auto directAt = [&](size_t e) { return direct.empty() ? Color(0.0f) : direct[e]; };
 
-  std::vector<DiscreteLineSweep> sweeps(slotCount, DiscreteLineSweep(grid, settings.sweep));
-  std::vector<std::vector<Color>> slots(slotCount, std::vector<Color>(n));
+  auto sweep = std::make_unique<DiscreteLineSweep>(grid, settings.sweep);
+  std::vector<Color> gathered(n);
   const std::vector<float> weights =
       settings.normalize ? facingWeights(grid, directions) : std::vector<float>{};
 
   // The sweeps carry what surfaces send: all of B, or only its reflected part when the first
   // shot has already delivered the emitters' light. H is the direct light (or none) plus the
-  // last iteration's gathered light, read from the first slot, which holds their sum: no array
-  // of its own while the sweeps run.
+  // last iteration's gathered light: no array of its own while the sweeps run.
   bool swept = false;
   auto irradianceAt = [&](size_t e) {
     if (!swept) return directAt(e);
     const float norm = settings.normalize && weights[e] > 0.0f ? weights[e] : 1.0f;
-    return directAt(e) + slots[0][e] / norm;
+    return directAt(e) + gathered[e] / norm;
   };
   auto radiosityFrom = [&](size_t e, const Color& h) { return emitted(e) + rho(e) * h; };
   auto radiosityOf = [&](size_t e) { return radiosityFrom(e, irradianceAt(e)); };
@@ -213,7 +183,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     const auto iterationStart = std::chrono::steady_clock::now();
     DiscreteLineSweep::packSides(grid, sends, packed);
     for (size_t e = 0; e < n; ++e) luminanceBefore[e] = luminance(radiosityOf(e));
-    gatherAllDirections(directions, sweeps, slots, packed, settings, iteration, ticker);
+    gatherAllDirections(directions, *sweep, gathered, packed, settings, iteration, ticker);
     swept = true;
     double change = 0.0, total = 0.0;
     for (size_t e = 0; e < n; ++e) {
@@ -227,16 +197,14 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     if (settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance) break;
   }
   solution.sweepSeconds = secondsSince(start);
-  solution.workingBytes = slotCount * n * sizeof(Color) + n * sharedBytesPerSide(settings);
-  for (const DiscreteLineSweep& s : sweeps) solution.workingBytes += s.workingBytes();
-  // The working arrays go before the results are made, so they never coexist.
-  slots.resize(1);
-  sweeps.clear();
+  solution.workingBytes = n * solverBytesPerSide(settings) + sweep->workingBytes();
+  // The sweep's arrays go before the results are made, so they never coexist.
+  sweep.reset();
   packed = {};
   luminanceBefore = {};
   solution.irradiance.resize(n);
   for (size_t e = 0; e < n; ++e) solution.irradiance[e] = irradianceAt(e);
-  slots = {};
+  gathered = {};
   solution.radiosity.resize(n);
   for (size_t e = 0; e < n; ++e) solution.radiosity[e] = radiosityFrom(e, solution.irradiance[e]);
   return solution;

@@ -41,18 +41,12 @@ struct VoxelSolution {
   double directSeconds = 0.0, sweepSeconds = 0.0;
   std::vector<double> iterationSeconds;  ///< the sweeps' time in each iteration
   size_t workingBytes = 0;        ///< solver arrays beyond the grid (accumulators, line tables)
-  size_t sweepSlots = 0;          ///< threads that swept at once (fewer than asked when memory was short)
-  std::vector<std::string> warnings;
+  size_t sweepThreads = 0;        ///< threads that shared each direction's sweep
 };
 
-/// How many threads can sweep at once when each holds `perSlot` bytes beyond `shared` ones:
-/// `threads` when that fits in `available` bytes (or `available` is 0, unknown), fewer when not,
-/// 0 when not even one does.
-size_t sweepSlotsThatFit(size_t threads, uint64_t perSlot, uint64_t shared, uint64_t available);
-
-/// Solves the scene on a voxelization of it. Deterministic for a given thread count (and sweep
-/// slots: fewer threads sweep when memory would not hold one sweep each, with a warning).
-/// Throws InputError if memory would not hold even one, before any work, and rad::Cancelled if
+/// Solves the scene on a voxelization of it. Deterministic, and the same bit for bit whatever the
+/// number of threads (they share each direction, and the memory does not grow with them).
+/// Throws InputError if memory would not hold the solve, before any work, and rad::Cancelled if
 /// `progress` returns false.
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const VoxelSolverSettings& settings,

@@ -170,6 +170,42 @@ TEST(DiscreteLines, SweepOrderAdvancesAlongTheDirection) {
   }
 }
 
+// Threads share a direction by bands of its lines: together the bands visit every cell once,
+// all the cells of a line fall in one band, and a band meets its lines' cells in order along
+// the direction (for a dominant z it walks the slabs in rows along y, not the grid's rows).
+TEST(DiscreteLines, BandsSplitTheLinesAndKeepEachLineInOrder) {
+  const VoxelGrid grid = sphereAndBoxGrid();
+  DiscreteLineSweep sweep(grid, {});
+  std::vector<IVec3> cells(grid.cellCount());
+  for (uint32_t c = 0; c < grid.cellCount(); ++c) cells[c] = grid.cellCoordinates(c);
+  for (const IVec3& step : randomSteps(200, 23)) {
+    SCOPED_TRACE(testing::Message() << "step " << step.x << " " << step.y << " " << step.z);
+    for (const IVec3& passStep : {step, -step}) {
+      const std::vector<uint32_t> lines = sweep.lineOfEachCell(passStep);
+      const std::vector<std::vector<uint32_t>> bands = sweep.passOrderInBands(passStep, 7);
+      ASSERT_EQ(bands.size(), 7u);
+      std::vector<int> bandOfCell(grid.cellCount(), -1);
+      std::map<uint32_t, int> bandOfLine;
+      for (int b = 0; b < int(bands.size()); ++b) {
+        std::map<uint32_t, IVec3> last;
+        for (uint32_t c : bands[size_t(b)]) {
+          ASSERT_EQ(bandOfCell[c], -1) << "cell " << c << " visited twice";
+          bandOfCell[c] = b;
+          ASSERT_EQ(bandOfLine.emplace(lines[c], b).first->second, b) << "line split";
+          auto it = last.find(lines[c]);
+          if (it != last.end()) {
+            const IVec3 d = cells[c] - it->second;
+            for (int k = 0; k < 3; ++k) ASSERT_GE(d[k] * passStep[k], 0) << "axis " << k;
+            ASSERT_GT(d[dominantAxis(step)] * passStep[dominantAxis(step)], 0);
+          }
+          last[lines[c]] = cells[c];
+        }
+      }
+      EXPECT_EQ(std::count(bandOfCell.begin(), bandOfCell.end(), -1), 0);
+    }
+  }
+}
+
 // Walks the naive line through `start` (a cell inside a closed surface) in direction s and
 // reports whether it meets an occupied voxel before leaving the grid.
 bool lineMeetsSurface(const VoxelGrid& grid, const IVec3& start, const IVec3& s) {
