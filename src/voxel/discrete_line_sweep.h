@@ -97,7 +97,7 @@ class DiscreteLineSweep {
   static size_t maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps);
   static size_t workingBytesFor(const VoxelGrid& grid, size_t lines) {
     return lines * sizeof(LineState) + grid.entryCount() * sizeof(uint32_t) +
-           RowsAlongY::boundBytes(grid) + grid.cellCount() / kSampleStride * sizeof(SampleCell) +
+           RowsAlongY::boundBytes(grid) + kMaxSamples * sizeof(SampleCell) +
            threadCount() * DeferredGathers::kCapacity * sizeof(DeferredGathers::Item);
   }
 
@@ -292,8 +292,9 @@ class DiscreteLineSweep {
   RowsAlongY rowsAlongYArrays_;
   SlabRows rowsAlongZ_;  ///< the grid's own order (a row position is the cell)
   SlabRows rowsAlongY_;  ///< for a dominant z
-  /// Every kSampleStride-th cell's coordinates: what the bands are balanced on.
-  static constexpr uint32_t kSampleStride = 32;
+  /// The coordinates of every 32nd cell, or of 8,192 cells spread evenly over a larger grid:
+  /// what the bands are balanced on (counted for every direction, so no more than that).
+  static constexpr size_t kMaxSamples = 8192;
   using SampleCell = std::array<int16_t, 3>;
   std::vector<SampleCell> sampleCells_;
   std::vector<uint32_t> sampledPerRow_;  ///< per line table row, scratch for cutBands
