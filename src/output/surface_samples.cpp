@@ -31,9 +31,15 @@ void append(std::string& out, const T& value) {
 }  // namespace
 
 std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, std::span<const SurfaceSample> samples) {
+  return meanPerObject(scene, samples.size(), [&](size_t i) { return samples[i]; });
+}
+
+std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, size_t count,
+                                            const std::function<SurfaceSample(size_t)>& sampleAt) {
   std::vector<ObjectRadiometry> objects(scene.objects.size());
   std::vector<Vec3d> h(objects.size(), Vec3d(0.0)), b(objects.size(), Vec3d(0.0));
-  for (const SurfaceSample& s : samples) {
+  for (size_t i = 0; i < count; ++i) {
+    const SurfaceSample s = sampleAt(i);
     if (s.backSide) continue;
     objects[s.object].area += s.area;
     h[s.object] += double(s.area) * Vec3d(s.irradiance);

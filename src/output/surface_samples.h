@@ -5,6 +5,7 @@
 #include <radiosity/object_radiometry.h>
 #include <radiosity/scene.h>
 
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,6 +27,10 @@ struct SurfaceSample {
 /// Area-weighted mean irradiance and radiosity of each scene object over its elements' front
 /// sides (the `objects` table of the stats file).
 std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, std::span<const SurfaceSample> samples);
+/// The same over `count` samples made one at a time by `sampleAt(i)`: a solution of millions of
+/// elements need not hold them all at once (84 bytes each).
+std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, size_t count,
+                                            const std::function<SurfaceSample(size_t)>& sampleAt);
 
 /// Writes `id,object,area,cx,cy,cz,nx,ny,nz,E_r,...,B_b` rows; object names from `scene`.
 void writeSurfaceSamplesCsv(const std::string& path, const Scene& scene,

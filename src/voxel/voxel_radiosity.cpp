@@ -22,6 +22,7 @@ struct VoxelRadiosity::Impl {
   VoxelRadiosityStats stats;
 
   VoxelIrradianceField field() const { return VoxelIrradianceField(grid, solution.irradiance); }
+  SurfaceSample sample(size_t e) const;
   std::vector<SurfaceSample> samples() const;
 };
 
@@ -98,19 +99,22 @@ Color VoxelRadiosity::radiance(const SurfaceHit& hit) const {
 }
 
 std::vector<ObjectRadiometry> VoxelRadiosity::objectRadiometry() const {
-  return meanPerObject(*impl_->scene, impl_->samples());
+  return meanPerObject(*impl_->scene, impl_->grid.entryCount(),
+                       [&](size_t e) { return impl_->sample(e); });
 }
 
 const VoxelRadiosityStats& VoxelRadiosity::stats() const { return impl_->stats; }
 
+SurfaceSample VoxelRadiosity::Impl::sample(size_t e) const {
+  const VoxelMaterial& m = grid.materials[grid.material[e]];
+  return {grid.object[e],          grid.area[e],           grid.centroid[e],
+          grid.normal[e],          glm::pi<float>() * m.emission, m.rho,
+          solution.irradiance[e], solution.radiosity[e], bool(grid.backSide[e])};
+}
+
 std::vector<SurfaceSample> VoxelRadiosity::Impl::samples() const {
   std::vector<SurfaceSample> out(grid.entryCount());
-  for (size_t e = 0; e < out.size(); ++e) {
-    const VoxelMaterial& m = grid.materials[grid.material[e]];
-    out[e] = {grid.object[e],          grid.area[e],           grid.centroid[e],
-              grid.normal[e],          glm::pi<float>() * m.emission, m.rho,
-              solution.irradiance[e], solution.radiosity[e], bool(grid.backSide[e])};
-  }
+  for (size_t e = 0; e < out.size(); ++e) out[e] = sample(e);
   return out;
 }
 
