@@ -649,7 +649,7 @@ void DiscreteLineSweep::sweepPair(const DiscreteDirection& direction, const Sour
     for (LineState& line : lines_) line.stamp = 0;
     stamp_ = 1;
   }
-  cutBands(bandCountFor(threadCount()));
+  cutBands(bandCountFor(threadCount(), layout_.axes[0] == 2));
   const float weight = float(direction.solidAngle / 3.14159265358979323846);
   const Vec3 unit(direction.unit);
   auto sweepBand = [&](size_t b) {
