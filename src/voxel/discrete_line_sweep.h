@@ -92,8 +92,7 @@ class DiscreteLineSweep {
   /// The threads a sweep uses: the task arena's, or fewer when a global limit (--threads) says so.
   static size_t threadCount();
   /// An upper bound of the line table's size over the directions `steps` and any LineOffset, and
-  /// the bytes a sweep holds for a grid of `entries` sides with that many lines, known before it
-  /// is built.
+  /// the bytes a sweep of `grid` holds with that many lines, known before it is built.
   static size_t maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps);
   static size_t workingBytesFor(const VoxelGrid& grid, size_t lines) {
     return lines * sizeof(LineState) + grid.entryCount() * sizeof(uint32_t) +
@@ -108,8 +107,9 @@ class DiscreteLineSweep {
   /// The same pass cut into about `bands` bands of lines: the cells each visits, in order.
   std::vector<std::vector<uint32_t>> passOrderInBands(const IVec3& step, size_t bands);
   size_t lineTableSize() const { return lines_.size(); }
-  /// Working memory of this sweep: the line records, the waiting sides' links and the deferred
-  /// light (the fold masks, shared by its copies, are counted once by the solver).
+  /// Working memory of this sweep: the line records, the waiting sides' links, the rows along y,
+  /// the cells the bands are balanced on and each thread's deferred light (the fold masks are
+  /// counted by the solver).
   size_t workingBytes() const {
     return lines_.capacity() * sizeof(LineState) + pendingNext_.capacity() * sizeof(uint32_t) +
            rowsAlongYArrays_.bytes() + sampleCells_.capacity() * sizeof(SampleCell) +
@@ -244,12 +244,12 @@ class DiscreteLineSweep {
   /// the rows along the axis that only moves a line's V, so that the lines of a row share their
   /// row U of the line table and a band of lines is a range of each slab's rows.
   struct SlabRows {
-    int rowAxis = 1, cellAxis = 2;  ///< the coordinate a row fixes besides x; the cells'
-    std::span<const uint32_t> slabRowBegin;    ///< dims.x + 1
+    int rowAxis = 1, cellAxis = 2;            ///< the axis a row fixes besides x; the cells'
+    std::span<const uint32_t> slabRowBegin;   ///< dims.x + 1
     std::span<const int16_t> rowCoordinate;   ///< per row: its coordinate along rowAxis
-    std::span<const uint32_t> rowCellBegin;    ///< rows + 1
-    std::span<const uint32_t> cell;            ///< per position in a row: the cell (y rows)
-    std::span<const int16_t> cellCoordinate;   ///< per position: its coordinate along cellAxis
+    std::span<const uint32_t> rowCellBegin;   ///< rows + 1
+    std::span<const uint32_t> cell;           ///< per position in a row: the cell (rows along y)
+    std::span<const int16_t> cellCoordinate;  ///< per position: its coordinate along cellAxis
   };
   /// The arrays of the rows along y (those along z are the grid's).
   struct RowsAlongY {
