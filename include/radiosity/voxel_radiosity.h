@@ -43,8 +43,7 @@ struct VoxelRadiosityStats {
   /// The sweeps' time in each iteration: their spread shows how steady the machine was.
   std::vector<double> iterationSeconds;
   size_t memoryBytes = 0;  ///< grid and solver arrays
-  /// Threads that swept at once, each its own directions (results are the same for the same
-  /// number); fewer than asked when memory would not hold a sweep each (then a warning says so).
+  /// Threads that shared each direction's sweep (results are the same for any number).
   size_t sweepThreads = 0;
   std::vector<std::string> warnings;  ///< settings that lose light or speed, and why
 };

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -226,14 +227,21 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
   EXPECT_EQ(magic, "ply");
   EXPECT_GT(fs::file_size(ply), count * 39);  // 6 floats, 3 bytes, 3 floats a vertex
 
-  // --threads bounds the sweeps' threads (each holds its own accumulator and line table).
+  // --threads bounds the sweeps' threads; they share each direction, so one thread exports the
+  // same bytes as all of them.
   std::vector<std::string> oneThread = {"--threads", "1"};
   oneThread.insert(oneThread.end(), args.begin(), args.end());
-  oneThread[7] = csv;
+  const std::string serialCsv = (dir / "serial.csv").string();
+  oneThread[7] = serialCsv;
   ASSERT_EQ(run(oneThread).status, 0);
   const nlohmann::json serial = readJson(stats);
   EXPECT_EQ(serial["voxel"]["sweep_threads"].get<int>(), 1);
   EXPECT_GE(j["voxel"]["sweep_threads"].get<int>(), 1);
+  auto text = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(text(serialCsv), text(csv));
   EXPECT_LE(serial["voxel"]["bytes_per_side"].get<double>(), j["voxel"]["bytes_per_side"].get<double>());
   // Per voxel (cell) and per side: a cell holds one side or more.
   EXPECT_GE(j["voxel"]["bytes_per_voxel"].get<double>(), j["voxel"]["bytes_per_side"].get<double>());
