@@ -111,27 +111,28 @@ uint64_t solverBytesPerSide(const VoxelSolverSettings& settings) {
          sizeof(uint16_t);                                  // fold masks (SideVisibility)
 }
 
-// The solve's memory, known before anything is allocated (the sweep's line table sized for the
-// widest direction): a grid that does not fit is an input error, not a kill by the OOM killer
-// an hour in.
-void checkMemory(const VoxelGrid& grid, const DirectionSet& directions,
-                 const VoxelSolverSettings& settings) {
-  std::vector<IVec3> steps;
-  for (size_t k = 0; k < directions.pairCount(); ++k) steps.push_back(directions.pairFirst(k).step);
-  const size_t n = grid.entryCount();
-  const uint64_t needed =
-      n * solverBytesPerSide(settings) +
-      DiscreteLineSweep::workingBytesFor(grid, DiscreteLineSweep::maxLineCount(grid, steps));
+// A grid whose solve does not fit is an input error before the first shot, not a kill by the
+// OOM killer an hour in.
+void checkMemory(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
+  const uint64_t needed = voxelSolveBytes(grid, settings);
   const uint64_t available = availableMemoryBytes();
   constexpr double kGB = 1e9;
   if (available > 0 && needed > available)
     throw InputError("voxel grid",
                      fmt::format("{} voxel sides need about {:.2f} GB to sweep and {:.2f} GB is "
                                  "available; use a larger voxel size or fewer voxels",
-                                 n, double(needed) / kGB, double(available) / kGB));
+                                 grid.entryCount(), double(needed) / kGB, double(available) / kGB));
 }
 
 }  // namespace
+
+uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
+  const DirectionSet directions(settings.sphereRadius);
+  std::vector<IVec3> steps;
+  for (size_t k = 0; k < directions.pairCount(); ++k) steps.push_back(directions.pairFirst(k).step);
+  return grid.entryCount() * solverBytesPerSide(settings) +
+         DiscreteLineSweep::workingBytesFor(grid, DiscreteLineSweep::maxLineCount(grid, steps));
+}
 
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const VoxelSolverSettings& settings,
@@ -145,7 +146,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   const DirectionSet directions(settings.sphereRadius);
   solution.directions = directions.size();
   // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
-  checkMemory(grid, directions, settings);
+  checkMemory(grid, settings);
   solution.sweepThreads = DiscreteLineSweep::threadCount();
   std::vector<Color> direct(settings.directFirstShot ? n : 0);
   if (settings.directFirstShot) {

@@ -44,6 +44,11 @@ struct VoxelSolution {
   size_t sweepThreads = 0;        ///< threads that shared each direction's sweep
 };
 
+/// The bytes a solve of `grid` will hold beyond the grid (the solver's arrays and the sweep's,
+/// its line table sized for the widest direction), known before it starts: at least what it
+/// holds (VoxelSolution::workingBytes).
+uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings);
+
 /// Solves the scene on a voxelization of it. Deterministic, and the same bit for bit whatever the
 /// number of threads (they share each direction, and the memory does not grow with them).
 /// Throws InputError if memory would not hold the solve, before any work, and rad::Cancelled if

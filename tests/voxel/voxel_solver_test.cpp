@@ -136,5 +136,28 @@ TEST(VoxelSolver, SameBitForBitWhateverTheThreadCount) {
   }
 }
 
+// The solver refuses a grid that would not fit from this estimate, made before it allocates:
+// it must cover what the solve then holds, and not by so much that it refuses grids that fit.
+TEST(VoxelSolver, MemoryKnownBeforehandCoversTheSolve) {
+  SceneBuilder b("room");
+  const uint32_t wall = b.addMaterial({"wall", Color(0.6f), Color(0.0f), false});
+  const uint32_t lamp = b.addMaterial({"lamp", Color(0.5f), Color(2.0f), false});
+  test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : wall; });
+  test::addSphere(b, Vec3(0.1f), 0.3f, false, wall, b.addObject("sphere"));
+  const Scene scene = b.build();
+  const VoxelGrid grid = voxelize(scene, 1.0f / 24.0f);
+  for (bool firstShot : {true, false}) {
+    VoxelSolverSettings settings;
+    settings.sphereRadius = 5;
+    settings.iterations = 1;
+    settings.directSamples = 2;
+    settings.directFirstShot = firstShot;
+    const uint64_t estimate = voxelSolveBytes(grid, settings);
+    const VoxelSolution solution = solveVoxelRadiosity(scene, grid, settings);
+    EXPECT_GE(estimate, solution.workingBytes);
+    EXPECT_LE(double(estimate), 1.5 * double(solution.workingBytes));
+  }
+}
+
 }  // namespace
 }  // namespace rad
