@@ -81,7 +81,8 @@ DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings&
   for (uint32_t x = 0; x < uint32_t(grid.dims.x); ++x)
     for (uint32_t row = grid.slabRowBegin[x]; row < grid.slabRowBegin[x + 1]; ++row)
       for (uint32_t cell = grid.rowCellBegin[row]; cell < grid.rowCellBegin[row + 1]; ++cell)
-        if (cell % stride == 0) sampleCells_.push_back({int16_t(x), grid.rowY[row], grid.cellZ[cell]});
+        if (cell % stride == 0)
+          sampleCells_.push_back({int16_t(x), grid.rowY[row], grid.cellZ[cell]});
   rowsAlongZ_ = {1, 2, grid.slabRowBegin, grid.rowY, grid.rowCellBegin, {}, grid.cellZ};
   const RowsAlongY& y = rowsAlongYArrays_ = sortRowsAlongY(grid);
   rowsAlongY_ = {2, 1, y.slabRowBegin, y.rowZ, y.rowCellBegin, y.cell, y.cellY};
