@@ -77,13 +77,19 @@ DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings&
                                        " voxel sides exceed the sweep's limit of " +
                                        std::to_string(kNoPending - 1) +
                                        "; use a larger voxel size");
+  rowsAlongZ_ = {1, 2, grid.slabRowBegin, grid.rowY, grid.rowCellBegin, {}, grid.cellZ};
+}
+
+void DiscreteLineSweep::prepareBands() {
+  // Made on the first sweep with several bands: a single thread never reads them.
+  if (!sampleCells_.empty() || grid_.cellCount() == 0) return;
+  const VoxelGrid& grid = grid_;
   const size_t stride = std::max<size_t>(32, (grid.cellCount() + kMaxSamples - 1) / kMaxSamples);
   for (uint32_t x = 0; x < uint32_t(grid.dims.x); ++x)
     for (uint32_t row = grid.slabRowBegin[x]; row < grid.slabRowBegin[x + 1]; ++row)
       for (uint32_t cell = grid.rowCellBegin[row]; cell < grid.rowCellBegin[row + 1]; ++cell)
         if (cell % stride == 0)
           sampleCells_.push_back({int16_t(x), grid.rowY[row], grid.cellZ[cell]});
-  rowsAlongZ_ = {1, 2, grid.slabRowBegin, grid.rowY, grid.rowCellBegin, {}, grid.cellZ};
   const RowsAlongY& y = rowsAlongYArrays_ = sortRowsAlongY(grid);
   rowsAlongY_ = {2, 1, y.slabRowBegin, y.rowZ, y.rowCellBegin, y.cell, y.cellY};
 }
@@ -95,15 +101,15 @@ size_t DiscreteLineSweep::threadCount() {
 }
 
 void DiscreteLineSweep::cutBands(size_t count) {
-  bands_.assign(1, LineBand{});
-  if (count <= 1) return;
+  bands_.clear();
+  if (count <= 1) return bands_.push_back({});
+  prepareBands();
   std::vector<uint32_t>& perRow = sampledPerRow_;
   perRow.assign(rowStart_.size(), 0);
   for (const auto& [x, y, z] : sampleCells_)
     ++perRow[(lineTable_[0][size_t(x)] + lineTable_[1][size_t(y)] + lineTable_[2][size_t(z)]) >>
              32];
   // Band k ends at the first row where the running count reaches k / count of the sample.
-  bands_.clear();
   const double total = double(sampleCells_.size());
   int64_t begin = 0, seen = 0;
   for (size_t row = 0; row < perRow.size() && bands_.size() + 1 < count; ++row) {
@@ -547,8 +553,7 @@ std::pair<uint32_t, uint32_t> DiscreteLineSweep::rowsInBand(const SlabRows& rows
 
 template <bool kGridOrder, typename F>
 void DiscreteLineSweep::walkSlabs(const SlabRows& rows, const IVec3& step, const LineBand& band,
-                                  F&& f) const {
-  const bool whole = band.holdsAll(rowStart_.size());
+                                  bool whole, F&& f) const {
   const std::vector<uint64_t>& rowLines = lineTable_[rows.rowAxis];
   const std::vector<uint64_t>& cellLines = lineTable_[rows.cellAxis];
   const std::vector<int32_t>& rowDominants = dominantTable_[rows.rowAxis];
@@ -581,10 +586,11 @@ void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, const LineBand
   // A line's row U depends on the dominant coordinate and the outer of the other two (layoutLines):
   // a band's rows run along the third, z, or y when z is dominant. All lines at once take the
   // grid's own order, whose cells' data lie in the order they are read.
-  if (layout_.axes[0] == 2 && !band.holdsAll(rowStart_.size()))
-    walkSlabs<false>(rowsAlongY_, step, band, f);
+  const bool whole = band.holdsAll(rowStart_.size());
+  if (layout_.axes[0] == 2 && !whole)
+    walkSlabs<false>(rowsAlongY_, step, band, whole, f);
   else
-    walkSlabs<true>(rowsAlongZ_, step, band, f);
+    walkSlabs<true>(rowsAlongZ_, step, band, whole, f);
 }
 
 template <bool kTangentCorrection>

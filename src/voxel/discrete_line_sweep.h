@@ -95,9 +95,11 @@ class DiscreteLineSweep {
   /// the bytes a sweep of `grid` holds with that many lines, known before it is built.
   static size_t maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps);
   static size_t workingBytesFor(const VoxelGrid& grid, size_t lines) {
-    return lines * sizeof(LineState) + grid.entryCount() * sizeof(uint32_t) +
-           RowsAlongY::boundBytes(grid) + kMaxSamples * sizeof(SampleCell) +
-           threadCount() * DeferredGathers::kCapacity * sizeof(DeferredGathers::Item);
+    const size_t threads = threadCount();
+    const size_t bandBytes =
+        threads > 1 ? RowsAlongY::boundBytes(grid) + kMaxSamples * sizeof(SampleCell) : 0;
+    return lines * sizeof(LineState) + grid.entryCount() * sizeof(uint32_t) + bandBytes +
+           threads * DeferredGathers::kCapacity * sizeof(DeferredGathers::Item);
   }
 
   /// The naive line of every cell for a direction (for tests): lines[cell].
@@ -190,6 +192,8 @@ class DiscreteLineSweep {
   /// Cuts the line table's rows into `count` bands of about equal numbers of cells (counted on
   /// a sample of the cells).
   void cutBands(size_t count);
+  /// The sample the bands are balanced on and the rows along y, made when first needed.
+  void prepareBands();
   /// Light for sides that waited on a line: added to their accumulators in batches, after the
   /// fact, so that the sweep never stalls on a side it visited long ago.
   struct DeferredGathers {
@@ -273,10 +277,10 @@ class DiscreteLineSweep {
   [[gnu::always_inline]] inline void forEachCellInPassOrder(const IVec3& step,
                                                             const LineBand& band, F&& f) const;
   /// Walks the slabs in `rows` as forEachCellInPassOrder does; `kGridOrder` when the rows are the
-  /// grid's own (a row position is the cell).
+  /// grid's own (a row position is the cell), `whole` when the band holds every line.
   template <bool kGridOrder, typename F>
   [[gnu::always_inline]] inline void walkSlabs(const SlabRows& rows, const IVec3& step,
-                                               const LineBand& band, F&& f) const;
+                                               const LineBand& band, bool whole, F&& f) const;
   /// The rows of slab x whose lines lie in the band.
   [[gnu::noinline]] std::pair<uint32_t, uint32_t> rowsInBand(const SlabRows& rows, uint32_t x,
                                                              const LineBand& band) const;
@@ -296,9 +300,10 @@ class DiscreteLineSweep {
   std::vector<LineBand> bands_;         ///< this direction's
   RowsAlongY rowsAlongYArrays_;
   SlabRows rowsAlongZ_;  ///< the grid's own order (a row position is the cell)
-  SlabRows rowsAlongY_;  ///< for a dominant z
+  SlabRows rowsAlongY_;  ///< for a dominant z, cut into bands (made by prepareBands)
   /// The coordinates of every 32nd cell, or of 8,192 cells spread evenly over a larger grid:
-  /// what the bands are balanced on (counted for every direction, so no more than that).
+  /// what the bands are balanced on (counted for every direction, so no more than that; made by
+  /// prepareBands).
   static constexpr size_t kMaxSamples = 8192;
   using SampleCell = std::array<int16_t, 3>;
   std::vector<SampleCell> sampleCells_;

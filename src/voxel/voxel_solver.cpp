@@ -111,10 +111,19 @@ uint64_t solverBytesPerSide(const VoxelSolverSettings& settings) {
          sizeof(uint16_t);                                  // fold masks (SideVisibility)
 }
 
+uint64_t solveBytes(const VoxelGrid& grid, const DirectionSet& directions,
+                    const VoxelSolverSettings& settings) {
+  std::vector<IVec3> steps;
+  for (size_t k = 0; k < directions.pairCount(); ++k) steps.push_back(directions.pairFirst(k).step);
+  return grid.entryCount() * solverBytesPerSide(settings) +
+         DiscreteLineSweep::workingBytesFor(grid, DiscreteLineSweep::maxLineCount(grid, steps));
+}
+
 // A grid whose solve does not fit is an input error before the first shot, not a kill by the
 // OOM killer an hour in.
-void checkMemory(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
-  const uint64_t needed = voxelSolveBytes(grid, settings);
+void checkMemory(const VoxelGrid& grid, const DirectionSet& directions,
+                 const VoxelSolverSettings& settings) {
+  const uint64_t needed = solveBytes(grid, directions, settings);
   const uint64_t available = availableMemoryBytes();
   constexpr double kGB = 1e9;
   if (available > 0 && needed > available)
@@ -127,11 +136,7 @@ void checkMemory(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
 }  // namespace
 
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
-  const DirectionSet directions(settings.sphereRadius);
-  std::vector<IVec3> steps;
-  for (size_t k = 0; k < directions.pairCount(); ++k) steps.push_back(directions.pairFirst(k).step);
-  return grid.entryCount() * solverBytesPerSide(settings) +
-         DiscreteLineSweep::workingBytesFor(grid, DiscreteLineSweep::maxLineCount(grid, steps));
+  return solveBytes(grid, DirectionSet(settings.sphereRadius), settings);
 }
 
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
@@ -146,7 +151,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   const DirectionSet directions(settings.sphereRadius);
   solution.directions = directions.size();
   // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
-  checkMemory(grid, settings);
+  checkMemory(grid, directions, settings);
   solution.sweepThreads = DiscreteLineSweep::threadCount();
   std::vector<Color> direct(settings.directFirstShot ? n : 0);
   if (settings.directFirstShot) {
