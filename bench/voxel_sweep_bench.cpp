@@ -33,14 +33,15 @@ void BM_DiscreteLineSweepPair(benchmark::State& state) {
   const VoxelGrid& grid = roomGrid(size_t(state.range(0)));
   const DirectionSet directions(38);
   std::vector<DiscreteLineSweep::Slot> slots(grid.entryCount());
-  DiscreteLineSweep::packSides(grid, [](size_t) { return Color(1.0f); }, slots);
+  const DiscreteLineSweep::Source source =
+      DiscreteLineSweep::packSides(grid, [](size_t) { return Color(1.0f); }, slots);
   std::vector<Color> gathered(grid.entryCount());
   // One thread: the kernel's own rate (a sweep shares each direction among all threads).
   const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
   DiscreteLineSweep sweep(grid, {});
   size_t k = 0, pairs = 0;
   for (auto _ : state) {
-    sweep.sweepPair(directions.pairFirst(k), slots, gathered);
+    sweep.sweepPair(directions.pairFirst(k), source, gathered);
     k = (k + 97) % directions.pairCount();
     ++pairs;
   }

@@ -1,5 +1,7 @@
 #include "voxel/discrete_line_sweep.h"
 
+#include "voxel/half_colors.h"
+
 #include <radiosity/error.h>
 
 #include <immintrin.h>
@@ -260,8 +262,12 @@ uint32_t slotCell(float offset) {
 
 }  // namespace
 
-void DiscreteLineSweep::packSides(const VoxelGrid& grid, const std::function<Color(size_t)>& sends,
-                                  std::span<Slot> slots) {
+DiscreteLineSweep::Source DiscreteLineSweep::packSides(const VoxelGrid& grid,
+                                                       const std::function<Color(size_t)>& sends,
+                                                       std::span<Slot> slots) {
+  // A group's mean is at most its largest member: the largest side bounds every slot.
+  const float scale = halfScaleFor(largestComponent(slots.size(), sends));
+  const float inverse = 1.0f / scale;  // a power of two: exact
   for (size_t begin = 0; begin < slots.size();) {
     size_t end = begin + 1;
     while (end < slots.size() && grid.sharesOrientation[end]) ++end;
@@ -275,6 +281,7 @@ void DiscreteLineSweep::packSides(const VoxelGrid& grid, const std::function<Col
       }
       if (area > 0.0) b = Color(sum / area);
     }
+    b *= inverse;
     for (size_t e = begin; e < end; ++e) {
       Slot& slot = slots[e];
       const Vec3 n = grid.normal[e];
@@ -287,6 +294,7 @@ void DiscreteLineSweep::packSides(const VoxelGrid& grid, const std::function<Col
     }
     begin = end;
   }
+  return {slots, scale};
 }
 
 inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
@@ -657,7 +665,7 @@ void DiscreteLineSweep::sweepPair(const DiscreteDirection& direction, const Sour
     stamp_ = 1;
   }
   cutBands(bandCountFor(threadCount(), layout_.axes[0] == 2));
-  const float weight = float(direction.solidAngle / 3.14159265358979323846);
+  const float weight = float(direction.solidAngle / 3.14159265358979323846) * source.scale;
   const Vec3 unit(direction.unit);
   auto sweepBand = [&](size_t b) {
     DeferredGathers& later = later_.local();

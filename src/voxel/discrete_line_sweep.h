@@ -70,15 +70,23 @@ class DiscreteLineSweep {
     uint16_t radiosity[3];
     float offset;
   };
-  /// Packs every entry's plane and the radiosity it sends, `sends(e)`, into its line-history
-  /// form: what the sweeps read of each side, prepared once per iteration (B changes between).
-  /// Sides of several objects sharing one orientation in a cell (a lamp set in a ceiling) send
-  /// light as one surface: their area-weighted mean, whichever of them a line happens to meet.
-  static void packSides(const VoxelGrid& grid, const std::function<Color(size_t)>& sends,
-                        std::span<Slot> slots);
-  /// The radiosity a packed side sends.
+  /// What the sweeps read of every side: its slot, whose radiosity is the one it sends divided
+  /// by `scale`, a power of two that keeps the largest within half floats (halfScaleFor); the
+  /// sweep multiplies the light it gathers back by it.
+  struct Source {
+    std::span<const Slot> slots;
+    float scale = 1.0f;
+    const Slot& operator[](size_t e) const { return slots[e]; }
+  };
+  /// Packs every entry's plane and the radiosity it sends, `sends(e)` (finite, >= 0), into
+  /// `slots`: what the sweeps read of each side, prepared once per iteration (B changes
+  /// between). Sides of several objects sharing one orientation in a cell (a lamp set in a
+  /// ceiling) send light as one surface: their area-weighted mean, whichever of them a line
+  /// happens to meet.
+  static Source packSides(const VoxelGrid& grid, const std::function<Color(size_t)>& sends,
+                          std::span<Slot> slots);
+  /// The radiosity a packed side sends, divided by its Source's scale.
   static Color sentRadiosity(const Slot& slot);
-  using Source = std::span<const Slot>;
 
   /// Sweeps the direction s and its opposite in one traversal along s. For each entry e and each
   /// of d = s, -s with cos = -n_e . d > 0: gathered[e] += B(source) * cos * w, w = solidAngle / pi,

@@ -360,12 +360,12 @@ TEST(DiscreteLineSweep, FacingPlatesGetTheSameLightWhicheverWayTheLinesRun) {
   // back: both ways must give every side B cos w = 1 along the normal.
   const VoxelGrid grid = facingPlates();
   std::vector<DiscreteLineSweep::Slot> slots(grid.entryCount());
-  DiscreteLineSweep::packSides(
-      grid, [](size_t) { return Color(1.0f); }, slots);
+  const DiscreteLineSweep::Source source =
+      DiscreteLineSweep::packSides(grid, [](size_t) { return Color(1.0f); }, slots);
   for (const IVec3& step : {IVec3(1, 0, 0), IVec3(-1, 0, 0)}) {
     DiscreteLineSweep sweep(grid, {});
     std::vector<Color> gathered(grid.entryCount(), Color(0.0f));
-    sweep.sweepPair(unitWeightDirection(step), slots, gathered);
+    sweep.sweepPair(unitWeightDirection(step), source, gathered);
     for (size_t e = 0; e < grid.entryCount(); ++e) EXPECT_FLOAT_EQ(gathered[e].x, 1.0f) << e;
   }
   // At 45 degrees, the lines from one plate's lower rows reach the other's upper rows (6 voxels
@@ -374,7 +374,7 @@ TEST(DiscreteLineSweep, FacingPlatesGetTheSameLightWhicheverWayTheLinesRun) {
   for (const IVec3& step : {IVec3(1, 1, 0), IVec3(-1, -1, 0)}) {
     DiscreteLineSweep sweep(grid, {});
     std::vector<Color> gathered(grid.entryCount(), Color(0.0f));
-    sweep.sweepPair(unitWeightDirection(step), slots, gathered);
+    sweep.sweepPair(unitWeightDirection(step), source, gathered);
     double total[2] = {0.0, 0.0};
     for (size_t e = 0; e < grid.entryCount(); ++e) {
       const float g = gathered[e].x;
@@ -401,11 +401,11 @@ TEST(DiscreteLineSweep, EveryVoxelOfAGrazingRunGetsTheLightAhead) {
   settings.voxelSize = 0.1f;
   const VoxelGrid grid = voxelizeScene(b.build(), settings);
   std::vector<DiscreteLineSweep::Slot> slots(grid.entryCount());
-  DiscreteLineSweep::packSides(
+  const DiscreteLineSweep::Source source = DiscreteLineSweep::packSides(
       grid, [&](size_t e) { return Color(grid.object[e] == floorObject ? 0.0f : 1.0f); }, slots);
   DiscreteLineSweep sweep(grid, {});
   std::vector<Color> gathered(grid.entryCount(), Color(0.0f));
-  sweep.sweepPair(unitWeightDirection(IVec3(4, 1, 0)), slots, gathered);
+  sweep.sweepPair(unitWeightDirection(IVec3(4, 1, 0)), source, gathered);
   size_t floorSides = 0;
   for (size_t e = 0; e < grid.entryCount(); ++e) {
     if (grid.object[e] != floorObject) continue;

@@ -136,6 +136,43 @@ TEST(VoxelSolver, SameBitForBitWhateverTheThreadCount) {
   }
 }
 
+TEST(VoxelSolver, RadiosityScalesWithTheEmissionWhateverItsUnits) {
+  // Radiosity is linear in the emission. The sweeps carry radiosity in half floats, whose range
+  // (2^-14 to 65504) a bright lamp or a scene in other units leaves: multiplied by 2^24 the
+  // lamp's radiosity is 2^24 pi 2 = 1e8 (it overflowed to infinity), and by 2^-36 every value
+  // lies below 2^-30 (it flushed to zero). Scaled by a power of two, the answer must be the
+  // same to rounding.
+  for (bool firstShot : {false, true}) {
+    SCOPED_TRACE(firstShot ? "first shot" : "pure sweep");
+    auto solve = [&](float scale) {
+      SceneBuilder b("room");
+      const uint32_t wall = b.addMaterial({"wall", Color(0.6f), Color(0.0f), false});
+      const uint32_t lamp = b.addMaterial({"lamp", Color(0.5f), Color(2.0f * scale), false});
+      test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : wall; });
+      const Scene scene = b.build();
+      VoxelSolverSettings settings;
+      settings.sphereRadius = 6;
+      settings.iterations = 3;
+      settings.directSamples = 4;
+      settings.directFirstShot = firstShot;
+      return solveVoxelRadiosity(scene, voxelize(scene, 1.0f / 12.0f), settings).radiosity;
+    };
+    const std::vector<Color> unit = solve(1.0f);
+    for (float scale : {0x1p24f, 0x1p-36f}) {
+      const std::vector<Color> scaled = solve(scale);
+      ASSERT_EQ(scaled.size(), unit.size());
+      double lit = 0.0;
+      for (size_t e = 0; e < unit.size(); ++e)
+        for (int c = 0; c < 3; ++c) {
+          const float expected = unit[e][c] * scale;
+          ASSERT_NEAR(scaled[e][c], expected, 1e-5f * std::abs(expected)) << scale << " side " << e;
+          lit += unit[e][c];
+        }
+      EXPECT_GT(lit, 0.0);
+    }
+  }
+}
+
 // The solver refuses a grid that would not fit from this estimate, made before it allocates:
 // it must cover what the solve then holds, and not by so much that it refuses grids that fit.
 TEST(VoxelSolver, MemoryKnownBeforehandCoversTheSolve) {
