@@ -69,6 +69,17 @@ std::pair<uint32_t, uint32_t> withinBand(std::pair<uint32_t, uint32_t> range, co
                 : std::pair(firstPast(band.uEnd), firstPast(band.uBegin));
 }
 
+// The cells of a row, [begin, end) sorted by z, whose z lies in [zs.first, zs.second). Most rows
+// lie wholly inside or outside: two reads, no search.
+inline std::pair<uint32_t, uint32_t> cellsWithin(const int16_t* z, uint32_t begin, uint32_t end,
+                                                 std::pair<uint32_t, uint32_t> zs) {
+  const int16_t low = int16_t(zs.first), high = int16_t(zs.second);
+  if (z[begin] >= low && z[end - 1] < high) return {begin, end};
+  if (z[end - 1] < low || z[begin] >= high) return {end, end};
+  return {uint32_t(std::lower_bound(z + begin, z + end, low) - z),
+          uint32_t(std::lower_bound(z + begin, z + end, high) - z)};
+}
+
 }  // namespace
 
 DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings& settings)
@@ -79,11 +90,10 @@ DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings&
                                        " voxel sides exceed the sweep's limit of " +
                                        std::to_string(kNoPending - 1) +
                                        "; use a larger voxel size");
-  rowsAlongZ_ = {1, 2, grid.slabRowBegin, grid.rowY, grid.rowCellBegin, {}, grid.cellZ};
 }
 
 void DiscreteLineSweep::prepareBands() {
-  // Made on the first sweep with several bands: a single thread never reads them.
+  // Made on the first sweep with several bands: a single thread never reads it.
   if (!sampleCells_.empty() || grid_.cellCount() == 0) return;
   const VoxelGrid& grid = grid_;
   const size_t stride = std::max<size_t>(32, (grid.cellCount() + kMaxSamples - 1) / kMaxSamples);
@@ -92,8 +102,6 @@ void DiscreteLineSweep::prepareBands() {
       for (uint32_t cell = grid.rowCellBegin[row]; cell < grid.rowCellBegin[row + 1]; ++cell)
         if (cell % stride == 0)
           sampleCells_.push_back({int16_t(x), grid.rowY[row], grid.cellZ[cell]});
-  const RowsAlongY& y = rowsAlongYArrays_ = sortRowsAlongY(grid);
-  rowsAlongY_ = {2, 1, y.slabRowBegin, y.rowZ, y.rowCellBegin, y.cell, y.cellY};
 }
 
 size_t DiscreteLineSweep::threadCount() {
@@ -195,7 +203,10 @@ void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset
     rowStart_[row] = int32_t(lineCount - layout_.vLow[row]);
     lineCount += layout_.vHigh[row] - layout_.vLow[row] + 1;
   }
-  if (lines_.size() < size_t(lineCount)) lines_.resize(size_t(lineCount));
+  if (lines_.size() < size_t(lineCount)) {
+    lines_.reserve(size_t(lineCount));  // no more than this direction needs
+    lines_.resize(size_t(lineCount));
+  }
 }
 
 size_t DiscreteLineSweep::maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps) {
@@ -220,7 +231,6 @@ size_t DiscreteLineSweep::maxLineCount(const VoxelGrid& grid, std::span<const IV
 
 namespace {
 
-constexpr float kSnorm16 = 32767.0f;
 
 bool holdsCell(const int16_t normal[3]) {
   return (normal[0] | normal[1] | normal[2]) == 0;
@@ -245,7 +255,7 @@ Vec3 slotNormal(const Packed& p) {
   static_assert(offsetof(Packed, normal) == 0 && offsetof(Packed, radiosity) == 6 &&
                 sizeof(Packed) >= 14);
   const __m128 n = _mm_cvtepi32_ps(_mm_cvtepi16_epi32(eightBytesAt(&p)));
-  return lanes(_mm_mul_ps(n, _mm_set1_ps(1.0f / kSnorm16)));
+  return lanes(_mm_mul_ps(n, _mm_set1_ps(1.0f / PackedNormal::kScale)));
 }
 
 template <typename Packed>
@@ -284,11 +294,8 @@ DiscreteLineSweep::Source DiscreteLineSweep::packSides(const VoxelGrid& grid,
     b *= inverse;
     for (size_t e = begin; e < end; ++e) {
       Slot& slot = slots[e];
-      const Vec3 n = grid.normal[e];
-      for (int k = 0; k < 3; ++k) {
-        slot.normal[k] = int16_t(std::lround(n[k] * kSnorm16));
-        slot.radiosity[k] = _cvtss_sh(b[k], _MM_FROUND_TO_NEAREST_INT);
-      }
+      std::memcpy(slot.normal, grid.normal[e].v.data(), sizeof slot.normal);
+      for (int k = 0; k < 3; ++k) slot.radiosity[k] = _cvtss_sh(b[k], _MM_FROUND_TO_NEAREST_INT);
       // A unit normal has a component of at least 0.57: it never packs to the cell marker.
       slot.offset = glm::dot(slotNormal(slot), grid.centroid[e]);
     }
@@ -339,7 +346,8 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
                                                int32_t dominant) const {
   // Most cells hold one side and most recent voxels are one side: the plane test against the
   // recent voxel serves the look back, the run test and the waiting sides, computed once.
-  const Vec3 n = view.normal[e];
+  const Slot& slot = view.source[e];
+  const Vec3 n = slotNormal(slot);
   const Vec3 c = view.centroid[e];
   const float facing = glm::dot(n, view.unit);  // < 0: e looks back along the line, > 0: ahead
   const RecentVoxel& recent = state.recent;
@@ -358,7 +366,6 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
   const bool continues = kTangentCorrection && inRecentPlane &&
                          std::abs(dominant - state.lastDominant) == 1 &&
                          glm::dot(recentNormal, n) > kSamePlaneCos;
-  const Slot& slot = view.source[e];
   if (!continues && state.pending != kNoPending) {
     // Most often the one side waiting is the recent voxel, a wall across the room: it looks at
     // e's plane from its centroid, which the record holds, unless it grazes e (then the
@@ -428,7 +435,7 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
     resolvePending<kTangentCorrection>(view, state, slot);
   const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
   for (uint32_t e = begin; e < end; ++e) {
-    const float facing = glm::dot(grid_.normal[e], unit);
+    const float facing = glm::dot(slotNormal(source[e]), unit);
     if (facing == 0.0f) continue;
     const float w = std::abs(facing) * view.weight;
     // The cell's own other sides first (the faces of an inner edge see each other).
@@ -487,7 +494,7 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
       const Vec3 centroid = recent ? state.recent.centroid : view.centroid[m];
       sight = look(centroid, slot, back, view.source, light);
       if (sight == Sight::Source) {
-        const Vec3 normal = recent ? slotNormal(state.recent) : view.normal[m];
+        const Vec3 normal = recent ? slotNormal(state.recent) : slotNormal(view.source[m]);
         weight = glm::dot(normal, view.unit) * view.weight;
       }
     }
@@ -526,79 +533,51 @@ Sight DiscreteLineSweep::lookOlder(const Vec3& centroid, const LineState& state,
   return Sight::Through;
 }
 
-DiscreteLineSweep::RowsAlongY DiscreteLineSweep::sortRowsAlongY(const VoxelGrid& grid) {
-  RowsAlongY rows;
-  rows.slabRowBegin.push_back(0);
-  rows.rowCellBegin.push_back(0);
-  std::vector<std::array<uint32_t, 3>> slab;  // (z, y, cell)
-  for (uint32_t x = 0; x < uint32_t(grid.dims.x); ++x) {
-    slab.clear();
-    for (uint32_t row = grid.slabRowBegin[x]; row < grid.slabRowBegin[x + 1]; ++row)
-      for (uint32_t cell = grid.rowCellBegin[row]; cell < grid.rowCellBegin[row + 1]; ++cell)
-        slab.push_back({uint32_t(grid.cellZ[cell]), uint32_t(grid.rowY[row]), cell});
-    std::sort(slab.begin(), slab.end());
-    for (size_t i = 0; i < slab.size(); ++i) {
-      if (i == 0 || slab[i][0] != slab[i - 1][0]) {
-        if (i > 0) rows.rowCellBegin.push_back(uint32_t(rows.cell.size()));
-        rows.rowZ.push_back(int16_t(slab[i][0]));
-      }
-      rows.cell.push_back(slab[i][2]);
-      rows.cellY.push_back(int16_t(slab[i][1]));
-    }
-    if (!slab.empty()) rows.rowCellBegin.push_back(uint32_t(rows.cell.size()));
-    rows.slabRowBegin.push_back(uint32_t(rows.rowZ.size()));
-  }
-  return rows;
-}
-
-std::pair<uint32_t, uint32_t> DiscreteLineSweep::rowsInBand(const SlabRows& rows, uint32_t x,
+std::pair<uint32_t, uint32_t> DiscreteLineSweep::rowsInBand(uint32_t x,
                                                             const LineBand& band) const {
-  const std::vector<uint64_t>& rowLines = lineTable_[rows.rowAxis];
-  return withinBand({rows.slabRowBegin[x], rows.slabRowBegin[x + 1]}, band, [&](uint32_t row) {
-    return int64_t((lineTable_[0][x] + rowLines[size_t(rows.rowCoordinate[row])]) >> 32);
+  return withinBand({grid_.slabRowBegin[x], grid_.slabRowBegin[x + 1]}, band, [&](uint32_t row) {
+    return int64_t((lineTable_[0][x] + lineTable_[1][size_t(grid_.rowY[row])]) >> 32);
   });
 }
 
-template <bool kGridOrder, typename F>
-void DiscreteLineSweep::walkSlabs(const SlabRows& rows, const IVec3& step, const LineBand& band,
-                                  bool whole, F&& f) const {
-  const std::vector<uint64_t>& rowLines = lineTable_[rows.rowAxis];
-  const std::vector<uint64_t>& cellLines = lineTable_[rows.cellAxis];
-  const std::vector<int32_t>& rowDominants = dominantTable_[rows.rowAxis];
-  const std::vector<int32_t>& cellDominants = dominantTable_[rows.cellAxis];
-  forEach(0, uint32_t(grid_.dims.x), step.x >= 0, [&](uint32_t x) {
-    const uint64_t slabLine = lineTable_[0][x];
-    const int32_t slabDominant = dominantTable_[0][x];
-    const auto [rowBegin, rowEnd] = whole
-                                        ? std::pair(rows.slabRowBegin[x], rows.slabRowBegin[x + 1])
-                                        : rowsInBand(rows, x, band);
-    forEach(rowBegin, rowEnd, step[rows.rowAxis] >= 0, [&](uint32_t row) {
-      const size_t r = size_t(rows.rowCoordinate[row]);
-      const uint64_t rowLine = slabLine + rowLines[r];
-      const int32_t rowDominant = slabDominant + rowDominants[r];
-      forEach(rows.rowCellBegin[row], rows.rowCellBegin[row + 1], step[rows.cellAxis] >= 0,
-              [&](uint32_t k) {
-                const size_t c = size_t(rows.cellCoordinate[k]);
-                const uint64_t uv = rowLine + cellLines[c];
-                f(kGridOrder ? k : rows.cell[k],
-                  uint32_t(rowStart_[uv >> 32] + int32_t(uint32_t(uv))),
-                  rowDominant + cellDominants[c]);
-              });
-    });
+std::pair<uint32_t, uint32_t> DiscreteLineSweep::zInBand(uint32_t x, const LineBand& band) const {
+  return withinBand({0u, uint32_t(grid_.dims.z)}, band, [&](uint32_t z) {
+    return int64_t((lineTable_[0][x] + lineTable_[2][z]) >> 32);
   });
 }
 
 template <typename F>
 void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, const LineBand& band,
                                                F&& f) const {
-  // A line's row U depends on the dominant coordinate and the outer of the other two (layoutLines):
-  // a band's rows run along the third, z, or y when z is dominant. All lines at once take the
-  // grid's own order, whose cells' data lie in the order they are read.
+  // A line's row U depends on the dominant coordinate and the outer of the other two
+  // (layoutLines): on x and y for a dominant x or y, so that a band is a range of each slab's
+  // rows; on x and z for a dominant z, so that a band is a range of z, which cuts each row.
+  const VoxelGrid& grid = grid_;
   const bool whole = band.holdsAll(rowStart_.size());
-  if (layout_.axes[0] == 2 && !whole)
-    walkSlabs<false>(rowsAlongY_, step, band, whole, f);
-  else
-    walkSlabs<true>(rowsAlongZ_, step, band, whole, f);
+  const bool cutRows = !whole && layout_.axes[0] == 2;
+  const int16_t* const cellZ = grid.cellZ.data();
+  forEach(0, uint32_t(grid.dims.x), step.x >= 0, [&](uint32_t x) {
+    const uint64_t slabLine = lineTable_[0][x];
+    const int32_t slabDominant = dominantTable_[0][x];
+    const auto rows = whole || cutRows ? std::pair(grid.slabRowBegin[x], grid.slabRowBegin[x + 1])
+                                       : rowsInBand(x, band);
+    const auto zs = cutRows ? zInBand(x, band) : std::pair(0u, uint32_t(grid.dims.z));
+    if (zs.first == zs.second) return;  // near the z axis, a band's lines cross few slabs
+    forEach(rows.first, rows.second, step.y >= 0, [&](uint32_t row) {
+      auto [begin, end] = std::pair(grid.rowCellBegin[row], grid.rowCellBegin[row + 1]);
+      if (cutRows) std::tie(begin, end) = cellsWithin(cellZ, begin, end, zs);
+      if (begin == end) return;
+      const size_t y = size_t(grid.rowY[row]);
+      const uint64_t rowLine = slabLine + lineTable_[1][y];
+      const int32_t rowDominant = slabDominant + dominantTable_[1][y];
+      forEach(begin, end, step.z >= 0, [&](uint32_t cell) {
+        const size_t z = size_t(cellZ[cell]);
+        const uint64_t uv = rowLine + lineTable_[2][z];
+        f(cell, uint32_t(rowStart_[uv >> 32] + int32_t(uint32_t(uv))),
+          rowDominant + dominantTable_[2][z]);
+      });
+    });
+  });
 }
 
 template <bool kTangentCorrection>
@@ -606,7 +585,6 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
                              float weight, const Source& source, std::span<Color> gathered,
                              DeferredGathers& later) {
   const PassView view{grid_.cellEntryBegin.data(),
-                      grid_.normal.data(),
                       grid_.centroid.data(),
                       source,
                       gathered.data(),
@@ -642,7 +620,6 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
     __builtin_prefetch(&lines[line], 1);
     __builtin_prefetch(reinterpret_cast<const char*>(&lines[line]) + sizeof(LineState) - 1, 1);
     const uint32_t first = view.entryBegin[cell];
-    __builtin_prefetch(&view.normal[first]);
     __builtin_prefetch(&view.centroid[first]);
     __builtin_prefetch(&view.gathered[first], 1);
     __builtin_prefetch(&view.source[first]);

@@ -24,8 +24,8 @@
 // grazing runs cost one slot.
 //
 // The threads share each direction: the line table's rows are cut into bands of about equal
-// numbers of cells, and a band's cells are a range of rows in every slab (the grid's rows along
-// z, or rows along y when z is dominant, since a line's row depends on the other two axes).
+// numbers of cells, and a band's cells are a range of rows in every slab (or, when z is
+// dominant, a range of z in every slab, since a line's row then depends on x and z).
 // Bands touch disjoint records and sides, so one table and one accumulator serve all threads,
 // and a side's sum over the directions is the same whatever their number.
 
@@ -99,13 +99,15 @@ class DiscreteLineSweep {
 
   /// The threads a sweep uses: the task arena's, or fewer when a global limit (--threads) says so.
   static size_t threadCount();
+  /// Makes room for a line table of `lines` at once (maxLineCount): a table that grows with the
+  /// directions reallocates, and holds two tables while it does.
+  void reserveLines(size_t lines) { lines_.reserve(lines); }
   /// An upper bound of the line table's size over the directions `steps` and any LineOffset, and
   /// the bytes a sweep of `grid` holds with that many lines, known before it is built.
   static size_t maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps);
   static size_t workingBytesFor(const VoxelGrid& grid, size_t lines) {
     const size_t threads = threadCount();
-    const size_t bandBytes =
-        threads > 1 ? RowsAlongY::boundBytes(grid) + kMaxSamples * sizeof(SampleCell) : 0;
+    const size_t bandBytes = threads > 1 ? kMaxSamples * sizeof(SampleCell) : 0;
     return lines * sizeof(LineState) + grid.entryCount() * sizeof(uint32_t) + bandBytes +
            threads * DeferredGathers::kCapacity * sizeof(DeferredGathers::Item);
   }
@@ -117,12 +119,12 @@ class DiscreteLineSweep {
   /// The same pass cut into about `bands` bands of lines: the cells each visits, in order.
   std::vector<std::vector<uint32_t>> passOrderInBands(const IVec3& step, size_t bands);
   size_t lineTableSize() const { return lines_.size(); }
-  /// Working memory of this sweep: the line records, the waiting sides' links, the rows along y,
-  /// the cells the bands are balanced on and each thread's deferred light (the fold masks are
-  /// counted by the solver).
+  /// Working memory of this sweep: the line records, the waiting sides' links, the cells the
+  /// bands are balanced on and each thread's deferred light (the fold masks are counted by the
+  /// solver).
   size_t workingBytes() const {
     return lines_.capacity() * sizeof(LineState) + pendingNext_.capacity() * sizeof(uint32_t) +
-           rowsAlongYArrays_.bytes() + sampleCells_.capacity() * sizeof(SampleCell) +
+           sampleCells_.capacity() * sizeof(SampleCell) +
            later_.size() * DeferredGathers::kCapacity * sizeof(DeferredGathers::Item);
   }
 
@@ -188,8 +190,8 @@ class DiscreteLineSweep {
   };
   /// Bands per direction: several per thread, so that a thread that finishes early takes another
   /// (the lines' work differs from band to band) and the threads wait little for the last one:
-  /// 16 a thread. Fewer for a dominant z, whose band reads a slice of every grid row (rows along
-  /// y cut across the grid's rows along z), memory that each band reads again: 2 a thread.
+  /// 16 a thread. Fewer for a dominant z, whose band reads and cuts every row of the grid (its
+  /// lines are a range of z, across the rows): 2 a thread.
   /// Measured on 2 threads (room:16, 93k voxels, R = 38): with 8 bands a thread for every
   /// direction, 97% of the threads' time busy and 10% more time a direction for a dominant z
   /// than for x; with 16 and 2, 97% busy and the same time for every axis, 134-137 M visits/s
@@ -200,7 +202,7 @@ class DiscreteLineSweep {
   /// Cuts the line table's rows into `count` bands of about equal numbers of cells (counted on
   /// a sample of the cells).
   void cutBands(size_t count);
-  /// The sample the bands are balanced on and the rows along y, made when first needed.
+  /// The sample the bands are balanced on, made when first needed.
   void prepareBands();
   /// Light for sides that waited on a line: added to their accumulators in batches, after the
   /// fact, so that the sweep never stalls on a side it visited long ago.
@@ -220,7 +222,6 @@ class DiscreteLineSweep {
   /// What a pass reads and writes, as raw pointers the compiler can keep in registers.
   struct PassView {
     const uint32_t* entryBegin;
-    const Vec3* normal;
     const Vec3* centroid;
     Source source;
     Color* gathered;
@@ -251,47 +252,17 @@ class DiscreteLineSweep {
   /// Makes side e wait on the line for light from ahead; `sameRun` when the side waiting before
   /// it is the previous voxel of its run.
   static void wait(const PassView& view, LineState& state, uint32_t e, bool sameRun);
-  /// The cells of the grid's slabs (fixed x) in rows: along z (the grid's own order), or along
-  /// y (`rowsAlongY_`). A pass walks slabs, rows and cells with the signs of its step; it takes
-  /// the rows along the axis that only moves a line's V, so that the lines of a row share their
-  /// row U of the line table and a band of lines is a range of each slab's rows.
-  struct SlabRows {
-    int rowAxis = 1, cellAxis = 2;            ///< the axis a row fixes besides x; the cells'
-    std::span<const uint32_t> slabRowBegin;   ///< dims.x + 1
-    std::span<const int16_t> rowCoordinate;   ///< per row: its coordinate along rowAxis
-    std::span<const uint32_t> rowCellBegin;   ///< rows + 1
-    std::span<const uint32_t> cell;           ///< per position in a row: the cell (rows along y)
-    std::span<const int16_t> cellCoordinate;  ///< per position: its coordinate along cellAxis
-  };
-  /// The arrays of the rows along y (those along z are the grid's).
-  struct RowsAlongY {
-    std::vector<uint32_t> slabRowBegin, rowCellBegin, cell;
-    std::vector<int16_t> rowZ, cellY;
-    size_t bytes() const {
-      return (slabRowBegin.size() + rowCellBegin.size() + cell.size()) * sizeof(uint32_t) +
-             (rowZ.size() + cellY.size()) * sizeof(int16_t);
-    }
-    /// At most a row per cell.
-    static size_t boundBytes(const VoxelGrid& grid) {
-      return (size_t(grid.dims.x) + 2 + 2 * grid.cellCount()) * sizeof(uint32_t) +
-             2 * grid.cellCount() * sizeof(int16_t);
-    }
-  };
-  /// The grid's slabs in rows along y.
-  static RowsAlongY sortRowsAlongY(const VoxelGrid& grid);
   /// Calls f(cell, line, dominant) for every cell whose line lies in `band`, in the order of a
-  /// pass along `step` (inlined into the pass: called, its ring would live in memory).
+  /// pass along `step`: the grid's slabs, rows and cells, each run with the sign of its axis
+  /// (inlined into the pass: called, its ring would live in memory).
   template <typename F>
   [[gnu::always_inline]] inline void forEachCellInPassOrder(const IVec3& step,
                                                             const LineBand& band, F&& f) const;
-  /// Walks the slabs in `rows` as forEachCellInPassOrder does; `kGridOrder` when the rows are the
-  /// grid's own (a row position is the cell), `whole` when the band holds every line.
-  template <bool kGridOrder, typename F>
-  [[gnu::always_inline]] inline void walkSlabs(const SlabRows& rows, const IVec3& step,
-                                               const LineBand& band, bool whole, F&& f) const;
-  /// The rows of slab x whose lines lie in the band.
-  [[gnu::noinline]] std::pair<uint32_t, uint32_t> rowsInBand(const SlabRows& rows, uint32_t x,
+  /// The rows of slab x whose lines lie in the band (x or y dominant).
+  [[gnu::noinline]] std::pair<uint32_t, uint32_t> rowsInBand(uint32_t x,
                                                              const LineBand& band) const;
+  /// The z of slab x whose lines lie in the band (z dominant): [first, second).
+  [[gnu::noinline]] std::pair<uint32_t, uint32_t> zInBand(uint32_t x, const LineBand& band) const;
 
   const VoxelGrid& grid_;
   SweepSettings settings_;
@@ -306,9 +277,6 @@ class DiscreteLineSweep {
   std::vector<uint32_t> pendingNext_;  ///< per entry: the chain of sides waiting on a line
   tbb::enumerable_thread_specific<DeferredGathers> later_;  ///< per thread, emptied per band
   std::vector<LineBand> bands_;         ///< this direction's
-  RowsAlongY rowsAlongYArrays_;
-  SlabRows rowsAlongZ_;  ///< the grid's own order (a row position is the cell)
-  SlabRows rowsAlongY_;  ///< for a dominant z, cut into bands (made by prepareBands)
   /// The coordinates of every 32nd cell, or of 8,192 cells spread evenly over a larger grid:
   /// what the bands are balanced on (counted for every direction, so no more than that; made by
   /// prepareBands).

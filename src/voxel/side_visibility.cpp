@@ -23,7 +23,7 @@ SideVisibility::SideVisibility(const VoxelGrid& grid)
     const uint32_t end = std::min(grid.cellEntryBegin[cell + 1], begin + 16);
     for (uint32_t f = begin; f < end; ++f)
       for (uint32_t g = begin; g < end; ++g)
-        if (g != f && glm::dot(grid.normal[f], grid.centroid[g] - grid.centroid[f]) > tolerance_)
+        if (g != f && glm::dot(grid.unitNormal(f), grid.centroid[g] - grid.centroid[f]) > tolerance_)
           frontOf_[f] = uint16_t(frontOf_[f] | (1u << (g - begin)));
   }
 }
@@ -33,7 +33,7 @@ Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_
   Sight sight = Sight::Through;
   float nearest = std::numeric_limits<float>::max();
   for (uint32_t f = grid_.cellEntryBegin[q]; f < grid_.cellEntryBegin[q + 1]; ++f) {
-    const Vec3 nf = grid_.normal[f];
+    const Vec3 nf = grid_.unitNormal(f);
     const float height = glm::dot(nf, ce - grid_.centroid[f]);
     const float approach = glm::dot(nf, unit);
     const Sight met = planeSight(height, approach, tolerance);
@@ -58,8 +58,9 @@ bool SideVisibility::insideFold(uint32_t f, uint32_t q, const Vec3& point,
     const uint32_t g = begin + uint32_t(std::countr_zero(front));
     // The crossing must lie in front of g, and so must the ray's origin: a ray from behind g
     // reaches f's front only through g.
-    if (glm::dot(grid_.normal[g], point - grid_.centroid[g]) < -edge ||
-        glm::dot(grid_.normal[g], origin - grid_.centroid[g]) < -edge)
+    const Vec3 ng = grid_.unitNormal(g);
+    if (glm::dot(ng, point - grid_.centroid[g]) < -edge ||
+        glm::dot(ng, origin - grid_.centroid[g]) < -edge)
       return false;
   }
   return true;
@@ -73,7 +74,7 @@ bool SideVisibility::lookWithinCell(uint32_t e, uint32_t cell, const Vec3& unit,
   float best = 0.0f;
   for (uint32_t front = frontOf_[e]; front != 0; front &= front - 1) {
     const uint32_t f = begin + uint32_t(std::countr_zero(front));
-    const float approach = glm::dot(grid_.normal[f], unit);
+    const float approach = glm::dot(grid_.unitNormal(f), unit);
     if (!inFront(f, e, begin) || approach <= best) continue;
     best = approach;
     source = f;
@@ -90,8 +91,9 @@ bool SideVisibility::continuesPlanes(uint32_t p, uint32_t q) const {
     bool matched = false;
     for (uint32_t b = qBegin; b < qEnd && !matched; ++b)
       matched =
-          glm::dot(grid_.normal[a], grid_.normal[b]) > kSamePlaneCos &&
-          std::abs(glm::dot(grid_.normal[b], grid_.centroid[a] - grid_.centroid[b])) <= tolerance;
+          glm::dot(grid_.unitNormal(a), grid_.unitNormal(b)) > kSamePlaneCos &&
+          std::abs(glm::dot(grid_.unitNormal(b), grid_.centroid[a] - grid_.centroid[b])) <=
+              tolerance;
     if (!matched) return false;
   }
   return true;

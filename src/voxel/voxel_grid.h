@@ -8,6 +8,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +23,20 @@ struct VoxelMaterial {
   Color rho{0.0f};
   Color emission{0.0f};  ///< radiance Ke; radiosity E = pi Ke
   bool operator==(const VoxelMaterial&) const = default;
+};
+
+/// A unit normal in 16-bit signed fixed point, 6 bytes instead of 12: each component to
+/// 1.5e-5, far below the sweep's plane tolerance (a twentieth of a voxel).
+struct PackedNormal {
+  static constexpr float kScale = 32767.0f;
+  std::array<int16_t, 3> v{};
+  static PackedNormal pack(const Vec3& n) {
+    PackedNormal p;
+    for (int k = 0; k < 3; ++k) p.v[size_t(k)] = int16_t(std::lround(n[k] * kScale));
+    return p;
+  }
+  Vec3 unpack() const { return Vec3(float(v[0]), float(v[1]), float(v[2])) * (1.0f / kScale); }
+  bool operator==(const PackedNormal&) const = default;
 };
 
 struct VoxelGrid {
@@ -37,7 +53,7 @@ struct VoxelGrid {
   std::vector<uint32_t> slabRowBegin;  ///< dims.x + 1 offsets into the rows
 
   // Entries (one per surface side in a cell).
-  std::vector<Vec3> normal;     ///< unit, area-weighted mean of the side's triangles
+  std::vector<PackedNormal> normal;  ///< unit, area-weighted mean of the side's triangles
   std::vector<Vec3> centroid;   ///< area-weighted centroid of the surface inside the voxel
   std::vector<float> area;      ///< surface area the entry stands for (scene units^2)
   std::vector<uint32_t> material;  ///< index into materials
@@ -54,6 +70,7 @@ struct VoxelGrid {
   size_t rowCount() const { return rowY.size(); }
   /// Integer coordinates of a cell (found from the row structure; O(log rows)).
   IVec3 cellCoordinates(uint32_t cell) const;
+  Vec3 unitNormal(size_t entry) const { return normal[entry].unpack(); }
   Vec3 cellCenter(const IVec3& c) const { return origin + (Vec3(c) + 0.5f) * voxelSize; }
   /// The cell at integer coordinates, or UINT32_MAX when that voxel is empty. O(log) search.
   uint32_t findCell(const IVec3& c) const;

@@ -19,8 +19,9 @@ bool VoxelIrradianceField::accumulate(const IVec3& c, const Vec3& p, const Vec3&
   uint32_t best = UINT32_MAX;
   float bestCos = kFacingCos;
   for (uint32_t e = grid_.cellEntryBegin[cell]; e < grid_.cellEntryBegin[cell + 1]; ++e) {
-    const float cosine = glm::dot(grid_.normal[e], n);
-    const float distance = std::abs(glm::dot(grid_.normal[e], p - grid_.centroid[e]));
+    const Vec3 normal = grid_.unitNormal(e);
+    const float cosine = glm::dot(normal, n);
+    const float distance = std::abs(glm::dot(normal, p - grid_.centroid[e]));
     if (cosine > bestCos && distance < kPlaneDistance * grid_.voxelSize) bestCos = cosine, best = e;
   }
   if (best == UINT32_MAX) return false;

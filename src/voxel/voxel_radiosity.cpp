@@ -108,7 +108,7 @@ const VoxelRadiosityStats& VoxelRadiosity::stats() const { return impl_->stats; 
 SurfaceSample VoxelRadiosity::Impl::sample(size_t e) const {
   const VoxelMaterial& m = grid.materials[grid.material[e]];
   return {grid.object[e],          grid.area[e],           grid.centroid[e],
-          grid.normal[e],          glm::pi<float>() * m.emission, m.rho,
+          grid.unitNormal(e),          glm::pi<float>() * m.emission, m.rho,
           solution.irradiance[e], solution.radiosity[e], bool(grid.backSide[e])};
 }
 

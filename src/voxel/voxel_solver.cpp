@@ -41,7 +41,7 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
       Rng rng(settings.seed, e);
       Vec3d sum(0.0);
       for (int s = 0; s < settings.directSamples; ++s)
-        sum += Vec3d(direct.irradiance(grid.centroid[e], grid.normal[e], rng));
+        sum += Vec3d(direct.irradiance(grid.centroid[e], grid.unitNormal(e), rng));
       h[e] = Color(sum / double(settings.directSamples));
     }
   });
@@ -55,14 +55,12 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
 // floats (2 bytes a side): w lies near 1, and the half float's 11 bits of w - 1 leave an error
 // below 1e-4 w even for spheres of a few directions (|w - 1| ~ 0.2), below 1e-5 at R = 38.
 std::vector<uint16_t> facingWeights(const VoxelGrid& grid, const DirectionSet& directions) {
-  std::map<std::array<uint32_t, 3>, uint32_t> index;
+  std::map<std::array<int16_t, 3>, uint32_t> index;
   std::vector<Vec3> distinct;
   std::vector<uint32_t> normalOf(grid.entryCount());
   for (size_t e = 0; e < grid.entryCount(); ++e) {
-    std::array<uint32_t, 3> bits;
-    std::memcpy(bits.data(), &grid.normal[e], sizeof bits);
-    const auto [it, inserted] = index.try_emplace(bits, uint32_t(distinct.size()));
-    if (inserted) distinct.push_back(grid.normal[e]);
+    const auto [it, inserted] = index.try_emplace(grid.normal[e].v, uint32_t(distinct.size()));
+    if (inserted) distinct.push_back(grid.unitNormal(e));
     normalOf[e] = it->second;
   }
   std::vector<float> weightOf(distinct.size());
@@ -116,19 +114,23 @@ uint64_t solverBytesPerSide(const VoxelSolverSettings& settings) {
          sizeof(uint16_t);                                  // fold masks (SideVisibility)
 }
 
-uint64_t solveBytes(const VoxelGrid& grid, const DirectionSet& directions,
-                    const VoxelSolverSettings& settings) {
+// The line table the sweeps need: as large as the widest direction's (reserved at once, so that
+// it never grows by reallocation, which would hold two tables).
+size_t widestLineTable(const VoxelGrid& grid, const DirectionSet& directions) {
   std::vector<IVec3> steps;
   for (size_t k = 0; k < directions.pairCount(); ++k) steps.push_back(directions.pairFirst(k).step);
+  return DiscreteLineSweep::maxLineCount(grid, steps);
+}
+
+uint64_t solveBytes(const VoxelGrid& grid, size_t lines, const VoxelSolverSettings& settings) {
   return grid.entryCount() * solverBytesPerSide(settings) +
-         DiscreteLineSweep::workingBytesFor(grid, DiscreteLineSweep::maxLineCount(grid, steps));
+         DiscreteLineSweep::workingBytesFor(grid, lines);
 }
 
 // A grid whose solve does not fit is an input error before the first shot, not a kill by the
 // OOM killer an hour in.
-void checkMemory(const VoxelGrid& grid, const DirectionSet& directions,
-                 const VoxelSolverSettings& settings) {
-  const uint64_t needed = solveBytes(grid, directions, settings);
+void checkMemory(const VoxelGrid& grid, size_t lines, const VoxelSolverSettings& settings) {
+  const uint64_t needed = solveBytes(grid, lines, settings);
   const uint64_t available = availableMemoryBytes();
   constexpr double kGB = 1e9;
   if (available > 0 && needed > available)
@@ -141,7 +143,7 @@ void checkMemory(const VoxelGrid& grid, const DirectionSet& directions,
 }  // namespace
 
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
-  return solveBytes(grid, DirectionSet(settings.sphereRadius), settings);
+  return solveBytes(grid, widestLineTable(grid, DirectionSet(settings.sphereRadius)), settings);
 }
 
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
@@ -156,7 +158,8 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   const DirectionSet directions(settings.sphereRadius);
   solution.directions = directions.size();
   // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
-  checkMemory(grid, directions, settings);
+  const size_t lines = widestLineTable(grid, directions);
+  checkMemory(grid, lines, settings);
   solution.sweepThreads = DiscreteLineSweep::threadCount();
   // In half floats: 6 bytes a side, an error of at most 2^-12 of each value (the sweeps carry
   // the light in half floats too).
@@ -169,6 +172,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   auto directAt = [&](size_t e) { return direct.empty() ? Color(0.0f) : direct[e]; };
 
   auto sweep = std::make_unique<DiscreteLineSweep>(grid, settings.sweep);
+  sweep->reserveLines(lines);
   std::vector<Color> gathered(n);
   const std::vector<uint16_t> weights =
       settings.normalize ? facingWeights(grid, directions) : std::vector<uint16_t>{};

@@ -172,7 +172,7 @@ uint32_t internMaterial(VoxelGrid& grid, std::map<std::array<float, 6>, uint32_t
 
 void appendSide(VoxelGrid& grid, std::map<std::array<float, 6>, uint32_t>& materialIndex,
                 const Side& side) {
-  grid.normal.push_back(Vec3(glm::normalize(side.normalSum)));
+  grid.normal.push_back(PackedNormal::pack(Vec3(glm::normalize(side.normalSum))));
   grid.centroid.push_back(Vec3(side.centroidSum / side.weight));
   grid.area.push_back(float(side.area));
   const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};

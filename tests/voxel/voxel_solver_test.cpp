@@ -95,7 +95,7 @@ TEST(VoxelSolver, LightInsideClosedBoxDoesNotLeak) {
     for (size_t e = 0; e < grid.entryCount(); ++e) {
       const Vec3 fromCentre = grid.centroid[e] - Vec3(0.5f);
       const bool onFloor = grid.object[e] == floorObject;
-      const bool facesOut = glm::dot(grid.normal[e], fromCentre) > 0.0f && grid.material[e] != 1;
+      const bool facesOut = glm::dot(grid.unitNormal(e), fromCentre) > 0.0f && grid.material[e] != 1;
       const bool wallSide = glm::compMax(glm::abs(fromCentre)) > 0.45f;
       if (onFloor || (wallSide && facesOut)) {
         ++outside;
@@ -192,9 +192,9 @@ TEST(VoxelSolver, MemoryKnownBeforehandCoversTheSolve) {
     const uint64_t estimate = voxelSolveBytes(grid, settings);
     const VoxelSolution solution = solveVoxelRadiosity(scene, grid, settings);
     EXPECT_GE(estimate, solution.workingBytes);
-    // The estimate's slack is the widest direction's line table against the one kept, and the
-    // bound of the rows along y (a row per cell): measured 1.03x here; 1.5x would refuse grids
-    // that fit in two thirds of the memory.
+    // The estimate's slack is the bound of the widest direction's line table (over any line
+    // shift) and a deferred batch for every thread, whether it ran or not: measured 1.10x here;
+    // 1.5x would refuse grids that fit in two thirds of the memory.
     EXPECT_LE(double(estimate), 1.5 * double(solution.workingBytes));
   }
 }
