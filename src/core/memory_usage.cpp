@@ -1,5 +1,7 @@
 #include "core/memory_usage.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <fstream>
 #include <optional>
@@ -62,7 +64,14 @@ uint64_t availableMemoryBytes() {
     }
     const std::optional<uint64_t> limit = cgroupBytes(limitFile), usage = cgroupBytes(usageFile);
     if (!limit || !usage) continue;
-    const uint64_t room = *limit > *usage ? *limit - *usage : 0;
+    const uint64_t room = *limit > *usage ? *limit - *usage : 1;  // 0 would read as unknown
+    available = available == 0 ? room : std::min(available, room);
+  }
+  // An address-space limit (ulimit -v) counts the process's virtual size, not its resident one.
+  rlimit addressSpace{};
+  if (getrlimit(RLIMIT_AS, &addressSpace) == 0 && addressSpace.rlim_cur != RLIM_INFINITY) {
+    const uint64_t size = statusFieldBytes("VmSize");
+    const uint64_t room = addressSpace.rlim_cur > size ? addressSpace.rlim_cur - size : 1;
     available = available == 0 ? room : std::min(available, room);
   }
   return available;

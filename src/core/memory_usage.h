@@ -1,7 +1,7 @@
 #pragma once
 // Resident memory of this process, for the stats file and the scaling benchmarks, and the memory
 // still free for it, so that large solves can refuse or scale down before they run out. Linux
-// only: read from /proc and the cgroup files; elsewhere the functions return 0.
+// only: read from /proc, the cgroup files and the resource limits; elsewhere they return 0.
 
 #include <cstdint>
 
@@ -12,7 +12,8 @@ uint64_t peakResidentBytes();
 /// Current resident set size (VmRSS) in bytes; 0 if unavailable.
 uint64_t currentResidentBytes();
 /// Bytes this process can still allocate without swapping: the system's MemAvailable, or less
-/// when the process's control group (a container) has a lower limit; 0 if unknown.
+/// when the process's control group (a container) has a lower limit or its address-space limit
+/// (ulimit -v) leaves less; 0 if unknown.
 uint64_t availableMemoryBytes();
 
 }  // namespace rad

@@ -4,10 +4,16 @@
 
 #include "voxel/voxel_test_scenes.h"
 
+#include <radiosity/error.h>
+
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <tbb/task_arena.h>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtx/component_wise.hpp>
+
+#include <fstream>
+#include <string>
 
 namespace rad {
 namespace {
@@ -197,6 +203,50 @@ TEST(VoxelSolver, MemoryKnownBeforehandCoversTheSolve) {
     // 1.5x would refuse grids that fit in two thirds of the memory.
     EXPECT_LE(double(estimate), 1.5 * double(solution.workingBytes));
   }
+}
+
+// The process's virtual size (VmSize), which an address-space limit counts.
+uint64_t virtualBytes() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  uint64_t kilobytes = 0;
+  while (status >> key) {
+    if (key == "VmSize:" && status >> kilobytes) return kilobytes * 1024;
+  }
+  return 0;
+}
+
+TEST(VoxelSolver, RefusesBeforeItAllocatesWhatTheProcessMayNotHold) {
+  // Under an address-space limit (ulimit -v) leaving 1 MB, a solve that needs more must be an
+  // input error before it allocates its arrays, not a std::bad_alloc (or a kill) hours in.
+  const Scene scene = test::uniformCube(Color(0.5f), Color(1.0f));
+  const VoxelGrid grid = voxelize(scene, 1.0f / 100.0f);
+  VoxelSolverSettings settings;
+  settings.sphereRadius = 12;
+  settings.iterations = 1;
+  settings.directSamples = 1;
+  constexpr uint64_t kLeft = 1u << 20;
+  ASSERT_GT(voxelSolveBytes(grid, settings), 2 * kLeft);  // 6 x 100^2 sides, 4.4 MB
+  const uint64_t size = virtualBytes();
+  ASSERT_GT(size, 0u);
+  rlimit saved{};
+  ASSERT_EQ(getrlimit(RLIMIT_AS, &saved), 0);
+  rlimit lowered = saved;
+  lowered.rlim_cur = size + kLeft;
+  if (saved.rlim_cur != RLIM_INFINITY && saved.rlim_cur < lowered.rlim_cur)
+    GTEST_SKIP() << "the address space is already limited below the test's";
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &lowered), 0);
+  bool refused = false;
+  try {
+    solveVoxelRadiosity(scene, grid, settings);
+  } catch (const InputError&) {
+    refused = true;
+  } catch (const std::bad_alloc&) {
+  }
+  setrlimit(RLIMIT_AS, &saved);
+  EXPECT_TRUE(refused);
+  // With the limit lifted the same solve runs.
+  EXPECT_EQ(solveVoxelRadiosity(scene, grid, settings).radiosity.size(), grid.entryCount());
 }
 
 }  // namespace
