@@ -15,12 +15,15 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 
 namespace rad::cli {
 
 namespace {
+
+constexpr long kMaxSide = 1l << 15;  ///< pixels along either side of a picture
 
 struct RenderOptions {
   explicit RenderOptions(CLI::App& command) : method(command, {"pathtrace", "voxel", "patch"}) {}
@@ -80,9 +83,14 @@ int runRender(RenderOptions& o, Console& console) {
   if (!isSupportedImageFormat(o.output))
     throw InputError("-o " + o.output, "unsupported image format (supported: .png, .exr, .pfm)");
 
+  // A size given alone keeps the camera's aspect ratio, so the picture is not stretched.
   Camera camera = scene.cameraOrDefault();
+  const double aspect = double(camera.width) / double(camera.height);
   if (o.width > 0) camera.width = o.width;
   if (o.height > 0) camera.height = o.height;
+  auto side = [](double pixels) { return int(std::clamp(std::lround(pixels), 1l, kMaxSide)); };
+  if (o.width > 0 && o.height == 0) camera.height = side(double(o.width) / aspect);
+  if (o.height > 0 && o.width == 0) camera.width = side(double(o.height) * aspect);
   InterruptGuard interruptible;
   const std::string& method = o.method.method();
   const bool objectMeans = !o.stats.empty();
@@ -115,10 +123,14 @@ void addRenderCommand(CLI::App& app, Console& console, CommandAction& action) {
   addSceneArgument(*sub, o->scene);
   sub->add_option("-o,--output", o->output,
                   "Output image: .png (tone mapped), .exr or .pfm (linear radiance)");
-  sub->add_option("--width", o->width, "Image width in pixels (default: the scene camera's)")
-      ->check(CLI::Range(1, 1 << 15));
-  sub->add_option("--height", o->height, "Image height in pixels (default: the scene camera's)")
-      ->check(CLI::Range(1, 1 << 15));
+  sub->add_option("--width", o->width,
+                  "Image width in pixels (default: the scene camera's; given alone, the height "
+                  "keeps the camera's aspect ratio)")
+      ->check(CLI::Range(1l, kMaxSide));
+  sub->add_option("--height", o->height,
+                  "Image height in pixels (default: the scene camera's; given alone, the width "
+                  "keeps the camera's aspect ratio)")
+      ->check(CLI::Range(1l, kMaxSide));
   sub->add_option("--exposure", o->exposure, "PNG exposure in EV (radiance x 2^EV)");
   sub->add_flag("--exr-float", o->exrFloat, "Write 32-bit float EXR instead of half");
   addStatsOption(*sub, o->stats);

@@ -119,6 +119,25 @@ TEST(Cli, WritesExrAndPfm) {
   }
 }
 
+TEST(Cli, ASizeGivenAloneKeepsTheCamerasAspectRatio) {
+  // The Cornell camera is 512 x 512: a width alone gave 40 x 512 before.
+  const std::string pfm = (freshDir("aspect") / "a.pfm").string();
+  struct Case {
+    std::vector<std::string> size;
+    int width, height;
+  };
+  for (const Case& c : {Case{{"--width", "40"}, 40, 40}, Case{{"--height", "24"}, 24, 24},
+                        Case{{"--width", "40", "--height", "10"}, 40, 10}}) {
+    std::vector<std::string> args{"render", "cornell", "--spp", "1", "-o", pfm};
+    args.insert(args.end(), c.size.begin(), c.size.end());
+    const CliResult r = run(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const rad::Image image = rad::readImage(pfm);
+    EXPECT_EQ(image.width, c.width) << c.size[0];
+    EXPECT_EQ(image.height, c.height) << c.size[0];
+  }
+}
+
 TEST(Cli, UnsupportedOutputExtensionFailsBeforeRendering) {
   const fs::path dir = freshDir("badext");
   const std::string jpg = (dir / "x.jpg").string();
