@@ -231,7 +231,6 @@ size_t DiscreteLineSweep::maxLineCount(const VoxelGrid& grid, std::span<const IV
 
 namespace {
 
-
 bool holdsCell(const int16_t normal[3]) {
   return (normal[0] | normal[1] | normal[2]) == 0;
 }

@@ -40,8 +40,6 @@ class HalfColors {
   explicit HalfColors(std::span<const Color> colors);
   Color operator[](size_t i) const;
   bool empty() const { return bits_.empty(); }
-  size_t size() const { return bits_.size(); }
-  float scale() const { return scale_; }
 
  private:
   std::vector<std::array<uint16_t, 3>> bits_;

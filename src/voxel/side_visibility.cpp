@@ -23,7 +23,8 @@ SideVisibility::SideVisibility(const VoxelGrid& grid)
     const uint32_t end = std::min(grid.cellEntryBegin[cell + 1], begin + 16);
     for (uint32_t f = begin; f < end; ++f)
       for (uint32_t g = begin; g < end; ++g)
-        if (g != f && glm::dot(grid.unitNormal(f), grid.centroid[g] - grid.centroid[f]) > tolerance_)
+        if (g != f &&
+            glm::dot(grid.unitNormal(f), grid.centroid[g] - grid.centroid[f]) > tolerance_)
           frontOf_[f] = uint16_t(frontOf_[f] | (1u << (g - begin)));
   }
 }
@@ -90,10 +91,9 @@ bool SideVisibility::continuesPlanes(uint32_t p, uint32_t q) const {
   for (uint32_t a = pBegin; a < pEnd; ++a) {
     bool matched = false;
     for (uint32_t b = qBegin; b < qEnd && !matched; ++b)
-      matched =
-          glm::dot(grid_.unitNormal(a), grid_.unitNormal(b)) > kSamePlaneCos &&
-          std::abs(glm::dot(grid_.unitNormal(b), grid_.centroid[a] - grid_.centroid[b])) <=
-              tolerance;
+      matched = glm::dot(grid_.unitNormal(a), grid_.unitNormal(b)) > kSamePlaneCos &&
+                std::abs(glm::dot(grid_.unitNormal(b), grid_.centroid[a] - grid_.centroid[b])) <=
+                    tolerance;
     if (!matched) return false;
   }
   return true;

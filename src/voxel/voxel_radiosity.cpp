@@ -107,9 +107,15 @@ const VoxelRadiosityStats& VoxelRadiosity::stats() const { return impl_->stats; 
 
 SurfaceSample VoxelRadiosity::Impl::sample(size_t e) const {
   const VoxelMaterial& m = grid.materials[grid.material[e]];
-  return {grid.object[e],          grid.area[e],           grid.centroid[e],
-          grid.unitNormal(e),          glm::pi<float>() * m.emission, m.rho,
-          solution.irradiance[e], solution.radiosity[e], bool(grid.backSide[e])};
+  return {grid.object[e],
+          grid.area[e],
+          grid.centroid[e],
+          grid.unitNormal(e),
+          glm::pi<float>() * m.emission,
+          m.rho,
+          solution.irradiance[e],
+          solution.radiosity[e],
+          bool(grid.backSide[e])};
 }
 
 std::vector<SurfaceSample> VoxelRadiosity::Impl::samples() const {

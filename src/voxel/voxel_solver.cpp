@@ -18,7 +18,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstring>
 #include <map>
 #include <memory>
 
@@ -106,12 +105,12 @@ void gatherAllDirections(const DirectionSet& directions, DiscreteLineSweep& swee
 // What the solver holds per side besides the sweep's working memory: the one account of its
 // arrays, for the memory check before solving and the memory reported after.
 uint64_t solverBytesPerSide(const VoxelSolverSettings& settings) {
-  return sizeof(Color) +                                    // gathered light
+  return sizeof(Color) +                                          // gathered light
          (settings.directFirstShot ? 3 * sizeof(uint16_t) : 0) +  // direct light (HalfColors)
-         sizeof(DiscreteLineSweep::Slot) +                         // packed sides
-         (settings.normalize ? sizeof(uint16_t) : 0) +             // normalization weights
-         sizeof(float) +                                    // luminance before the iteration
-         sizeof(uint16_t);                                  // fold masks (SideVisibility)
+         sizeof(DiscreteLineSweep::Slot) +                        // packed sides
+         (settings.normalize ? sizeof(uint16_t) : 0) +            // normalization weights
+         sizeof(float) +                                          // luminance before the iteration
+         sizeof(uint16_t);                                        // fold masks (SideVisibility)
 }
 
 // The line table the sweeps need: as large as the widest direction's (reserved at once, so that

@@ -101,7 +101,8 @@ TEST(VoxelSolver, LightInsideClosedBoxDoesNotLeak) {
     for (size_t e = 0; e < grid.entryCount(); ++e) {
       const Vec3 fromCentre = grid.centroid[e] - Vec3(0.5f);
       const bool onFloor = grid.object[e] == floorObject;
-      const bool facesOut = glm::dot(grid.unitNormal(e), fromCentre) > 0.0f && grid.material[e] != 1;
+      const bool facesOut =
+          glm::dot(grid.unitNormal(e), fromCentre) > 0.0f && grid.material[e] != 1;
       const bool wallSide = glm::compMax(glm::abs(fromCentre)) > 0.45f;
       if (onFloor || (wallSide && facesOut)) {
         ++outside;
