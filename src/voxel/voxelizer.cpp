@@ -181,13 +181,12 @@ void appendSide(VoxelGrid& grid, std::map<std::array<float, 6>, uint32_t>& mater
   grid.backSide.push_back(side.backArea > 0.5 * side.area);
 }
 
-// Fills the grid's cells, rows, slabs and entries from fragments sorted by cell.
-void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, VoxelGrid& grid) {
-  std::map<std::array<float, 6>, uint32_t> materialIndex;
-  grid.slabRowBegin.assign(size_t(grid.dims.x) + 1, 0);
+// Calls f(cell key, sides) for each cell of the fragments (sorted by cell): its fragments
+// clustered into sides, in orientation order.
+template <typename F>
+void forEachCellsSides(const Scene& scene, const std::vector<Fragment>& fragments, F&& f) {
   std::vector<Side> sides;
   std::vector<Vec3d> orientations;
-  int lastX = -1, lastY = -1;
   for (size_t i = 0; i < fragments.size();) {
     const uint64_t key = fragments[i].cellKey;
     sides.clear();
@@ -196,6 +195,42 @@ void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, Vo
       addToSides(scene, fragments[i], orientations, sides);
     std::stable_sort(sides.begin(), sides.end(),
                      [](const Side& a, const Side& b) { return a.orientation < b.orientation; });
+    f(key, sides);
+  }
+}
+
+// Sizes the grid's arrays for the cells, rows and sides the fragments make, counted first: grown
+// by doubling, they would hold up to twice their size (an address-space limit counts all of it)
+// and copy themselves again to shrink.
+void reserveEntries(const Scene& scene, const std::vector<Fragment>& fragments, VoxelGrid& grid) {
+  size_t cells = 0, rows = 0, entries = 0;
+  int lastX = -1, lastY = -1;
+  forEachCellsSides(scene, fragments, [&](uint64_t key, const std::vector<Side>& sides) {
+    const IVec3 c = keyCell(key);
+    if (c.x != lastX || c.y != lastY) ++rows, lastX = c.x, lastY = c.y;
+    ++cells;
+    entries += sides.size();
+  });
+  grid.cellZ.reserve(cells);
+  grid.cellEntryBegin.reserve(cells + 1);
+  grid.rowY.reserve(rows);
+  grid.rowCellBegin.reserve(rows + 1);
+  grid.normal.reserve(entries);
+  grid.centroid.reserve(entries);
+  grid.area.reserve(entries);
+  grid.material.reserve(entries);
+  grid.object.reserve(entries);
+  grid.sharesOrientation.reserve(entries);
+  grid.backSide.reserve(entries);
+}
+
+// Fills the grid's cells, rows, slabs and entries from fragments sorted by cell.
+void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, VoxelGrid& grid) {
+  reserveEntries(scene, fragments, grid);
+  std::map<std::array<float, 6>, uint32_t> materialIndex;
+  grid.slabRowBegin.assign(size_t(grid.dims.x) + 1, 0);
+  int lastX = -1, lastY = -1;
+  forEachCellsSides(scene, fragments, [&](uint64_t key, const std::vector<Side>& sides) {
     const IVec3 c = keyCell(key);
     if (c.x != lastX || c.y != lastY) {
       grid.rowY.push_back(int16_t(c.y));
@@ -210,33 +245,12 @@ void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, Vo
       appendSide(grid, materialIndex, sides[k]);
       grid.sharesOrientation.push_back(k > 0 && sides[k].orientation == sides[k - 1].orientation);
     }
-  }
+  });
   for (int x = lastX + 1; x <= grid.dims.x; ++x) grid.slabRowBegin[x] = uint32_t(grid.rowY.size());
   grid.rowCellBegin.push_back(uint32_t(grid.cellZ.size()));
   grid.cellEntryBegin.push_back(uint32_t(grid.normal.size()));
 }
 
-// The grid's arrays grew by doubling while it was built: give back what they will not use.
-void shrinkToFit(VoxelGrid& grid) {
-  grid.cellZ.shrink_to_fit();
-  grid.cellEntryBegin.shrink_to_fit();
-  grid.rowY.shrink_to_fit();
-  grid.rowCellBegin.shrink_to_fit();
-  grid.normal.shrink_to_fit();
-  grid.centroid.shrink_to_fit();
-  grid.area.shrink_to_fit();
-  grid.material.shrink_to_fit();
-  grid.object.shrink_to_fit();
-  grid.sharesOrientation.shrink_to_fit();
-  grid.backSide.shrink_to_fit();
-}
-
-}  // namespace
-
-namespace {
-
-// A planar piece of area A with unit normal n covers about A (|nx| + |ny| + |nz|) / s^2 voxels
-// (the sum of its projections on the three axis planes); this is the sum of those areas.
 double projectedArea(const Scene& scene) {
   double covered = 0.0;
   for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
@@ -311,7 +325,6 @@ VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
   });
   buildEntries(scene, fragments, grid);
   fragments = {};
-  shrinkToFit(grid);
   if (progress && !progress(1.0)) throw Cancelled();
   return grid;
 }
