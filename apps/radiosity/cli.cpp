@@ -68,6 +68,12 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     console.finishProgress();
     err << "radiosity: interrupted; no output written\n";
     return 130;
+  } catch (const std::bad_alloc&) {
+    // Past the solvers' own estimates (an address-space limit, another process taking memory).
+    console.finishProgress();
+    err << "radiosity: out of memory; no output written (a coarser solution needs less: a larger "
+           "voxel size, fewer voxels or fewer patches)\n";
+    return 1;
   } catch (const std::exception& e) {
     console.finishProgress();
     err << "radiosity: error: " << e.what() << "\n";

@@ -70,7 +70,7 @@ uint64_t availableMemoryBytes() {
   // An address-space limit (ulimit -v) counts the process's virtual size, not its resident one.
   rlimit addressSpace{};
   if (getrlimit(RLIMIT_AS, &addressSpace) == 0 && addressSpace.rlim_cur != RLIM_INFINITY) {
-    const uint64_t size = statusFieldBytes("VmSize");
+    const uint64_t size = virtualBytes();
     const uint64_t room = addressSpace.rlim_cur > size ? addressSpace.rlim_cur - size : 1;
     available = available == 0 ? room : std::min(available, room);
   }
@@ -83,6 +83,10 @@ uint64_t peakResidentBytes() {
 
 uint64_t currentResidentBytes() {
   return statusFieldBytes("VmRSS");
+}
+
+uint64_t virtualBytes() {
+  return statusFieldBytes("VmSize");
 }
 
 }  // namespace rad

@@ -11,6 +11,8 @@ namespace rad {
 uint64_t peakResidentBytes();
 /// Current resident set size (VmRSS) in bytes; 0 if unavailable.
 uint64_t currentResidentBytes();
+/// Current virtual size (VmSize) in bytes, what an address-space limit counts; 0 if unavailable.
+uint64_t virtualBytes();
 /// Bytes this process can still allocate without swapping: the system's MemAvailable, or less
 /// when the process's control group (a container) has a lower limit or its address-space limit
 /// (ulimit -v) leaves less; 0 if unknown.

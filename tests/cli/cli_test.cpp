@@ -1,9 +1,12 @@
 // End-to-end tests of the command line, driven in-process through runCli.
 #include "cli.h"
 
+#include "core/memory_usage.h"
+
 #include <radiosity/image.h>
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -136,6 +139,29 @@ TEST(Cli, ASizeGivenAloneKeepsTheCamerasAspectRatio) {
     EXPECT_EQ(image.width, c.width) << c.size[0];
     EXPECT_EQ(image.height, c.height) << c.size[0];
   }
+}
+
+TEST(Cli, OutOfMemoryIsAClearErrorAndWritesNothing) {
+  // 10^8 patches need gigabytes; with 32 MB of address space left (ulimit -v) the run must say
+  // so and write nothing, not end on a bare std::bad_alloc.
+  const fs::path dir = freshDir("memory");
+  const std::string stats = (dir / "s.json").string(), csv = (dir / "p.csv").string();
+  const uint64_t size = rad::virtualBytes();
+  ASSERT_GT(size, 0u);
+  rlimit saved{};
+  ASSERT_EQ(getrlimit(RLIMIT_AS, &saved), 0);
+  rlimit lowered = saved;
+  lowered.rlim_cur = size + (32u << 20);
+  if (saved.rlim_cur != RLIM_INFINITY && saved.rlim_cur < lowered.rlim_cur)
+    GTEST_SKIP() << "the address space is already limited below the test's";
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &lowered), 0);
+  const CliResult r = run({"solve", "cornell", "--method", "patch", "--patches", "100000000",
+                           "--stats", stats, "--export", csv, "--quiet"});
+  setrlimit(RLIMIT_AS, &saved);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("out of memory"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(stats));
+  EXPECT_FALSE(fs::exists(csv));
 }
 
 TEST(Cli, UnsupportedOutputExtensionFailsBeforeRendering) {

@@ -1,5 +1,7 @@
 // Physics of the voxel solver: furnace, energy balance, no light leaks.
 #include "voxel/voxel_solver.h"
+
+#include "core/memory_usage.h"
 #include "voxel/voxelizer.h"
 
 #include "voxel/voxel_test_scenes.h"
@@ -11,9 +13,6 @@
 #include <tbb/task_arena.h>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtx/component_wise.hpp>
-
-#include <fstream>
-#include <string>
 
 namespace rad {
 namespace {
@@ -204,17 +203,6 @@ TEST(VoxelSolver, MemoryKnownBeforehandCoversTheSolve) {
     // 1.5x would refuse grids that fit in two thirds of the memory.
     EXPECT_LE(double(estimate), 1.5 * double(solution.workingBytes));
   }
-}
-
-// The process's virtual size (VmSize), which an address-space limit counts.
-uint64_t virtualBytes() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  uint64_t kilobytes = 0;
-  while (status >> key) {
-    if (key == "VmSize:" && status >> kilobytes) return kilobytes * 1024;
-  }
-  return 0;
 }
 
 TEST(VoxelSolver, RefusesBeforeItAllocatesWhatTheProcessMayNotHold) {
