@@ -59,7 +59,8 @@ struct LineOffset {
 class DiscreteLineSweep {
  public:
   DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings& settings);
-  DiscreteLineSweep(const DiscreteLineSweep&) = delete;  // its row views point into itself
+  // One per solve: it holds the line table and each thread's deferred light, too big to copy.
+  DiscreteLineSweep(const DiscreteLineSweep&) = delete;
   DiscreteLineSweep& operator=(const DiscreteLineSweep&) = delete;
 
   /// A voxel behind on the line, 16 bytes: a single side inline (its plane n.x = d with n in

@@ -251,6 +251,8 @@ void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, Vo
   grid.cellEntryBegin.push_back(uint32_t(grid.normal.size()));
 }
 
+// A planar piece of area A with unit normal n covers about A (|nx| + |ny| + |nz|) / s^2 voxels
+// (the sum of its projections on the three axis planes); this is the sum of those areas.
 double projectedArea(const Scene& scene) {
   double covered = 0.0;
   for (uint32_t t = 0; t < scene.triangles.size(); ++t) {

@@ -1,12 +1,11 @@
 // End-to-end tests of the command line, driven in-process through runCli.
 #include "cli.h"
 
-#include "core/memory_usage.h"
+#include "core/address_space_limit.h"
 
 #include <radiosity/image.h>
 
 #include <gtest/gtest.h>
-#include <sys/resource.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -42,6 +41,11 @@ fs::path freshDir(const std::string& name) {
 fs::path writeFile(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;
   return path;
+}
+
+std::string readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 nlohmann::json readJson(const std::string& path) {
@@ -146,18 +150,14 @@ TEST(Cli, OutOfMemoryIsAClearErrorAndWritesNothing) {
   // so and write nothing, not end on a bare std::bad_alloc.
   const fs::path dir = freshDir("memory");
   const std::string stats = (dir / "s.json").string(), csv = (dir / "p.csv").string();
-  const uint64_t size = rad::virtualBytes();
-  ASSERT_GT(size, 0u);
-  rlimit saved{};
-  ASSERT_EQ(getrlimit(RLIMIT_AS, &saved), 0);
-  rlimit lowered = saved;
-  lowered.rlim_cur = size + (32u << 20);
-  if (saved.rlim_cur != RLIM_INFINITY && saved.rlim_cur < lowered.rlim_cur)
-    GTEST_SKIP() << "the address space is already limited below the test's";
-  ASSERT_EQ(setrlimit(RLIMIT_AS, &lowered), 0);
-  const CliResult r = run({"solve", "cornell", "--method", "patch", "--patches", "100000000",
-                           "--stats", stats, "--export", csv, "--quiet"});
-  setrlimit(RLIMIT_AS, &saved);
+  CliResult r;
+  {
+    const rad::test::AddressSpaceLimit limit(32u << 20);
+    if (limit.alreadyBelow()) GTEST_SKIP() << "the address space is already limited below 32 MB";
+    ASSERT_TRUE(limit.lowered());
+    r = run({"solve", "cornell", "--method", "patch", "--patches", "100000000", "--stats", stats,
+             "--export", csv, "--quiet"});
+  }
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("out of memory"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(stats));
@@ -225,8 +225,7 @@ TEST(Cli, SameSeedSameImage) {
     const std::string path = (dir / name).string();
     EXPECT_EQ(run({"render", "cornell", "--width", "24", "--height", "24", "--spp", "2", "--seed",
                    seed, "--threads", threads, "-o", path, "--quiet"}).status, 0);
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
+    return readBytes(path);
   };
   const std::string a = render("a.pfm", "7", "1"), b = render("b.pfm", "7", "2");
   const std::string c = render("c.pfm", "8", "2");
@@ -282,11 +281,7 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
   const nlohmann::json serial = readJson(stats);
   EXPECT_EQ(serial["voxel"]["sweep_threads"].get<int>(), 1);
   EXPECT_GE(j["voxel"]["sweep_threads"].get<int>(), 1);
-  auto text = [](const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
-  EXPECT_EQ(text(serialCsv), text(csv));
+  EXPECT_EQ(readBytes(serialCsv), readBytes(csv));
   EXPECT_LE(serial["voxel"]["bytes_per_side"].get<double>(), j["voxel"]["bytes_per_side"].get<double>());
   // Per voxel (cell) and per side: a cell holds one side or more.
   EXPECT_GE(j["voxel"]["bytes_per_voxel"].get<double>(), j["voxel"]["bytes_per_side"].get<double>());

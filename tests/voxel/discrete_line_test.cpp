@@ -173,7 +173,7 @@ TEST(DiscreteLines, SweepOrderAdvancesAlongTheDirection) {
 
 // Threads share a direction by bands of its lines: together the bands visit every cell once,
 // all the cells of a line fall in one band, and a band meets its lines' cells in order along
-// the direction (for a dominant z it walks the slabs in rows along y, not the grid's rows).
+// the direction (for a dominant z a band is a range of z in each slab, which cuts the rows).
 TEST(DiscreteLines, BandsSplitTheLinesAndKeepEachLineInOrder) {
   const VoxelGrid grid = sphereAndBoxGrid();
   DiscreteLineSweep sweep(grid, {});

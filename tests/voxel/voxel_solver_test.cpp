@@ -1,15 +1,14 @@
 // Physics of the voxel solver: furnace, energy balance, no light leaks.
 #include "voxel/voxel_solver.h"
 
-#include "core/memory_usage.h"
 #include "voxel/voxelizer.h"
 
+#include "core/address_space_limit.h"
 #include "voxel/voxel_test_scenes.h"
 
 #include <radiosity/error.h>
 
 #include <gtest/gtest.h>
-#include <sys/resource.h>
 #include <tbb/task_arena.h>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtx/component_wise.hpp>
@@ -45,6 +44,15 @@ double weightedSum(const VoxelGrid& grid, const std::vector<Color>& values, int 
   double sum = 0.0;
   for (size_t e = 0; e < grid.entryCount(); ++e) sum += grid.area[e] * values[e][channel];
   return sum;
+}
+
+// The inward cube, walls of rho 0.6 and its face 3 a lamp (rho 0.5, Ke = lampKe); returns the
+// wall material, for what a test adds to the room.
+uint32_t addLampRoom(SceneBuilder& b, float lampKe) {
+  const uint32_t wall = b.addMaterial({"wall", Color(0.6f), Color(0.0f), false});
+  const uint32_t lamp = b.addMaterial({"lamp", Color(0.5f), Color(lampKe), false});
+  test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : wall; });
+  return wall;
 }
 
 TEST(VoxelSolver, ClosedRoomBalancesEnergy) {
@@ -118,9 +126,7 @@ TEST(VoxelSolver, LightInsideClosedBoxDoesNotLeak) {
 
 TEST(VoxelSolver, SameBitForBitWhateverTheThreadCount) {
   SceneBuilder b("room");
-  const uint32_t wall = b.addMaterial({"wall", Color(0.6f), Color(0.0f), false});
-  const uint32_t lamp = b.addMaterial({"lamp", Color(0.5f), Color(2.0f), false});
-  test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : wall; });
+  addLampRoom(b, 2.0f);
   const Scene scene = b.build();
   const VoxelGrid grid = voxelize(scene, 1.0f / 16.0f);
   VoxelSolverSettings settings;
@@ -152,9 +158,7 @@ TEST(VoxelSolver, RadiosityScalesWithTheEmissionWhateverItsUnits) {
     SCOPED_TRACE(firstShot ? "first shot" : "pure sweep");
     auto solve = [&](float scale) {
       SceneBuilder b("room");
-      const uint32_t wall = b.addMaterial({"wall", Color(0.6f), Color(0.0f), false});
-      const uint32_t lamp = b.addMaterial({"lamp", Color(0.5f), Color(2.0f * scale), false});
-      test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : wall; });
+      addLampRoom(b, 2.0f * scale);
       const Scene scene = b.build();
       VoxelSolverSettings settings;
       settings.sphereRadius = 6;
@@ -183,9 +187,7 @@ TEST(VoxelSolver, RadiosityScalesWithTheEmissionWhateverItsUnits) {
 // it must cover what the solve then holds, and not by so much that it refuses grids that fit.
 TEST(VoxelSolver, MemoryKnownBeforehandCoversTheSolve) {
   SceneBuilder b("room");
-  const uint32_t wall = b.addMaterial({"wall", Color(0.6f), Color(0.0f), false});
-  const uint32_t lamp = b.addMaterial({"lamp", Color(0.5f), Color(2.0f), false});
-  test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : wall; });
+  const uint32_t wall = addLampRoom(b, 2.0f);
   test::addSphere(b, Vec3(0.1f), 0.3f, false, wall, b.addObject("sphere"));
   const Scene scene = b.build();
   const VoxelGrid grid = voxelize(scene, 1.0f / 24.0f);
@@ -216,23 +218,18 @@ TEST(VoxelSolver, RefusesBeforeItAllocatesWhatTheProcessMayNotHold) {
   settings.directSamples = 1;
   constexpr uint64_t kLeft = 1u << 20;
   ASSERT_GT(voxelSolveBytes(grid, settings), 2 * kLeft);  // 6 x 100^2 sides, 4.4 MB
-  const uint64_t size = virtualBytes();
-  ASSERT_GT(size, 0u);
-  rlimit saved{};
-  ASSERT_EQ(getrlimit(RLIMIT_AS, &saved), 0);
-  rlimit lowered = saved;
-  lowered.rlim_cur = size + kLeft;
-  if (saved.rlim_cur != RLIM_INFINITY && saved.rlim_cur < lowered.rlim_cur)
-    GTEST_SKIP() << "the address space is already limited below the test's";
-  ASSERT_EQ(setrlimit(RLIMIT_AS, &lowered), 0);
   bool refused = false;
-  try {
-    solveVoxelRadiosity(scene, grid, settings);
-  } catch (const InputError&) {
-    refused = true;
-  } catch (const std::bad_alloc&) {
+  {
+    const test::AddressSpaceLimit limit(kLeft);
+    if (limit.alreadyBelow()) GTEST_SKIP() << "the address space is already limited below 1 MB";
+    ASSERT_TRUE(limit.lowered());
+    try {
+      solveVoxelRadiosity(scene, grid, settings);
+    } catch (const InputError&) {
+      refused = true;
+    } catch (const std::bad_alloc&) {
+    }
   }
-  setrlimit(RLIMIT_AS, &saved);
   EXPECT_TRUE(refused);
   // With the limit lifted the same solve runs.
   EXPECT_EQ(solveVoxelRadiosity(scene, grid, settings).radiosity.size(), grid.entryCount());
