@@ -107,6 +107,8 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
                               "Per-voxel normalization of the direction factors (default on)")->group(voxel);
   c.add_flag("--jitter-lines,!--no-jitter-lines", voxel_.jitterLines,
                            "Shift each direction's lines every iteration (default on)")->group(voxel);
+  c.add_flag("--tail-estimate,!--no-tail-estimate", voxel_.estimateTail,
+             "Add the bounces after the last iteration, extrapolated (default on)")->group(voxel);
   directSamplesFlag_ = c.add_option("--direct-samples", voxel_.directSamples,
                                     "Shadow-ray samples per voxel side for the first shot (default 64)")
                            ->check(CLI::Range(1, 1 << 20))->group(voxel);
@@ -203,6 +205,7 @@ VoxelRadiosity solveVoxels(const Scene& scene, const VoxelRadiositySettings& set
                          {"visits_per_s", double(v.visits) / std::max(v.sweepSeconds, 1e-9)},
                          {"shadow_rays", v.shadowRays},
                          {"sweep_threads", v.sweepThreads},
+                         {"tail_share", v.tailShare},
                          {"memory_bytes", v.memoryBytes},
                          {"bytes_per_side", double(v.memoryBytes) / double(std::max<size_t>(v.sides, 1))},
                          {"bytes_per_voxel", double(v.memoryBytes) / double(std::max<size_t>(v.voxels, 1))},

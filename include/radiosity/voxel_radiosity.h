@@ -23,6 +23,9 @@ struct VoxelRadiositySettings {
   int sphereRadius = 38;           ///< radius R of the digital sphere (R = 38: 14,790 directions)
   int iterations = 6;              ///< sweeps over all directions, as in the paper
   double tolerance = 0.0;          ///< stop earlier once the relative change of B is below it
+  /// Add the light of the bounces after the last iteration, extrapolated from the last two
+  /// (their power falls geometrically): six iterations then miss little even in bright rooms.
+  bool estimateTail = true;
   bool tangentCorrection = true;   ///< look through voxels a line only grazes
   bool directFirstShot = true;     ///< direct light by shadow rays; the sweeps carry the rest
   int directSamples = 64;          ///< shadow-ray samples per voxel side for the first shot
@@ -39,6 +42,7 @@ struct VoxelRadiosityStats {
   uint64_t visits = 0;     ///< voxel-direction visits of all sweeps
   uint64_t shadowRays = 0;
   std::vector<double> residuals;  ///< relative change of B at each iteration
+  double tailShare = 0.0;         ///< share of B's power the tail estimate added
   double voxelizeSeconds = 0.0, directSeconds = 0.0, sweepSeconds = 0.0;
   /// The sweeps' time in each iteration: their spread shows how steady the machine was.
   std::vector<double> iterationSeconds;

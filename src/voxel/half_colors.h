@@ -1,17 +1,14 @@
 #pragma once
-// Colours in half floats, 6 bytes instead of 12, for the arrays a voxel solve keeps per side.
+// The scale that lets colours travel in half floats (the radiosities the voxel sweeps carry).
 // Half floats hold 11 significant bits between 2^-14 and 65504: not every scene's units (a small
-// bulb's radiosity passes 65504 W/m^2; a scene in other units may lie far below 2^-14). So a
-// set of half colours shares one power-of-two scale chosen from its largest component, which
-// costs no precision: the values are divided and multiplied back exactly.
+// bulb's radiosity passes 65504 W/m^2; a scene in other units, or a late bounce, may lie far below
+// 2^-14). So a set of half colours shares one power-of-two scale chosen from its largest
+// component, which costs no precision: the values are divided and multiplied back exactly.
 
 #include <radiosity/types.h>
 
 #include <algorithm>
-#include <array>
-#include <cstdint>
-#include <span>
-#include <vector>
+#include <cstddef>
 
 namespace rad {
 
@@ -30,20 +27,5 @@ float largestComponent(size_t count, F&& sends) {
   }
   return largest;
 }
-
-/// An array of colours stored as half floats times a shared power-of-two scale.
-class HalfColors {
- public:
-  HalfColors() = default;
-  /// Rounds each colour to the nearest half float (after the scale); components must be finite
-  /// and >= 0.
-  explicit HalfColors(std::span<const Color> colors);
-  Color operator[](size_t i) const;
-  bool empty() const { return bits_.empty(); }
-
- private:
-  std::vector<std::array<uint16_t, 3>> bits_;
-  float scale_ = 1.0f;
-};
 
 }  // namespace rad

@@ -59,6 +59,7 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
   solver.sphereRadius = settings.sphereRadius;
   solver.iterations = settings.iterations;
   solver.tolerance = settings.tolerance;
+  solver.estimateTail = settings.estimateTail;
   solver.directFirstShot = settings.directFirstShot;
   solver.directSamples = settings.directSamples;
   solver.normalize = settings.normalize;
@@ -80,6 +81,7 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
   s.visits = solution.cellVisits;
   s.shadowRays = solution.shadowRays;
   s.residuals = solution.residuals;
+  s.tailShare = solution.tailShare;
   s.directSeconds = solution.directSeconds;
   s.sweepSeconds = solution.sweepSeconds;
   s.iterationSeconds = solution.iterationSeconds;

@@ -8,7 +8,6 @@
 #include "render/path_integrator.h"
 #include "render/progress_ticker.h"
 #include "voxel/direction_set.h"
-#include "voxel/half_colors.h"
 
 #include <fmt/format.h>
 #include <glm/gtc/constants.hpp>
@@ -85,8 +84,21 @@ LineOffset lineOffset(const DiscreteDirection& d, uint64_t seed, int iteration, 
   return {int64_t(rng.next() % uint64_t(a)), int64_t(rng.next() % uint64_t(a))};
 }
 
-// One Jacobi step: the direction pairs in turn, each swept by all threads (over bands of its
-// lines), so that every side's sum runs over the pairs in the same order for any thread count.
+// The bounces after the last iteration, summed, as a multiple of the last one. Each bounce is the
+// one before reflected once more, and after a few their power falls by a steady ratio r (the
+// fraction of light the scene's surfaces send on, seen from where light now is): the rest is the
+// last bounce times r + r^2 + ... = r / (1 - r), spread as it was (the shape the bounces settle
+// into). 0 when there is no ratio yet or the powers do not fall.
+double tailFactor(const std::vector<double>& bouncePower) {
+  const size_t k = bouncePower.size();
+  if (k < 2 || !(bouncePower[k - 2] > 0.0)) return 0.0;
+  const double r = bouncePower[k - 1] / bouncePower[k - 2];
+  return r > 0.0 && r < 1.0 ? r / (1.0 - r) : 0.0;
+}
+
+// One iteration, one bounce: the direction pairs in turn, each swept by all threads (over bands
+// of its lines), so that every side's sum runs over the pairs in the same order for any thread
+// count.
 void gatherAllDirections(const DirectionSet& directions, DiscreteLineSweep& sweep,
                          std::vector<Color>& gathered, const DiscreteLineSweep::Source& source,
                          const VoxelSolverSettings& settings, int iteration,
@@ -105,11 +117,10 @@ void gatherAllDirections(const DirectionSet& directions, DiscreteLineSweep& swee
 // What the solver holds per side besides the sweep's working memory: the one account of its
 // arrays, for the memory check before solving and the memory reported after.
 uint64_t solverBytesPerSide(const VoxelSolverSettings& settings) {
-  return sizeof(Color) +                                          // gathered light
-         (settings.directFirstShot ? 3 * sizeof(uint16_t) : 0) +  // direct light (HalfColors)
+  return sizeof(Color) +                                          // the bounce being gathered
+         sizeof(Color) +                                          // irradiance so far
          sizeof(DiscreteLineSweep::Slot) +                        // packed sides
          (settings.normalize ? sizeof(uint16_t) : 0) +            // normalization weights
-         sizeof(float) +                                          // luminance before the iteration
          sizeof(uint16_t);                                        // fold masks (SideVisibility)
 }
 
@@ -154,74 +165,79 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     return glm::pi<float>() * grid.materials[grid.material[e]].emission;
   };
   auto rho = [&](size_t e) { return grid.materials[grid.material[e]].rho; };
+  auto radiosityFrom = [&](size_t e, const Color& h) { return emitted(e) + rho(e) * h; };
   const DirectionSet directions(settings.sphereRadius);
   solution.directions = directions.size();
   // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
   const size_t lines = widestLineTable(grid, directions);
   checkMemory(grid, lines, settings);
   solution.sweepThreads = DiscreteLineSweep::threadCount();
-  // In half floats: 6 bytes a side, an error of at most 2^-12 of each value (the sweeps carry
-  // the light in half floats too).
-  HalfColors direct;
+  // H, all the light each side has gathered so far: the first shot's direct light, then one
+  // bounce more with every iteration.
+  std::vector<Color> irradiance(n, Color(0.0f));
   if (settings.directFirstShot) {
     const auto start = std::chrono::steady_clock::now();
-    direct = HalfColors(directIrradiance(scene, grid, settings, solution.shadowRays));
+    irradiance = directIrradiance(scene, grid, settings, solution.shadowRays);
     solution.directSeconds = secondsSince(start);
   }
-  auto directAt = [&](size_t e) { return direct.empty() ? Color(0.0f) : direct[e]; };
 
   auto sweep = std::make_unique<DiscreteLineSweep>(grid, settings.sweep);
   sweep->reserveLines(lines);
   std::vector<Color> gathered(n);
   const std::vector<uint16_t> weights =
       settings.normalize ? facingWeights(grid, directions) : std::vector<uint16_t>{};
-
-  // The sweeps carry what surfaces send: all of B, or only its reflected part when the first
-  // shot has already delivered the emitters' light. H is the direct light (or none) plus the
-  // last iteration's gathered light: no array of its own while the sweeps run.
-  bool swept = false;
-  auto irradianceAt = [&](size_t e) {
-    if (!swept) return directAt(e);
+  // The light the last iteration's sweeps brought each side: its newest bounce.
+  auto bounceAt = [&](size_t e) {
     const float weight = settings.normalize ? 1.0f + _cvtsh_ss(weights[e]) : 1.0f;
-    const float norm = weight > 0.0f ? weight : 1.0f;
-    return directAt(e) + gathered[e] / norm;
+    return gathered[e] / (weight > 0.0f ? weight : 1.0f);
   };
-  auto radiosityFrom = [&](size_t e, const Color& h) { return emitted(e) + rho(e) * h; };
-  auto radiosityOf = [&](size_t e) { return radiosityFrom(e, irradianceAt(e)); };
-  auto sends = [&](size_t e) {
-    return settings.directFirstShot ? rho(e) * irradianceAt(e) : radiosityOf(e);
+  // The sweeps carry one bounce at a time (Jacobi's iterations split by bounce, which gives the
+  // same sum): first what the emitters send, or, after a first shot, the direct light
+  // reflected; then the light of the bounce before, reflected. Each bounce is all positive, so
+  // its power is exactly how much B changes, free of the jitter's and the half floats' noise.
+  auto sends = [&](size_t e, bool first) {
+    if (first) return settings.directFirstShot ? rho(e) * irradiance[e] : emitted(e);
+    return rho(e) * bounceAt(e);
   };
+  auto power = [&](size_t e, const Color& c) { return double(grid.area[e]) * luminance(c); };
   std::vector<DiscreteLineSweep::Slot> packed(n);
-  std::vector<float> luminanceBefore(n);
   ProgressTicker ticker(progress,
                         directions.pairCount() * size_t(std::max(settings.iterations, 1)));
+  std::vector<double> bouncePower;
+  double totalPower = 0.0;
   const auto start = std::chrono::steady_clock::now();
   for (int iteration = 0; iteration < settings.iterations; ++iteration) {
     const auto iterationStart = std::chrono::steady_clock::now();
-    const DiscreteLineSweep::Source source = DiscreteLineSweep::packSides(grid, sends, packed);
-    for (size_t e = 0; e < n; ++e) luminanceBefore[e] = luminance(radiosityOf(e));
+    const bool first = iteration == 0;
+    const DiscreteLineSweep::Source source = DiscreteLineSweep::packSides(
+        grid, [&](size_t e) { return sends(e, first); }, packed);
     gatherAllDirections(directions, *sweep, gathered, source, settings, iteration, ticker);
-    swept = true;
-    double change = 0.0, total = 0.0;
+    double added = 0.0, total = 0.0;
     for (size_t e = 0; e < n; ++e) {
-      const float after = luminance(radiosityOf(e));
-      change += grid.area[e] * std::abs(after - luminanceBefore[e]);
-      total += grid.area[e] * std::abs(after);
+      const Color bounce = bounceAt(e);
+      irradiance[e] += bounce;
+      added += power(e, rho(e) * bounce);
+      total += power(e, radiosityFrom(e, irradiance[e]));
     }
-    solution.residuals.push_back(total > 0.0 ? change / total : 0.0);
+    bouncePower.push_back(added);
+    totalPower = total;
+    solution.residuals.push_back(total > 0.0 ? added / total : 0.0);
     solution.iterationSeconds.push_back(secondsSince(iterationStart));
     solution.cellVisits += uint64_t(grid.cellCount()) * directions.size();
     if (settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance) break;
   }
   solution.sweepSeconds = secondsSince(start);
+  const double tail = settings.estimateTail ? tailFactor(bouncePower) : 0.0;
+  if (tail > 0.0) {
+    for (size_t e = 0; e < n; ++e) irradiance[e] += float(tail) * bounceAt(e);
+    solution.tailShare = tail * bouncePower.back() / (totalPower + tail * bouncePower.back());
+  }
   solution.workingBytes = n * solverBytesPerSide(settings) + sweep->workingBytes();
   // The sweep's arrays go before the results are made, so they never coexist.
   sweep.reset();
   packed = {};
-  luminanceBefore = {};
-  solution.irradiance.resize(n);
-  for (size_t e = 0; e < n; ++e) solution.irradiance[e] = irradianceAt(e);
   gathered = {};
+  solution.irradiance = std::move(irradiance);
   solution.radiosity.resize(n);
   for (size_t e = 0; e < n; ++e) solution.radiosity[e] = radiosityFrom(e, solution.irradiance[e]);
   return solution;

@@ -1,7 +1,8 @@
 #pragma once
 // The voxel (discrete) radiosity solver: iterations of full sweeps over the discrete sphere's
-// directions, each a Jacobi step B = E + rho H(B), with per-voxel normalization and an optional
-// first shot of direct light by shadow rays.
+// directions, each a Jacobi step B = E + rho H(B) taken one bounce at a time, with per-voxel
+// normalization, an optional first shot of direct light by shadow rays, and an estimate of the
+// bounces after the last iteration.
 //
 // Based on: P. Chatelier and R. Malgouyres, "A low-complexity discrete radiosity method",
 // Computers & Graphics 30(1), 2006 (the sweep, six iterations), and their follow-up's remark that
@@ -23,6 +24,7 @@ struct VoxelSolverSettings {
   int sphereRadius = 38;       ///< radius R of the digital sphere of directions
   int iterations = 6;          ///< sweeps over all directions (light bounces)
   double tolerance = 0.0;      ///< stop early below this relative residual (0: never)
+  bool estimateTail = true;    ///< add the bounces after the last iteration, extrapolated
   bool directFirstShot = true; ///< direct light by shadow rays, then sweep the indirect bounces
   int directSamples = 64;      ///< shadow-ray samples per voxel side for the first shot
   bool normalize = true;       ///< divide each side's gathered light by its sum of cos * w
@@ -34,7 +36,10 @@ struct VoxelSolverSettings {
 struct VoxelSolution {
   std::vector<Color> radiosity;   ///< B per entry
   std::vector<Color> irradiance;  ///< H per entry
-  std::vector<double> residuals;  ///< relative change of B per iteration
+  /// Per iteration: the power of the light it added to B (its bounce, reflected) over B's
+  /// (area- and luminance-weighted): B's relative change.
+  std::vector<double> residuals;
+  double tailShare = 0.0;         ///< share of B's power the tail estimate added
   size_t directions = 0;
   uint64_t cellVisits = 0;        ///< voxel-direction visits of all sweeps
   uint64_t shadowRays = 0;

@@ -285,6 +285,20 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
   EXPECT_LE(serial["voxel"]["bytes_per_side"].get<double>(), j["voxel"]["bytes_per_side"].get<double>());
   // Per voxel (cell) and per side: a cell holds one side or more.
   EXPECT_GE(j["voxel"]["bytes_per_voxel"].get<double>(), j["voxel"]["bytes_per_side"].get<double>());
+
+  // The tail estimate (on by default) adds the bounces after the sixth, a little light on every
+  // surface; --no-tail-estimate leaves them out.
+  EXPECT_GT(j["voxel"]["tail_share"].get<double>(), 0.0);
+  args.push_back("--no-tail-estimate");
+  ASSERT_EQ(run(args).status, 0);
+  const nlohmann::json truncated = readJson(stats);
+  EXPECT_EQ(truncated["voxel"]["tail_share"].get<double>(), 0.0);
+  for (size_t k = 0; k < j["objects"].size(); ++k) {
+    const nlohmann::json &with = j["objects"][k], &without = truncated["objects"][k];
+    if (with["name"] == "light") continue;  // its own emission dwarfs the change
+    EXPECT_LT(without["mean_radiosity"][0].get<double>(), with["mean_radiosity"][0].get<double>())
+        << with["name"];
+  }
 }
 
 TEST(Cli, RendersWithVoxels) {
