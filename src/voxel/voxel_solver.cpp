@@ -150,6 +150,73 @@ void checkMemory(const VoxelGrid& grid, size_t lines, const VoxelSolverSettings&
                                  grid.entryCount(), double(needed) / kGB, double(available) / kGB));
 }
 
+// The light of every side as the iterations go: H so far (the first shot's direct light, then
+// one bounce more with every iteration) and the bounce the sweeps gather now. The sweeps carry
+// one bounce at a time (Jacobi's iterations split by bounce, which gives the same sum): first
+// what the emitters send, or, after a first shot, the direct light reflected; then the light of
+// the bounce before, reflected. Each bounce is all positive, so its power is exactly how much B
+// changes, free of the noise of the lines' shifts and of the half floats.
+class SideLight {
+ public:
+  SideLight(const VoxelGrid& grid, const VoxelSolverSettings& settings,
+            const DirectionSet& directions, std::vector<Color> direct)
+      : grid_(grid),
+        firstShot_(settings.directFirstShot),
+        irradiance_(std::move(direct)),
+        gathered_(grid.entryCount()),
+        weights_(settings.normalize ? facingWeights(grid, directions)
+                                    : std::vector<uint16_t>{}) {}
+
+  /// What side e sends in the next sweep (the first, or one after it).
+  Color sends(size_t e, bool first) const {
+    if (first) return firstShot_ ? rho(e) * irradiance_[e] : emitted(e);
+    return rho(e) * lastBounce(e);
+  }
+  /// Where the sweeps gather the next bounce (each iteration clears it first).
+  std::vector<Color>& gathered() { return gathered_; }
+  /// Adds the bounce just gathered to H; returns the power it adds to B and B's power then
+  /// (area- and luminance-weighted).
+  std::pair<double, double> addBounce() {
+    double added = 0.0, total = 0.0;
+    for (size_t e = 0; e < irradiance_.size(); ++e) {
+      const Color bounce = lastBounce(e);
+      irradiance_[e] += bounce;
+      added += power(e, rho(e) * bounce);
+      total += power(e, radiosity(e));
+    }
+    return {added, total};
+  }
+  /// Adds the last bounce again, times `factor`: the bounces after it (tailFactor).
+  void addLastBounceTimes(float factor) {
+    for (size_t e = 0; e < irradiance_.size(); ++e) irradiance_[e] += factor * lastBounce(e);
+  }
+  std::vector<Color> radiosities() const {
+    std::vector<Color> b(irradiance_.size());
+    for (size_t e = 0; e < b.size(); ++e) b[e] = radiosity(e);
+    return b;
+  }
+  std::vector<Color> takeIrradiance() { return std::move(irradiance_); }
+
+ private:
+  Color emitted(size_t e) const {
+    return glm::pi<float>() * grid_.materials[grid_.material[e]].emission;
+  }
+  Color rho(size_t e) const { return grid_.materials[grid_.material[e]].rho; }
+  Color radiosity(size_t e) const { return emitted(e) + rho(e) * irradiance_[e]; }
+  double power(size_t e, const Color& c) const { return double(grid_.area[e]) * luminance(c); }
+  /// The light the last iteration's sweeps brought side e, normalized.
+  Color lastBounce(size_t e) const {
+    const float weight = weights_.empty() ? 1.0f : 1.0f + _cvtsh_ss(weights_[e]);
+    return gathered_[e] / (weight > 0.0f ? weight : 1.0f);
+  }
+
+  const VoxelGrid& grid_;
+  bool firstShot_;
+  std::vector<Color> irradiance_;
+  std::vector<Color> gathered_;
+  std::vector<uint16_t> weights_;  ///< per side, its facing weight w - 1 (facingWeights)
+};
+
 }  // namespace
 
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
@@ -160,47 +227,22 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const VoxelSolverSettings& settings,
                                   const ProgressCallback& progress) {
   VoxelSolution solution;
-  const size_t n = grid.entryCount();
-  auto emitted = [&](size_t e) {
-    return glm::pi<float>() * grid.materials[grid.material[e]].emission;
-  };
-  auto rho = [&](size_t e) { return grid.materials[grid.material[e]].rho; };
-  auto radiosityFrom = [&](size_t e, const Color& h) { return emitted(e) + rho(e) * h; };
   const DirectionSet directions(settings.sphereRadius);
   solution.directions = directions.size();
   // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
   const size_t lines = widestLineTable(grid, directions);
   checkMemory(grid, lines, settings);
   solution.sweepThreads = DiscreteLineSweep::threadCount();
-  // H, all the light each side has gathered so far: the first shot's direct light, then one
-  // bounce more with every iteration.
-  std::vector<Color> irradiance(n, Color(0.0f));
+  std::vector<Color> direct(grid.entryCount(), Color(0.0f));
   if (settings.directFirstShot) {
     const auto start = std::chrono::steady_clock::now();
-    irradiance = directIrradiance(scene, grid, settings, solution.shadowRays);
+    direct = directIrradiance(scene, grid, settings, solution.shadowRays);
     solution.directSeconds = secondsSince(start);
   }
-
+  SideLight light(grid, settings, directions, std::move(direct));
   auto sweep = std::make_unique<DiscreteLineSweep>(grid, settings.sweep);
   sweep->reserveLines(lines);
-  std::vector<Color> gathered(n);
-  const std::vector<uint16_t> weights =
-      settings.normalize ? facingWeights(grid, directions) : std::vector<uint16_t>{};
-  // The light the last iteration's sweeps brought each side: its newest bounce.
-  auto bounceAt = [&](size_t e) {
-    const float weight = settings.normalize ? 1.0f + _cvtsh_ss(weights[e]) : 1.0f;
-    return gathered[e] / (weight > 0.0f ? weight : 1.0f);
-  };
-  // The sweeps carry one bounce at a time (Jacobi's iterations split by bounce, which gives the
-  // same sum): first what the emitters send, or, after a first shot, the direct light
-  // reflected; then the light of the bounce before, reflected. Each bounce is all positive, so
-  // its power is exactly how much B changes, free of the jitter's and the half floats' noise.
-  auto sends = [&](size_t e, bool first) {
-    if (first) return settings.directFirstShot ? rho(e) * irradiance[e] : emitted(e);
-    return rho(e) * bounceAt(e);
-  };
-  auto power = [&](size_t e, const Color& c) { return double(grid.area[e]) * luminance(c); };
-  std::vector<DiscreteLineSweep::Slot> packed(n);
+  std::vector<DiscreteLineSweep::Slot> packed(grid.entryCount());
   ProgressTicker ticker(progress,
                         directions.pairCount() * size_t(std::max(settings.iterations, 1)));
   std::vector<double> bouncePower;
@@ -210,15 +252,9 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     const auto iterationStart = std::chrono::steady_clock::now();
     const bool first = iteration == 0;
     const DiscreteLineSweep::Source source = DiscreteLineSweep::packSides(
-        grid, [&](size_t e) { return sends(e, first); }, packed);
-    gatherAllDirections(directions, *sweep, gathered, source, settings, iteration, ticker);
-    double added = 0.0, total = 0.0;
-    for (size_t e = 0; e < n; ++e) {
-      const Color bounce = bounceAt(e);
-      irradiance[e] += bounce;
-      added += power(e, rho(e) * bounce);
-      total += power(e, radiosityFrom(e, irradiance[e]));
-    }
+        grid, [&](size_t e) { return light.sends(e, first); }, packed);
+    gatherAllDirections(directions, *sweep, light.gathered(), source, settings, iteration, ticker);
+    const auto [added, total] = light.addBounce();
     bouncePower.push_back(added);
     totalPower = total;
     solution.residuals.push_back(total > 0.0 ? added / total : 0.0);
@@ -229,17 +265,15 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   solution.sweepSeconds = secondsSince(start);
   const double tail = settings.estimateTail ? tailFactor(bouncePower) : 0.0;
   if (tail > 0.0) {
-    for (size_t e = 0; e < n; ++e) irradiance[e] += float(tail) * bounceAt(e);
+    light.addLastBounceTimes(float(tail));
     solution.tailShare = tail * bouncePower.back() / (totalPower + tail * bouncePower.back());
   }
-  solution.workingBytes = n * solverBytesPerSide(settings) + sweep->workingBytes();
+  solution.workingBytes = grid.entryCount() * solverBytesPerSide(settings) + sweep->workingBytes();
   // The sweep's arrays go before the results are made, so they never coexist.
   sweep.reset();
   packed = {};
-  gathered = {};
-  solution.irradiance = std::move(irradiance);
-  solution.radiosity.resize(n);
-  for (size_t e = 0; e < n; ++e) solution.radiosity[e] = radiosityFrom(e, solution.irradiance[e]);
+  solution.radiosity = light.radiosities();
+  solution.irradiance = light.takeIrradiance();
   return solution;
 }
 
