@@ -40,12 +40,35 @@ Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_
     const Sight met = planeSight(height, approach, tolerance);
     if (met == Sight::Through) continue;
     const float t = height / approach;
-    if (t >= nearest || (frontOf_[f] != 0 && !insideFold(f, q, ce - t * unit, ce))) continue;
+    // A back met past a convex edge is a ray passing the corner outside the solid: through.
+    // A front met there still counts (the surface's own light where the face would be): the
+    // discrete line may step inside past the corner, and a front keeps it from carrying light
+    // out of a closed box (the leak tests fail with fronts let through). Without the rule a
+    // floating box in a closed room found a source in 95.4% of its hemisphere (30k voxels,
+    // R = 8), with it 99.5%; room:4 96.2% -> 98.8% (its walls hide parts of one another).
+    const Vec3 point = ce - t * unit;
+    if (t >= nearest || (frontOf_[f] != 0 && !insideFold(f, q, point, ce)) ||
+        (met == Sight::Blocked && !insideConvexEdges(f, q, point)))
+      continue;
     nearest = t;
     sight = met;
     source = f;
   }
   return sight;
+}
+
+bool SideVisibility::insideConvexEdges(uint32_t f, uint32_t q, const Vec3& point) const {
+  // Where f meets another side g of the cell at a convex edge (each behind the other, like two
+  // faces of a box), f's polygon ends at g's plane: a crossing of f's plane in front of g is past
+  // the edge of f, in the open. Sides in one plane (a thin wall's two, several objects' in one
+  // orientation) lie in each other's plane: never past.
+  const uint32_t begin = grid_.cellEntryBegin[q];
+  const uint32_t end = std::min(grid_.cellEntryBegin[q + 1], begin + 16);
+  for (uint32_t g = begin; g < end; ++g) {
+    if (g == f || inFront(f, g, begin) || inFront(g, f, begin)) continue;
+    if (glm::dot(grid_.unitNormal(g), point - grid_.centroid[g]) > tolerance_) return false;
+  }
+  return true;
 }
 
 bool SideVisibility::insideFold(uint32_t f, uint32_t q, const Vec3& point,

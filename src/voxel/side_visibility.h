@@ -47,6 +47,9 @@ class SideVisibility {
 
  private:
   bool insideFold(uint32_t f, uint32_t cell, const Vec3& point, const Vec3& origin) const;
+  /// False when `point`, on f's plane, lies past a convex edge of f (in front of a side of the
+  /// cell that f stands behind and that stands behind f).
+  bool insideConvexEdges(uint32_t f, uint32_t cell, const Vec3& point) const;
   /// True when side g of f's cell (whose first side is `cellBegin`) stands in front of f's plane.
   bool inFront(uint32_t f, uint32_t g, uint32_t cellBegin) const {
     return (frontOf_[f] >> (g - cellBegin)) & 1u;
