@@ -11,21 +11,34 @@ namespace {
 
 // Points closer than this many voxels to a plane lie in it.
 constexpr float kPlaneTolerance = 0.05f;
+// Where two sides meet, a point this close to an edge (in voxels) lies on it.
+constexpr float kEdgeTolerance = 1e-3f;
 
 }  // namespace
 
 SideVisibility::SideVisibility(const VoxelGrid& grid)
     : grid_(grid), tolerance_(kPlaneTolerance * grid.voxelSize), frontOf_(grid.entryCount(), 0) {
+  // Sides of one plane (several objects', a thin wall's two) stand in front of each other only
+  // past the plane tolerance. Sides at an angle meet at an edge, often in a corner of the voxel,
+  // where both centroids lie within the tolerance of the other's plane: the sign of the offset
+  // tells a concave fold from a convex edge. Taken as unrelated (two unbounded planes), the
+  // inside face of a turned thin-walled box met rays from below the box: 2.4% of the light in
+  // the box leaked out of it, 1.0% now (the leak tests).
+  const float edge = kEdgeTolerance * grid.voxelSize;
   for (size_t cell = 0; cell < grid.cellCount(); ++cell) {
     // A voxel crossed by more than 16 sides (many objects in one voxel) leaves its sides past
     // the 16th out of its folds.
     const uint32_t begin = grid.cellEntryBegin[cell];
     const uint32_t end = std::min(grid.cellEntryBegin[cell + 1], begin + 16);
-    for (uint32_t f = begin; f < end; ++f)
-      for (uint32_t g = begin; g < end; ++g)
-        if (g != f &&
-            glm::dot(grid.unitNormal(f), grid.centroid[g] - grid.centroid[f]) > tolerance_)
+    for (uint32_t f = begin; f < end; ++f) {
+      const Vec3 nf = grid.unitNormal(f);
+      for (uint32_t g = begin; g < end; ++g) {
+        if (g == f) continue;
+        const bool onePlane = std::abs(glm::dot(nf, grid.unitNormal(g))) > kSamePlaneCos;
+        if (glm::dot(nf, grid.centroid[g] - grid.centroid[f]) > (onePlane ? tolerance_ : edge))
           frontOf_[f] = uint16_t(frontOf_[f] | (1u << (g - begin)));
+      }
+    }
   }
 }
 
@@ -76,7 +89,7 @@ bool SideVisibility::insideFold(uint32_t f, uint32_t q, const Vec3& point,
   // Where f meets another side g of the cell in a concave fold (g stands in front of f), f's
   // polygon ends at g's plane: a crossing of f's plane behind g is past the edge of f.
   // The fold's own edge is sharp: a side lying in g's plane is not in front of it.
-  const float edge = 1e-3f * grid_.voxelSize;
+  const float edge = kEdgeTolerance * grid_.voxelSize;
   const uint32_t begin = grid_.cellEntryBegin[q];
   for (uint32_t front = frontOf_[f]; front != 0; front &= front - 1) {
     const uint32_t g = begin + uint32_t(std::countr_zero(front));

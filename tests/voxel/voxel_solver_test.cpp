@@ -166,9 +166,9 @@ TEST(VoxelSolver, ResidualFallsPastTheNoiseOfTheJitteredLines) {
 }
 
 // A two-sided box (walls with an inside and an outside) around a lamp, above a floor, the box
-// and lamp turned by `turn` about the box's centre: every outside side and the floor must stay
-// exactly dark, with or without the first shot.
-void expectNoLightLeavesTheBox(const glm::mat3& turn) {
+// and lamp turned by `turn` about the box's centre: the light leaving the outside sides and the
+// floor (their B A) must stay within `leak` of the lamp's power, with or without the first shot.
+void expectLightStaysInTheBox(const glm::mat3& turn, double leak) {
   SceneBuilder b("boxed");
   const uint32_t wall = b.addMaterial({"wall", Color(0.8f), Color(0.0f), true});
   const uint32_t lamp = b.addMaterial({"lamp", Color(0.5f), Color(5.0f), false});
@@ -201,9 +201,10 @@ void expectNoLightLeavesTheBox(const glm::mat3& turn) {
     settings.directFirstShot = firstShot;
     settings.directSamples = 8;
     const VoxelSolution s = solveVoxelRadiosity(scene, grid, settings);
-    double insideLight = 0.0;
+    double insideLight = 0.0, emitted = 0.0, leaked = 0.0;
     size_t outside = 0;
     for (size_t e = 0; e < grid.entryCount(); ++e) {
+      emitted += grid.area[e] * glm::pi<float>() * maxComponent(grid.materials[grid.material[e]].emission);
       const Vec3 fromCentre = glm::transpose(turn) * (grid.centroid[e] - centre);
       const bool onFloor = grid.object[e] == floorObject;
       const bool facesOut =
@@ -211,19 +212,37 @@ void expectNoLightLeavesTheBox(const glm::mat3& turn) {
       const bool wallSide = glm::compMax(glm::abs(fromCentre)) > 0.45f;
       if (onFloor || (wallSide && facesOut)) {
         ++outside;
-        ASSERT_EQ(maxComponent(s.radiosity[e]), 0.0f) << "entry " << e << " at " << grid.centroid[e].x
-                                                       << "," << grid.centroid[e].y << "," << grid.centroid[e].z;
+        leaked += grid.area[e] * maxComponent(s.radiosity[e]);
+        if (leak == 0.0) {
+          ASSERT_EQ(maxComponent(s.radiosity[e]), 0.0f)
+              << "entry " << e << " at " << grid.centroid[e].x << "," << grid.centroid[e].y << ","
+              << grid.centroid[e].z;
+        }
       } else if (wallSide) {
         insideLight += maxComponent(s.radiosity[e]);
       }
     }
+    EXPECT_LE(leaked, leak * emitted);
     EXPECT_GT(outside, 1000u);
     EXPECT_GT(insideLight, 0.0);
   }
 }
 
 TEST(VoxelSolver, LightInsideClosedBoxDoesNotLeak) {
-  expectNoLightLeavesTheBox(glm::mat3(1.0f));
+  expectLightStaysInTheBox(glm::mat3(1.0f), 0.0);
+}
+
+TEST(VoxelSolver, LightInsideATurnedBoxLeaksLittle) {
+  // Turned about two axes, so that no face lies along the grid. A known limit, bounded here:
+  // sides know their planes, not their polygons, beyond what the sides sharing a voxel tell. A
+  // discrete line that crosses the shell near an edge, at a voxel of the face around the
+  // corner from where its ray crosses, meets that face's plane from the inside. 1.0% of the
+  // lamp's power leaves the box that way without the first shot and 0.65% with it (2.4% and
+  // 1.5% before folds were told apart by the sign of tiny offsets); an axis-aligned box, whose
+  // faces fill their voxels alike, leaks nothing (the test above).
+  const glm::mat3 turn = glm::mat3(glm::rotate(glm::mat4(1.0f), 0.5f, Vec3(0, 1, 0))) *
+                         glm::mat3(glm::rotate(glm::mat4(1.0f), 0.35f, Vec3(1, 0, 0)));
+  expectLightStaysInTheBox(turn, 0.015);
 }
 
 TEST(VoxelSolver, SameBitForBitWhateverTheThreadCount) {
