@@ -107,6 +107,10 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
                               "Per-voxel normalization of the direction factors (default on)")->group(voxel);
   c.add_flag("--jitter-lines,!--no-jitter-lines", voxel_.jitterLines,
                            "Shift each direction's lines every iteration (default on)")->group(voxel);
+  c.add_option("--later-sphere-radius", voxel_.laterSphereRadius,
+               "Sphere radius for the sweeps after the first, whose light is smoother (default: "
+               "--sphere-radius)")
+      ->check(CLI::Range(1, 200))->group(voxel);
   c.add_flag("--tail-estimate,!--no-tail-estimate", voxel_.estimateTail,
              "Add the bounces after the last iteration, extrapolated (default on)")->group(voxel);
   directSamplesFlag_ = c.add_option("--direct-samples", voxel_.directSamples,
@@ -206,6 +210,7 @@ VoxelRadiosity solveVoxels(const Scene& scene, const VoxelRadiositySettings& set
                          {"shadow_rays", v.shadowRays},
                          {"sweep_threads", v.sweepThreads},
                          {"tail_share", v.tailShare},
+                         {"later_directions", v.laterDirections},
                          {"memory_bytes", v.memoryBytes},
                          {"bytes_per_side", double(v.memoryBytes) / double(std::max<size_t>(v.sides, 1))},
                          {"bytes_per_voxel", double(v.memoryBytes) / double(std::max<size_t>(v.voxels, 1))},

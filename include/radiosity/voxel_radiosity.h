@@ -21,6 +21,9 @@ struct VoxelRadiositySettings {
   float voxelSize = 0.0f;          ///< voxel edge in scene units; 0: from targetVoxels
   size_t targetVoxels = 200000;    ///< approximate number of surface voxels when voxelSize is 0
   int sphereRadius = 38;           ///< radius R of the digital sphere (R = 38: 14,790 directions)
+  /// R for the sweeps after the first, whose light (the second bounce on) is smoother: a coarser
+  /// sphere costs less, as R^2. 0: sphereRadius, as in the paper.
+  int laterSphereRadius = 0;
   int iterations = 6;              ///< sweeps over all directions, as in the paper
   double tolerance = 0.0;          ///< stop earlier once the relative change of B is below it
   /// Add the light of the bounces after the last iteration, extrapolated from the last two
@@ -38,6 +41,7 @@ struct VoxelRadiosityStats {
   size_t voxels = 0;       ///< occupied voxels (cells)
   size_t sides = 0;        ///< voxel sides (entries): one per surface orientation in a cell
   size_t directions = 0;
+  size_t laterDirections = 0;  ///< directions of the sweeps after the first
   float voxelSize = 0.0f;
   uint64_t visits = 0;     ///< voxel-direction visits of all sweeps
   uint64_t shadowRays = 0;

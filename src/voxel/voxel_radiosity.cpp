@@ -35,6 +35,8 @@ void validate(const VoxelRadiositySettings& s) {
   if (s.voxelSize == 0.0f && s.targetVoxels < 1) fail("voxel count must be at least 1");
   if (s.sphereRadius < 1 || s.sphereRadius > 200)
     fail(fmt::format("sphere radius {} out of range [1, 200]", s.sphereRadius));
+  if (s.laterSphereRadius < 0 || s.laterSphereRadius > 200)
+    fail(fmt::format("later sphere radius {} out of range [0, 200]", s.laterSphereRadius));
   if (s.iterations < 1) fail(fmt::format("iterations {} must be at least 1", s.iterations));
   if (s.tolerance < 0.0) fail(fmt::format("tolerance {} must not be negative", s.tolerance));
   if (s.directSamples < 1) fail(fmt::format("direct samples {} must be at least 1", s.directSamples));
@@ -57,6 +59,7 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
 
   VoxelSolverSettings solver;
   solver.sphereRadius = settings.sphereRadius;
+  solver.laterBounceRadius = settings.laterSphereRadius;
   solver.iterations = settings.iterations;
   solver.tolerance = settings.tolerance;
   solver.estimateTail = settings.estimateTail;
@@ -76,6 +79,7 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
   s.voxels = impl_->grid.cellCount();
   s.sides = impl_->grid.entryCount();
   s.directions = solution.directions;
+  s.laterDirections = solution.laterDirections;
   s.sweepThreads = solution.sweepThreads;
   s.voxelSize = impl_->grid.voxelSize;
   s.visits = solution.cellVisits;

@@ -19,6 +19,7 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <optional>
 
 namespace rad {
 
@@ -96,6 +97,10 @@ double tailFactor(const std::vector<double>& bouncePower) {
   return r > 0.0 && r < 1.0 ? r / (1.0 - r) : 0.0;
 }
 
+int laterBounceRadius(const VoxelSolverSettings& settings) {
+  return settings.laterBounceRadius > 0 ? settings.laterBounceRadius : settings.sphereRadius;
+}
+
 // One iteration, one bounce: the direction pairs in turn, each swept by all threads (over bands
 // of its lines), so that every side's sum runs over the pairs in the same order for any thread
 // count.
@@ -124,11 +129,15 @@ uint64_t solverBytesPerSide(const VoxelSolverSettings& settings) {
          sizeof(uint16_t);                                        // fold masks (SideVisibility)
 }
 
-// The line table the sweeps need: as large as the widest direction's (reserved at once, so that
-// it never grows by reallocation, which would hold two tables).
-size_t widestLineTable(const VoxelGrid& grid, const DirectionSet& directions) {
+// The line table the sweeps need, over the first sweep's directions and the later sweeps' (the
+// same set, or a coarser one): as large as the widest direction's (reserved at once, so that it
+// never grows by reallocation, which would hold two tables).
+size_t widestLineTable(const VoxelGrid& grid, const DirectionSet& first,
+                       const DirectionSet& later) {
   std::vector<IVec3> steps;
-  for (size_t k = 0; k < directions.pairCount(); ++k) steps.push_back(directions.pairFirst(k).step);
+  for (size_t k = 0; k < first.pairCount(); ++k) steps.push_back(first.pairFirst(k).step);
+  if (&later != &first)
+    for (size_t k = 0; k < later.pairCount(); ++k) steps.push_back(later.pairFirst(k).step);
   return DiscreteLineSweep::maxLineCount(grid, steps);
 }
 
@@ -162,10 +171,16 @@ class SideLight {
             const DirectionSet& directions, std::vector<Color> direct)
       : grid_(grid),
         firstShot_(settings.directFirstShot),
+        normalize_(settings.normalize),
         irradiance_(std::move(direct)),
-        gathered_(grid.entryCount()),
-        weights_(settings.normalize ? facingWeights(grid, directions)
-                                    : std::vector<uint16_t>{}) {}
+        gathered_(grid.entryCount()) {
+    normalizeFor(directions);
+  }
+
+  /// Makes the bounces gathered from now on normalized for the sweeps over `directions`.
+  void normalizeFor(const DirectionSet& directions) {
+    if (normalize_) weights_ = facingWeights(grid_, directions);
+  }
 
   /// What side e sends in the next sweep (the first, or one after it).
   Color sends(size_t e, bool first) const {
@@ -211,7 +226,7 @@ class SideLight {
   }
 
   const VoxelGrid& grid_;
-  bool firstShot_;
+  bool firstShot_, normalize_;
   std::vector<Color> irradiance_;
   std::vector<Color> gathered_;
   std::vector<uint16_t> weights_;  ///< per side, its facing weight w - 1 (facingWeights)
@@ -220,17 +235,27 @@ class SideLight {
 }  // namespace
 
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
-  return solveBytes(grid, widestLineTable(grid, DirectionSet(settings.sphereRadius)), settings);
+  const DirectionSet directions(settings.sphereRadius);
+  if (laterBounceRadius(settings) == settings.sphereRadius)
+    return solveBytes(grid, widestLineTable(grid, directions, directions), settings);
+  return solveBytes(
+      grid, widestLineTable(grid, directions, DirectionSet(laterBounceRadius(settings))), settings);
 }
 
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const VoxelSolverSettings& settings,
                                   const ProgressCallback& progress) {
   VoxelSolution solution;
+  // The first sweep at R; the bounces after it, smoother, on a coarser sphere if asked.
   const DirectionSet directions(settings.sphereRadius);
+  std::optional<DirectionSet> coarser;
+  if (laterBounceRadius(settings) != settings.sphereRadius)
+    coarser.emplace(laterBounceRadius(settings));
+  const DirectionSet& laterDirections = coarser ? *coarser : directions;
   solution.directions = directions.size();
+  solution.laterDirections = laterDirections.size();
   // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
-  const size_t lines = widestLineTable(grid, directions);
+  const size_t lines = widestLineTable(grid, directions, laterDirections);
   checkMemory(grid, lines, settings);
   solution.sweepThreads = DiscreteLineSweep::threadCount();
   std::vector<Color> direct(grid.entryCount(), Color(0.0f));
@@ -243,23 +268,28 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   auto sweep = std::make_unique<DiscreteLineSweep>(grid, settings.sweep);
   sweep->reserveLines(lines);
   std::vector<DiscreteLineSweep::Slot> packed(grid.entryCount());
+  const size_t laterIterations = size_t(std::max(settings.iterations - 1, 0));
   ProgressTicker ticker(progress,
-                        directions.pairCount() * size_t(std::max(settings.iterations, 1)));
+                        directions.pairCount() + laterDirections.pairCount() * laterIterations);
   std::vector<double> bouncePower;
   double totalPower = 0.0;
   const auto start = std::chrono::steady_clock::now();
   for (int iteration = 0; iteration < settings.iterations; ++iteration) {
     const auto iterationStart = std::chrono::steady_clock::now();
     const bool first = iteration == 0;
+    const DirectionSet& swept = first ? directions : laterDirections;
     const DiscreteLineSweep::Source source = DiscreteLineSweep::packSides(
         grid, [&](size_t e) { return light.sends(e, first); }, packed);
-    gatherAllDirections(directions, *sweep, light.gathered(), source, settings, iteration, ticker);
+    // Packed with the weights of the sweep that gathered it, the last bounce is spent: the
+    // next one is normalized for the sphere it is swept on.
+    if (iteration == 1 && coarser) light.normalizeFor(*coarser);
+    gatherAllDirections(swept, *sweep, light.gathered(), source, settings, iteration, ticker);
     const auto [added, total] = light.addBounce();
     bouncePower.push_back(added);
     totalPower = total;
     solution.residuals.push_back(total > 0.0 ? added / total : 0.0);
     solution.iterationSeconds.push_back(secondsSince(iterationStart));
-    solution.cellVisits += uint64_t(grid.cellCount()) * directions.size();
+    solution.cellVisits += uint64_t(grid.cellCount()) * swept.size();
     if (settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance) break;
   }
   solution.sweepSeconds = secondsSince(start);

@@ -1,8 +1,9 @@
 #pragma once
 // The voxel (discrete) radiosity solver: iterations of full sweeps over the discrete sphere's
 // directions, each a Jacobi step B = E + rho H(B) taken one bounce at a time, with per-voxel
-// normalization, an optional first shot of direct light by shadow rays, and an estimate of the
-// bounces after the last iteration.
+// normalization, an optional first shot of direct light by shadow rays, an estimate of the
+// bounces after the last iteration, and optionally a coarser sphere for the bounces after the
+// first sweep.
 //
 // Based on: P. Chatelier and R. Malgouyres, "A low-complexity discrete radiosity method",
 // Computers & Graphics 30(1), 2006 (the sweep, six iterations), and their follow-up's remark that
@@ -22,6 +23,8 @@ namespace rad {
 
 struct VoxelSolverSettings {
   int sphereRadius = 38;       ///< radius R of the digital sphere of directions
+  /// R for the sweeps after the first (the second bounce on, smoother); 0: sphereRadius.
+  int laterBounceRadius = 0;
   int iterations = 6;          ///< sweeps over all directions (light bounces)
   double tolerance = 0.0;      ///< stop early below this relative residual (0: never)
   bool estimateTail = true;    ///< add the bounces after the last iteration, extrapolated
@@ -41,6 +44,7 @@ struct VoxelSolution {
   std::vector<double> residuals;
   double tailShare = 0.0;         ///< share of B's power the tail estimate added
   size_t directions = 0;
+  size_t laterDirections = 0;     ///< directions of the sweeps after the first
   uint64_t cellVisits = 0;        ///< voxel-direction visits of all sweeps
   uint64_t shadowRays = 0;
   double directSeconds = 0.0, sweepSeconds = 0.0;

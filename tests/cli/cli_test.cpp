@@ -299,6 +299,15 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
     EXPECT_LT(without["mean_radiosity"][0].get<double>(), with["mean_radiosity"][0].get<double>())
         << with["name"];
   }
+
+  // The sweeps after the first on a coarser sphere: R = 3 has 90 directions (python3
+  // brute-force count); the stats name both spheres' counts.
+  EXPECT_EQ(j["voxel"]["later_directions"].get<int>(), 134);
+  args.insert(args.end(), {"--later-sphere-radius", "3"});
+  ASSERT_EQ(run(args).status, 0);
+  const nlohmann::json coarser = readJson(stats);
+  EXPECT_EQ(coarser["counts"]["directions"].get<int>(), 134);
+  EXPECT_EQ(coarser["voxel"]["later_directions"].get<int>(), 90);
 }
 
 TEST(Cli, RendersWithVoxels) {
