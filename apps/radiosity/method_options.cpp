@@ -103,16 +103,17 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
                             "Look through voxels a line only grazes (default on)")->group(voxel);
   firstShotFlag_ = c.add_flag("--first-shot,!--no-first-shot", voxel_.directFirstShot,
                               "Direct light by shadow rays before the sweeps (default on)")->group(voxel);
-  c.add_flag("--normalize,!--no-normalize", voxel_.normalize,
+  normalizeFlag_ = c.add_flag("--normalize,!--no-normalize", voxel_.normalize,
                               "Per-voxel normalization of the direction factors (default on)")->group(voxel);
-  c.add_flag("--jitter-lines,!--no-jitter-lines", voxel_.jitterLines,
+  jitterFlag_ = c.add_flag("--jitter-lines,!--no-jitter-lines", voxel_.jitterLines,
                            "Shift each direction's lines every iteration (default on)")->group(voxel);
-  c.add_option("--later-sphere-radius", voxel_.laterSphereRadius,
-               "Sphere radius for the sweeps after the first, whose light is smoother (default: "
-               "--sphere-radius)")
-      ->check(CLI::Range(1, 200))->group(voxel);
-  c.add_flag("--tail-estimate,!--no-tail-estimate", voxel_.estimateTail,
-             "Add the bounces after the last iteration, extrapolated (default on)")->group(voxel);
+  laterRadiusFlag_ = c.add_option("--later-sphere-radius", voxel_.laterSphereRadius,
+                                  "Sphere radius for the sweeps after the first, whose light is "
+                                  "smoother (default: --sphere-radius)")
+                        ->check(CLI::Range(1, 200))->group(voxel);
+  tailFlag_ = c.add_flag("--tail-estimate,!--no-tail-estimate", voxel_.estimateTail,
+                         "Add the bounces after the last iteration, extrapolated (default on)")
+                  ->group(voxel);
   directSamplesFlag_ = c.add_option("--direct-samples", voxel_.directSamples,
                                     "Shadow-ray samples per voxel side for the first shot (default 64)")
                            ->check(CLI::Range(1, 1 << 20))->group(voxel);
@@ -193,6 +194,10 @@ void MethodOptions::resolve(const Scene& scene) {
   takeUnlessFlagged(toleranceFlag_, voxel_.tolerance, s.tolerance);
   takeUnlessFlagged(tangentFlag_, voxel_.tangentCorrection, s.tangentCorrection);
   takeUnlessFlagged(firstShotFlag_, voxel_.directFirstShot, s.firstShot);
+  takeUnlessFlagged(laterRadiusFlag_, voxel_.laterSphereRadius, s.laterSphereRadius);
+  takeUnlessFlagged(normalizeFlag_, voxel_.normalize, s.normalize);
+  takeUnlessFlagged(jitterFlag_, voxel_.jitterLines, s.jitterLines);
+  takeUnlessFlagged(tailFlag_, voxel_.estimateTail, s.tailEstimate);
   takeUnlessFlagged(directSamplesFlag_, voxel_.directSamples, s.directSamples);
   resolvePatch(scene);
 }

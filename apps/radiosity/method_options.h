@@ -45,7 +45,8 @@ class MethodOptions {
   std::string estimatorName_, solverName_, shadingName_;
   CLI::Option *methodFlag_, *sppFlag_, *maxDepthFlag_, *seedFlag_;
   CLI::Option *voxelSizeFlag_, *voxelsFlag_, *radiusFlag_, *iterationsFlag_, *toleranceFlag_,
-      *tangentFlag_, *firstShotFlag_, *directSamplesFlag_;
+      *tangentFlag_, *firstShotFlag_, *directSamplesFlag_, *laterRadiusFlag_, *normalizeFlag_,
+      *jitterFlag_, *tailFlag_;
   CLI::Option *patchSizeFlag_, *patchesFlag_, *estimatorFlag_, *ffRaysFlag_, *thresholdFlag_,
       *cacheDirFlag_, *solverFlag_, *maxIterationsFlag_, *shadingFlag_;
   void addPatchFlags(CLI::App& command);

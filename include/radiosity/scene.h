@@ -81,8 +81,9 @@ struct SolverSettings {
   std::optional<int> spp;             ///< path tracer samples per pixel
   std::optional<int> maxDepth;        ///< path tracer bounce limit (Russian roulette ends paths)
   std::optional<uint64_t> seed;
-  // Voxel method (keys voxel_size, voxels, sphere_radius, iterations, tolerance,
-  // tangent_correction, first_shot, direct_samples).
+  // Voxel method (keys voxel_size, voxels, sphere_radius, later_sphere_radius, iterations,
+  // tolerance, tangent_correction, first_shot, direct_samples, normalize, jitter_lines,
+  // tail_estimate).
   std::optional<float> voxelSize;
   std::optional<size_t> voxels;
   std::optional<int> sphereRadius;
@@ -91,6 +92,10 @@ struct SolverSettings {
   std::optional<bool> tangentCorrection;
   std::optional<bool> firstShot;
   std::optional<int> directSamples;
+  std::optional<int> laterSphereRadius;
+  std::optional<bool> normalize;
+  std::optional<bool> jitterLines;
+  std::optional<bool> tailEstimate;
   // Patch method (keys patch_size, patches, ff_estimator, ff_rays, ff_threshold, cache_dir,
   // solver, max_iterations, shading; tolerance is shared with the voxel method).
   std::optional<float> patchSize;

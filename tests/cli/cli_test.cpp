@@ -419,6 +419,30 @@ TEST(Cli, SceneSolverKeysChooseSettings) {
   r = run({"solve", scene(R"({"method": "patch", "solver": "bogus"})")});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("/solver/solver"), std::string::npos) << r.err;
+
+  // The voxel keys, and a flag that wins over its key, on two glowing squares facing each other
+  // (light goes back and forth: a tail to estimate). Digital spheres of R = 4, 3, 2 have 134, 90
+  // and 26 directions (python3 brute-force counts).
+  writeFile(dir / "room.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\n"
+                              "v 0 1 1\nf 1 2 3 4\nf 8 7 6 5\n");
+  const std::string voxel = scene(R"({"method": "voxel", "voxels": 500, "sphere_radius": 4,
+      "later_sphere_radius": 3, "iterations": 3, "first_shot": false, "normalize": true,
+      "jitter_lines": false, "tail_estimate": false})");
+  r = run({"solve", voxel, "--stats", stats, "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  nlohmann::json v = readJson(stats);
+  EXPECT_EQ(v["counts"]["directions"].get<int>(), 134);
+  EXPECT_EQ(v["voxel"]["later_directions"].get<int>(), 90);
+  EXPECT_EQ(v["voxel"]["tail_share"].get<double>(), 0.0);
+  r = run({"solve", voxel, "--later-sphere-radius", "2", "--tail-estimate", "--stats", stats,
+           "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  v = readJson(stats);
+  EXPECT_EQ(v["voxel"]["later_directions"].get<int>(), 26);
+  EXPECT_GT(v["voxel"]["tail_share"].get<double>(), 0.0);
+  r = run({"solve", scene(R"({"method": "voxel", "tail_estimate": 3})")});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("/solver/tail_estimate"), std::string::npos) << r.err;
 }
 
 // The lit mesh as a .glb that viewers open, from either method (the content is checked in

@@ -256,8 +256,9 @@ Camera readCamera(const JsonReader& r, const Json& j) {
 SolverSettings readSolver(const JsonReader& r, const Json& j) {
   const std::string ptr = "/solver";
   r.checkKeys(j, ptr, {"method", "spp", "max_depth", "seed", "voxel_size", "voxels", "sphere_radius",
-                       "iterations", "tolerance", "tangent_correction", "first_shot",
-                       "direct_samples", "patch_size", "patches", "ff_estimator", "ff_rays",
+                       "later_sphere_radius", "iterations", "tolerance", "tangent_correction",
+                       "first_shot", "direct_samples", "normalize", "jitter_lines",
+                       "tail_estimate", "patch_size", "patches", "ff_estimator", "ff_rays",
                        "ff_threshold", "cache_dir", "solver", "max_iterations", "shading"});
   SolverSettings s;
   if (j.contains("method")) {
@@ -286,6 +287,12 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
     s.tangentCorrection = r.boolean(j["tangent_correction"], ptr + "/tangent_correction");
   if (j.contains("first_shot")) s.firstShot = r.boolean(j["first_shot"], ptr + "/first_shot");
   if (j.contains("direct_samples")) s.directSamples = int(integer("direct_samples", 1, 1 << 20));
+  if (j.contains("later_sphere_radius"))
+    s.laterSphereRadius = int(integer("later_sphere_radius", 1, 200));
+  auto flag = [&](const char* key) { return r.boolean(j[key], ptr + "/" + key); };
+  if (j.contains("normalize")) s.normalize = flag("normalize");
+  if (j.contains("jitter_lines")) s.jitterLines = flag("jitter_lines");
+  if (j.contains("tail_estimate")) s.tailEstimate = flag("tail_estimate");
   auto choice = [&](const char* key, const auto& allowed) {
     const std::string v = r.string(j[key], ptr + "/" + key);
     if (!choiceNamed(allowed, v))
