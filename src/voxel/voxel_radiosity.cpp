@@ -59,7 +59,7 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
 
   VoxelSolverSettings solver;
   solver.sphereRadius = settings.sphereRadius;
-  solver.laterBounceRadius = settings.laterSphereRadius;
+  solver.laterSphereRadius = settings.laterSphereRadius;
   solver.iterations = settings.iterations;
   solver.tolerance = settings.tolerance;
   solver.estimateTail = settings.estimateTail;

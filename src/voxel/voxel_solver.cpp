@@ -97,8 +97,8 @@ double tailFactor(const std::vector<double>& bouncePower) {
   return r > 0.0 && r < 1.0 ? r / (1.0 - r) : 0.0;
 }
 
-int laterBounceRadius(const VoxelSolverSettings& settings) {
-  return settings.laterBounceRadius > 0 ? settings.laterBounceRadius : settings.sphereRadius;
+int laterRadiusOf(const VoxelSolverSettings& settings) {
+  return settings.laterSphereRadius > 0 ? settings.laterSphereRadius : settings.sphereRadius;
 }
 
 // One iteration, one bounce: the direction pairs in turn, each swept by all threads (over bands
@@ -236,10 +236,10 @@ class SideLight {
 
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
   const DirectionSet directions(settings.sphereRadius);
-  if (laterBounceRadius(settings) == settings.sphereRadius)
+  if (laterRadiusOf(settings) == settings.sphereRadius)
     return solveBytes(grid, widestLineTable(grid, directions, directions), settings);
   return solveBytes(
-      grid, widestLineTable(grid, directions, DirectionSet(laterBounceRadius(settings))), settings);
+      grid, widestLineTable(grid, directions, DirectionSet(laterRadiusOf(settings))), settings);
 }
 
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
@@ -249,8 +249,8 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   // The first sweep at R; the bounces after it, smoother, on a coarser sphere if asked.
   const DirectionSet directions(settings.sphereRadius);
   std::optional<DirectionSet> coarser;
-  if (laterBounceRadius(settings) != settings.sphereRadius)
-    coarser.emplace(laterBounceRadius(settings));
+  if (laterRadiusOf(settings) != settings.sphereRadius)
+    coarser.emplace(laterRadiusOf(settings));
   const DirectionSet& laterDirections = coarser ? *coarser : directions;
   solution.directions = directions.size();
   solution.laterDirections = laterDirections.size();

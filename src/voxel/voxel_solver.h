@@ -24,7 +24,7 @@ namespace rad {
 struct VoxelSolverSettings {
   int sphereRadius = 38;       ///< radius R of the digital sphere of directions
   /// R for the sweeps after the first (the second bounce on, smoother); 0: sphereRadius.
-  int laterBounceRadius = 0;
+  int laterSphereRadius = 0;
   int iterations = 6;          ///< sweeps over all directions (light bounces)
   double tolerance = 0.0;      ///< stop early below this relative residual (0: never)
   bool estimateTail = true;    ///< add the bounces after the last iteration, extrapolated

@@ -48,7 +48,7 @@ VoxelSolution solveFurnace(const Scene& scene, const VoxelGrid& grid, int iterat
                            int later = 0) {
   VoxelSolverSettings settings;
   settings.sphereRadius = 8;
-  settings.laterBounceRadius = later;
+  settings.laterSphereRadius = later;
   settings.iterations = iterations;
   settings.directFirstShot = false;
   return solveVoxelRadiosity(scene, grid, settings);
