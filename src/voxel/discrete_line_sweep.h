@@ -121,12 +121,13 @@ class DiscreteLineSweep {
   std::vector<std::vector<uint32_t>> passOrderInBands(const IVec3& step, size_t bands);
   size_t lineTableSize() const { return lines_.size(); }
   /// Working memory of this sweep: the line records, the waiting sides' links, the cells the
-  /// bands are balanced on and each thread's deferred light (the fold masks are counted by the
-  /// solver).
+  /// bands are balanced on, each thread's deferred light and the folds with neighbouring voxels
+  /// (the fold masks are counted by the solver).
   size_t workingBytes() const {
     return lines_.capacity() * sizeof(LineState) + pendingNext_.capacity() * sizeof(uint32_t) +
            sampleCells_.capacity() * sizeof(SampleCell) +
-           later_.size() * DeferredGathers::kCapacity * sizeof(DeferredGathers::Item);
+           later_.size() * DeferredGathers::kCapacity * sizeof(DeferredGathers::Item) +
+           visibility_->neighbourFoldBytes();
   }
 
  private:

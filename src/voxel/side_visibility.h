@@ -38,15 +38,21 @@ class SideVisibility {
   /// The side of e's own cell that e sees along -unit, if any (the faces of an inner edge).
   bool lookWithinCell(uint32_t e, uint32_t cell, const Vec3& unit, uint32_t& source) const;
   /// False when no other side of e's cell stands in front of e: e sees nothing within its cell.
-  bool hasFold(uint32_t e) const { return frontOf_[e] != 0; }
+  bool hasFold(uint32_t e) const { return (frontOf_[e] & kSidesInFront) != 0; }
   /// True when cell p holds the same planes as cell q (a floor, or the two faces of an edge):
   /// consecutive such cells on a line are one run.
   bool continuesPlanes(uint32_t p, uint32_t q) const;
+  /// Bytes of the folds with neighbouring voxels (the masks, 2 bytes a side, are not counted).
+  size_t neighbourFoldBytes() const { return neighbourFolds_.capacity() * sizeof(FoldPlane); }
   /// Distance under which a point lies in a plane: a grazing line runs inside it.
   float planeTolerance() const { return tolerance_; }
 
  private:
   bool insideFold(uint32_t f, uint32_t cell, const Vec3& point, const Vec3& origin) const;
+  /// False when f meets a side of a neighbouring voxel in a concave fold and the ray from
+  /// `origin` to `point` (on f's plane) comes from behind that side or crosses f past it.
+  bool insideNeighbourFolds(uint32_t f, const Vec3& point, const Vec3& origin) const;
+  void findNeighbourFolds();
   /// False when `point`, on f's plane, lies past a convex edge of f (in front of a side of the
   /// cell that f stands behind and that stands behind f).
   bool insideConvexEdges(uint32_t f, uint32_t cell, const Vec3& point) const;
@@ -55,11 +61,22 @@ class SideVisibility {
     return (frontOf_[f] >> (g - cellBegin)) & 1u;
   }
 
+  /// frontOf_ bits 0-14: the sides of the cell in front of the entry's plane (a cell's first 15
+  /// sides); bit 15: the entry has folds with sides of neighbouring voxels (neighbourFolds_).
+  static constexpr uint16_t kSidesInFront = 0x7fff, kNeighbourFolds = 0x8000;
+  /// The plane of a side of a neighbouring voxel that meets `entry` in a concave fold.
+  struct FoldPlane {
+    uint32_t entry;
+    PackedNormal normal;
+    float offset;  ///< normal . centroid
+  };
+
   const VoxelGrid& grid_;
   float tolerance_;
   /// Per entry: bit j set when the cell's j-th side stands in front of the entry's plane (the
   /// two form a concave fold). Computed once: the tests it saves would run for every direction.
   std::vector<uint16_t> frontOf_;
+  std::vector<FoldPlane> neighbourFolds_;  ///< sorted by entry
 };
 
 /// Normals within about 8 degrees belong to one plane.
