@@ -110,23 +110,25 @@ Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_
     const Sight met = planeSight(height, approach, tolerance);
     if (met == Sight::Through) continue;
     const float t = height / approach;
-    // A back met past a convex edge is a ray passing the corner outside the solid: through.
-    // A front met there still counts (the surface's own light where the face would be): the
-    // discrete line may step inside past the corner, and a front keeps it from carrying light
-    // out of a closed box (the leak tests fail with fronts let through). Without the rule a
-    // floating box in a closed room found a source in 95.4% of its hemisphere (30k voxels,
-    // R = 8), with it 99.5%; room:4 96.2% -> 98.8% (its walls hide parts of one another).
-    const Vec3 point = ce - t * unit;
-    if (t >= nearest || ((frontOf_[f] & kSidesInFront) != 0 && !insideFold(f, q, point, ce)) ||
-        (met == Sight::Blocked && !insideConvexEdges(f, q, point)) ||
-        (met == Sight::Source && (frontOf_[f] & kNeighbourFolds) != 0 &&
-         !insideNeighbourFolds(f, point, ce)))
-      continue;
+    if (t >= nearest || !meets(f, q, met, ce - t * unit, ce)) continue;
     nearest = t;
     sight = met;
     source = f;
   }
   return sight;
+}
+
+bool SideVisibility::meets(uint32_t f, uint32_t q, Sight met, const Vec3& point,
+                           const Vec3& origin) const {
+  if ((frontOf_[f] & kSidesInFront) != 0 && !insideFold(f, q, point, origin)) return false;
+  // A back met past a convex edge is a ray passing the corner outside the solid: through.
+  // A front met there still counts (the surface's own light where the face would be): the
+  // discrete line may step inside past the corner, and a front keeps it from carrying light
+  // out of a closed box (the leak tests fail with fronts let through). Without the rule a
+  // floating box in a closed room found a source in 95.4% of its hemisphere (30k voxels,
+  // R = 8), with it 99.5%; room:4 96.2% -> 98.8% (its walls hide parts of one another).
+  if (met == Sight::Blocked) return insideConvexEdges(f, q, point);
+  return (frontOf_[f] & kNeighbourFolds) == 0 || insideNeighbourFolds(f, point, origin);
 }
 
 bool SideVisibility::insideConvexEdges(uint32_t f, uint32_t q, const Vec3& point) const {

@@ -7,7 +7,9 @@
 // ray in the plane or leaving it grazes f and passes. The nearest plane met decides: its front
 // is the source of light, its back blocks. Where two sides of a cell form a concave fold (each
 // in front of the other, like a room's inner edge), each side's polygon ends at the other's
-// plane, which keeps light from turning around the outside of a convex edge.
+// plane, which keeps light from turning around the outside of a convex edge; a fold with a side
+// of a neighbouring voxel bounds a side's front the same way. Where they meet at a convex edge
+// (each behind the other, a box's faces), a back met past the edge is the open: passed.
 
 #include "voxel/voxel_grid.h"
 
@@ -48,6 +50,9 @@ class SideVisibility {
   float planeTolerance() const { return tolerance_; }
 
  private:
+  /// True when the ray from `origin` that met f's plane at `point` (front or back, `met`) met f
+  /// itself: its polygon as far as the sides of f's cell and of the cells around bound it.
+  bool meets(uint32_t f, uint32_t cell, Sight met, const Vec3& point, const Vec3& origin) const;
   bool insideFold(uint32_t f, uint32_t cell, const Vec3& point, const Vec3& origin) const;
   /// False when f meets a side of a neighbouring voxel in a concave fold and the ray from
   /// `origin` to `point` (on f's plane) comes from behind that side or crosses f past it.
