@@ -17,7 +17,10 @@ constexpr float kEdgeTolerance = 1e-3f;
 }  // namespace
 
 SideVisibility::SideVisibility(const VoxelGrid& grid)
-    : grid_(grid), tolerance_(kPlaneTolerance * grid.voxelSize), frontOf_(grid.entryCount(), 0) {
+    : grid_(grid),
+      tolerance_(kPlaneTolerance * grid.voxelSize),
+      edge_(kEdgeTolerance * grid.voxelSize),
+      frontOf_(grid.entryCount(), 0) {
   // Sides of one plane (several objects', a thin wall's two) stand in front of each other only
   // past the plane tolerance. Sides at an angle meet at an edge, often in a corner of the voxel,
   // where both centroids lie within the tolerance of the other's plane: the sign of the offset
@@ -25,7 +28,6 @@ SideVisibility::SideVisibility(const VoxelGrid& grid)
   // inside face of a turned thin-walled box met rays from below the box: 2.4% of the light in
   // the box leaked out of it, 1.0% with this, 0.17% with the neighbours' folds as well (the
   // leak tests).
-  const float edge = kEdgeTolerance * grid.voxelSize;
   for (size_t cell = 0; cell < grid.cellCount(); ++cell) {
     // A voxel crossed by more than 15 sides (many objects in one voxel) leaves its sides past
     // the 15th out of its folds.
@@ -36,7 +38,7 @@ SideVisibility::SideVisibility(const VoxelGrid& grid)
       for (uint32_t g = begin; g < end; ++g) {
         if (g == f) continue;
         const bool onePlane = std::abs(glm::dot(nf, grid.unitNormal(g))) > kSamePlaneCos;
-        if (glm::dot(nf, grid.centroid[g] - grid.centroid[f]) > (onePlane ? tolerance_ : edge))
+        if (glm::dot(nf, grid.centroid[g] - grid.centroid[f]) > (onePlane ? tolerance_ : edge_))
           frontOf_[f] = uint16_t(frontOf_[f] | (1u << (g - begin)));
       }
     }
@@ -51,26 +53,29 @@ void SideVisibility::findNeighbourFolds() {
   // plane from in front. Only cells of several sides are looked at through these (a single
   // side is tested inline by the sweep).
   const VoxelGrid& grid = grid_;
-  const float edge = kEdgeTolerance * grid.voxelSize;
   constexpr float kAtAngle = 0.5f;  // normals 60 degrees apart or more: the orientations' split
   constexpr size_t kMostPlanes = 4;
+  std::vector<uint32_t> around;  // the occupied neighbours of a cell, found once for its sides
   for (uint32_t x = 0; x < uint32_t(grid.dims.x); ++x)
     for (uint32_t row = grid.slabRowBegin[x]; row < grid.slabRowBegin[x + 1]; ++row)
       for (uint32_t cell = grid.rowCellBegin[row]; cell < grid.rowCellBegin[row + 1]; ++cell) {
         const uint32_t begin = grid.cellEntryBegin[cell], end = grid.cellEntryBegin[cell + 1];
         if (end - begin < 2) continue;
         const IVec3 at(int(x), grid.rowY[row], grid.cellZ[cell]);
+        around.clear();
+        for (int d = 0; d < 27; ++d) {
+          const IVec3 step(d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1);
+          const uint32_t q = step == IVec3(0) ? UINT32_MAX : grid.findCell(at + step);
+          if (q != UINT32_MAX) around.push_back(q);
+        }
         for (uint32_t f = begin; f < end; ++f) {
           const Vec3 nf = grid.unitNormal(f), cf = grid.centroid[f];
           const size_t first = neighbourFolds_.size();
-          for (int d = 0; d < 27; ++d) {
-            const IVec3 step(d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1);
-            const uint32_t q = step == IVec3(0) ? UINT32_MAX : grid.findCell(at + step);
-            if (q == UINT32_MAX) continue;
+          for (const uint32_t q : around)
             for (uint32_t g = grid.cellEntryBegin[q]; g < grid.cellEntryBegin[q + 1]; ++g) {
               const Vec3 ng = grid.unitNormal(g), cg = grid.centroid[g];
-              if (std::abs(glm::dot(nf, ng)) >= kAtAngle || glm::dot(nf, cg - cf) <= edge ||
-                  glm::dot(ng, cf - cg) <= edge)
+              if (std::abs(glm::dot(nf, ng)) >= kAtAngle || glm::dot(nf, cg - cf) <= edge_ ||
+                  glm::dot(ng, cf - cg) <= edge_)
                 continue;
               const float offset = glm::dot(ng, cg);
               bool known = false;
@@ -80,7 +85,6 @@ void SideVisibility::findNeighbourFolds() {
               if (!known && neighbourFolds_.size() - first < kMostPlanes)
                 neighbourFolds_.push_back({f, grid.normal[g], offset});
             }
-          }
           if (neighbourFolds_.size() > first) frontOf_[f] |= kNeighbourFolds;
         }
       }
@@ -88,15 +92,27 @@ void SideVisibility::findNeighbourFolds() {
 
 bool SideVisibility::insideNeighbourFolds(uint32_t f, const Vec3& point,
                                           const Vec3& origin) const {
-  const float edge = kEdgeTolerance * grid_.voxelSize;
   auto it = std::lower_bound(neighbourFolds_.begin(), neighbourFolds_.end(), f,
                              [](const FoldPlane& p, uint32_t e) { return p.entry < e; });
   for (; it != neighbourFolds_.end() && it->entry == f; ++it) {
     const Vec3 n = it->normal.unpack();
-    if (glm::dot(n, point) - it->offset < -edge || glm::dot(n, origin) - it->offset < -edge)
+    if (glm::dot(n, point) - it->offset < -edge_ || glm::dot(n, origin) - it->offset < -edge_)
       return false;
   }
   return true;
+}
+
+inline bool SideVisibility::meets(uint32_t f, uint32_t q, Sight met, const Vec3& point,
+                           const Vec3& origin) const {
+  if ((frontOf_[f] & kSidesInFront) != 0 && !insideFold(f, q, point, origin)) return false;
+  // A back met past a convex edge is a ray passing the corner outside the solid: through.
+  // A front met there still counts (the surface's own light where the face would be): the
+  // discrete line may step inside past the corner, and a front keeps it from carrying light
+  // out of a closed box (the leak tests fail with fronts let through). Without the rule a
+  // floating box in a closed room found a source in 95.4% of its hemisphere (30k voxels,
+  // R = 8), with it 99.5%; room:4 96.2% -> 98.8% (its walls hide parts of one another).
+  if (met == Sight::Blocked) return insideConvexEdges(f, q, point);
+  return (frontOf_[f] & kNeighbourFolds) == 0 || insideNeighbourFolds(f, point, origin);
 }
 
 Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_t& source) const {
@@ -118,19 +134,6 @@ Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_
   return sight;
 }
 
-bool SideVisibility::meets(uint32_t f, uint32_t q, Sight met, const Vec3& point,
-                           const Vec3& origin) const {
-  if ((frontOf_[f] & kSidesInFront) != 0 && !insideFold(f, q, point, origin)) return false;
-  // A back met past a convex edge is a ray passing the corner outside the solid: through.
-  // A front met there still counts (the surface's own light where the face would be): the
-  // discrete line may step inside past the corner, and a front keeps it from carrying light
-  // out of a closed box (the leak tests fail with fronts let through). Without the rule a
-  // floating box in a closed room found a source in 95.4% of its hemisphere (30k voxels,
-  // R = 8), with it 99.5%; room:4 96.2% -> 98.8% (its walls hide parts of one another).
-  if (met == Sight::Blocked) return insideConvexEdges(f, q, point);
-  return (frontOf_[f] & kNeighbourFolds) == 0 || insideNeighbourFolds(f, point, origin);
-}
-
 bool SideVisibility::insideConvexEdges(uint32_t f, uint32_t q, const Vec3& point) const {
   // Where f meets another side g of the cell at a convex edge (each behind the other, like two
   // faces of a box), f's polygon ends at g's plane: a crossing of f's plane in front of g is past
@@ -150,15 +153,14 @@ bool SideVisibility::insideFold(uint32_t f, uint32_t q, const Vec3& point,
   // Where f meets another side g of the cell in a concave fold (g stands in front of f), f's
   // polygon ends at g's plane: a crossing of f's plane behind g is past the edge of f.
   // The fold's own edge is sharp: a side lying in g's plane is not in front of it.
-  const float edge = kEdgeTolerance * grid_.voxelSize;
   const uint32_t begin = grid_.cellEntryBegin[q];
   for (uint32_t front = frontOf_[f] & kSidesInFront; front != 0; front &= front - 1) {
     const uint32_t g = begin + uint32_t(std::countr_zero(front));
     // The crossing must lie in front of g, and so must the ray's origin: a ray from behind g
     // reaches f's front only through g.
     const Vec3 ng = grid_.unitNormal(g);
-    if (glm::dot(ng, point - grid_.centroid[g]) < -edge ||
-        glm::dot(ng, origin - grid_.centroid[g]) < -edge)
+    if (glm::dot(ng, point - grid_.centroid[g]) < -edge_ ||
+        glm::dot(ng, origin - grid_.centroid[g]) < -edge_)
       return false;
   }
   return true;

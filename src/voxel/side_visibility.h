@@ -52,7 +52,9 @@ class SideVisibility {
  private:
   /// True when the ray from `origin` that met f's plane at `point` (front or back, `met`) met f
   /// itself: its polygon as far as the sides of f's cell and of the cells around bound it.
-  bool meets(uint32_t f, uint32_t cell, Sight met, const Vec3& point, const Vec3& origin) const;
+  /// (Inlined into look: called, it cost 2% more instructions in the sweeps.)
+  [[gnu::always_inline]] inline bool meets(uint32_t f, uint32_t cell, Sight met,
+                                           const Vec3& point, const Vec3& origin) const;
   bool insideFold(uint32_t f, uint32_t cell, const Vec3& point, const Vec3& origin) const;
   /// False when f meets a side of a neighbouring voxel in a concave fold and the ray from
   /// `origin` to `point` (on f's plane) comes from behind that side or crosses f past it.
@@ -78,6 +80,7 @@ class SideVisibility {
 
   const VoxelGrid& grid_;
   float tolerance_;
+  float edge_;  ///< distance under which a point lies on the edge where two sides meet
   /// Per entry: bit j set when the cell's j-th side stands in front of the entry's plane (the
   /// two form a concave fold). Computed once: the tests it saves would run for every direction.
   std::vector<uint16_t> frontOf_;

@@ -97,9 +97,18 @@ double tailFactor(const std::vector<double>& bouncePower) {
   return r > 0.0 && r < 1.0 ? r / (1.0 - r) : 0.0;
 }
 
-int laterRadiusOf(const VoxelSolverSettings& settings) {
-  return settings.laterSphereRadius > 0 ? settings.laterSphereRadius : settings.sphereRadius;
-}
+// The directions of the first sweep (R) and of the later ones: the same set, or a coarser one
+// when asked (their light, the second bounce on, is smoother).
+struct SweepDirections {
+  explicit SweepDirections(const VoxelSolverSettings& settings) : first(settings.sphereRadius) {
+    const int later = settings.laterSphereRadius;
+    if (later > 0 && later != settings.sphereRadius) coarser.emplace(later);
+  }
+  const DirectionSet& later() const { return coarser ? *coarser : first; }
+
+  DirectionSet first;
+  std::optional<DirectionSet> coarser;
+};
 
 // One iteration, one bounce: the direction pairs in turn, each swept by all threads (over bands
 // of its lines), so that every side's sum runs over the pairs in the same order for any thread
@@ -129,15 +138,16 @@ uint64_t solverBytesPerSide(const VoxelSolverSettings& settings) {
          sizeof(uint16_t);                                        // fold masks (SideVisibility)
 }
 
-// The line table the sweeps need, over the first sweep's directions and the later sweeps' (the
-// same set, or a coarser one): as large as the widest direction's (reserved at once, so that it
-// never grows by reallocation, which would hold two tables).
-size_t widestLineTable(const VoxelGrid& grid, const DirectionSet& first,
-                       const DirectionSet& later) {
+// The line table the sweeps need, over all their directions: as large as the widest
+// direction's (reserved at once, so that it never grows by reallocation, which would hold two
+// tables).
+size_t widestLineTable(const VoxelGrid& grid, const SweepDirections& directions) {
   std::vector<IVec3> steps;
-  for (size_t k = 0; k < first.pairCount(); ++k) steps.push_back(first.pairFirst(k).step);
-  if (&later != &first)
-    for (size_t k = 0; k < later.pairCount(); ++k) steps.push_back(later.pairFirst(k).step);
+  auto add = [&](const DirectionSet& set) {
+    for (size_t k = 0; k < set.pairCount(); ++k) steps.push_back(set.pairFirst(k).step);
+  };
+  add(directions.first);
+  if (directions.coarser) add(*directions.coarser);
   return DiscreteLineSweep::maxLineCount(grid, steps);
 }
 
@@ -235,27 +245,20 @@ class SideLight {
 }  // namespace
 
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
-  const DirectionSet directions(settings.sphereRadius);
-  if (laterRadiusOf(settings) == settings.sphereRadius)
-    return solveBytes(grid, widestLineTable(grid, directions, directions), settings);
-  return solveBytes(
-      grid, widestLineTable(grid, directions, DirectionSet(laterRadiusOf(settings))), settings);
+  return solveBytes(grid, widestLineTable(grid, SweepDirections(settings)), settings);
 }
 
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const VoxelSolverSettings& settings,
                                   const ProgressCallback& progress) {
   VoxelSolution solution;
-  // The first sweep at R; the bounces after it, smoother, on a coarser sphere if asked.
-  const DirectionSet directions(settings.sphereRadius);
-  std::optional<DirectionSet> coarser;
-  if (laterRadiusOf(settings) != settings.sphereRadius)
-    coarser.emplace(laterRadiusOf(settings));
-  const DirectionSet& laterDirections = coarser ? *coarser : directions;
+  const SweepDirections sweepDirections(settings);
+  const DirectionSet& directions = sweepDirections.first;
+  const DirectionSet& laterDirections = sweepDirections.later();
   solution.directions = directions.size();
   solution.laterDirections = laterDirections.size();
   // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
-  const size_t lines = widestLineTable(grid, directions, laterDirections);
+  const size_t lines = widestLineTable(grid, sweepDirections);
   checkMemory(grid, lines, settings);
   solution.sweepThreads = DiscreteLineSweep::threadCount();
   std::vector<Color> direct(grid.entryCount(), Color(0.0f));
@@ -282,7 +285,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
         grid, [&](size_t e) { return light.sends(e, first); }, packed);
     // Packed with the weights of the sweep that gathered it, the last bounce is spent: the
     // next one is normalized for the sphere it is swept on.
-    if (iteration == 1 && coarser) light.normalizeFor(*coarser);
+    if (iteration == 1 && sweepDirections.coarser) light.normalizeFor(laterDirections);
     gatherAllDirections(swept, *sweep, light.gathered(), source, settings, iteration, ticker);
     const auto [added, total] = light.addBounce();
     bouncePower.push_back(added);
