@@ -110,26 +110,45 @@ size_t DiscreteLineSweep::threadCount() {
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 }
 
+uint32_t DiscreteLineSweep::rowFirstLine(size_t row) const {
+  return row < rowStart_.size() ? uint32_t(rowStart_[row] + layout_.vLow[row])
+                                : uint32_t(lineCount_);
+}
+
 void DiscreteLineSweep::cutBands(size_t count) {
   bands_.clear();
-  if (count <= 1) return bands_.push_back({});
-  prepareBands();
+  const size_t rows = rowStart_.size();
   std::vector<uint32_t>& perRow = sampledPerRow_;
-  perRow.assign(rowStart_.size(), 0);
-  for (const auto& [x, y, z] : sampleCells_)
-    ++perRow[(lineTable_[0][size_t(x)] + lineTable_[1][size_t(y)] + lineTable_[2][size_t(z)]) >>
-             32];
-  // Band k ends at the first row where the running count reaches k / count of the sample.
+  perRow.assign(rows, 0);
+  if (count > 1) {
+    prepareBands();
+    for (const auto& [x, y, z] : sampleCells_)
+      ++perRow[(lineTable_[0][size_t(x)] + lineTable_[1][size_t(y)] +
+                lineTable_[2][size_t(z)]) >>
+               32];
+  }
+  auto cut = [&](size_t begin, size_t end) {
+    const uint32_t first = rowFirstLine(begin);
+    bands_.push_back({int64_t(begin), int64_t(end), first, rowFirstLine(end) - first});
+  };
+  // Band k of the count ends at the first row where the running count reaches k / count of the
+  // sample; a band ends earlier where its next row would take it past bandLines_ lines.
   const double total = double(sampleCells_.size());
-  int64_t begin = 0, seen = 0;
-  for (size_t row = 0; row < perRow.size() && bands_.size() + 1 < count; ++row) {
+  size_t begin = 0, quotas = 0;
+  int64_t seen = 0;
+  for (size_t row = 0; row < rows; ++row) {
+    if (row > begin && rowFirstLine(row + 1) - rowFirstLine(begin) > bandLines_) {
+      cut(begin, row);
+      begin = row;
+    }
     seen += perRow[row];
-    if (double(seen) >= total * double(bands_.size() + 1) / double(count)) {
-      bands_.push_back({begin, int64_t(row) + 1});
-      begin = int64_t(row) + 1;
+    if (quotas + 1 < count && double(seen) >= total * double(quotas + 1) / double(count)) {
+      ++quotas;
+      cut(begin, row + 1);
+      begin = row + 1;
     }
   }
-  bands_.push_back({begin, int64_t(perRow.size())});
+  if (begin < rows || bands_.empty()) cut(begin, rows);
 }
 
 void DiscreteLineSweep::layoutLines(const IVec3& dims, const IVec3& step,
@@ -203,10 +222,24 @@ void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset
     rowStart_[row] = int32_t(lineCount - layout_.vLow[row]);
     lineCount += layout_.vHigh[row] - layout_.vLow[row] + 1;
   }
-  if (lines_.size() < size_t(lineCount)) {
-    lines_.reserve(size_t(lineCount));  // no more than this direction needs
-    lines_.resize(size_t(lineCount));
+  lineCount_ = size_t(lineCount);
+  // Without a reservation (a sweep of a single direction), bands are sized for this one.
+  reserveLines(lineCount_);
+}
+
+DiscreteLineSweep::LineState* DiscreteLineSweep::BandScratch::recordsFor(size_t count,
+                                                                         size_t capacity) {
+  if (lines.size() < count) {
+    lines = std::vector<LineState>(std::max(count, capacity));
+    stamp = 0;
   }
+  // The 16-bit pass stamp tells this pass's records from older ones; when it wraps, the records
+  // are cleared once (every 65,535 passes).
+  if (++stamp == 0) {
+    for (LineState& line : lines) line.stamp = 0;
+    stamp = 1;
+  }
+  return lines.data();
 }
 
 size_t DiscreteLineSweep::maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps) {
@@ -582,18 +615,19 @@ void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, const LineBand
 template <bool kTangentCorrection>
 void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3& unit,
                              float weight, const Source& source, std::span<Color> gathered,
-                             DeferredGathers& later) {
+                             BandScratch& scratch) {
   const PassView view{grid_.cellEntryBegin.data(),
                       grid_.centroid.data(),
                       source,
                       gathered.data(),
                       pendingNext_.data(),
-                      &later,
+                      &scratch.later,
                       unit,
                       weight,
                       visibility_->planeTolerance()};
-  LineState* const lines = lines_.data();
-  const uint16_t stamp = stamp_;
+  LineState* const lines = scratch.recordsFor(band.lineCount, bandLines_);
+  const uint16_t stamp = scratch.stamp;
+  const uint32_t firstLine = band.firstLine;
   // Line records are scattered over a table the size of the scene's cross-section, and the
   // cells' own data is read in an order that jumps back row by row: fetch both kAhead cells
   // ahead of the visit so that the misses overlap instead of queueing.
@@ -616,6 +650,7 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
   };
   forEachCellInPassOrder(step, band, [&](uint32_t cell, uint32_t line, int32_t dominant) {
     // A 48-byte record may straddle two cache lines: fetch both.
+    line -= firstLine;
     __builtin_prefetch(&lines[line], 1);
     __builtin_prefetch(reinterpret_cast<const char*>(&lines[line]) + sizeof(LineState) - 1, 1);
     const uint32_t first = view.entryBegin[cell];
@@ -627,30 +662,28 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
     ringCell[i] = cell, ringLine[i] = line, ringDominant[i] = dominant;
   });
   for (uint32_t i = count > kAhead ? count - kAhead : 0; i < count; ++i) visit(i & kMask);
-  later.addTo(view.gathered);
+  scratch.later.addTo(view.gathered);
 }
 
 void DiscreteLineSweep::sweepPair(const DiscreteDirection& direction, const Source& source,
                                   std::span<Color> gathered, const LineOffset& offset) {
   prepareLines(direction.step, offset);
   pendingNext_.resize(grid_.entryCount());
-  // The 16-bit pass stamp tells this pass's line records from older ones; when it wraps, all
-  // records are cleared once (every 65,535 passes).
-  if (++stamp_ == 0) {
-    for (LineState& line : lines_) line.stamp = 0;
-    stamp_ = 1;
-  }
-  cutBands(bandCountFor(threadCount(), layout_.axes[0] == 2));
+  const size_t threads = threadCount();
+  cutBands(bandCountFor(threads, layout_.axes[0] == 2));
   const float weight = float(direction.solidAngle / 3.14159265358979323846) * source.scale;
   const Vec3 unit(direction.unit);
   auto sweepBand = [&](size_t b) {
-    DeferredGathers& later = later_.local();
+    BandScratch& scratch = scratch_.local();
     if (settings_.tangentCorrection)
-      pass<true>(direction.step, bands_[b], unit, weight, source, gathered, later);
+      pass<true>(direction.step, bands_[b], unit, weight, source, gathered, scratch);
     else
-      pass<false>(direction.step, bands_[b], unit, weight, source, gathered, later);
+      pass<false>(direction.step, bands_[b], unit, weight, source, gathered, scratch);
   };
-  if (bands_.size() == 1) return sweepBand(0);
+  if (threads == 1) {
+    for (size_t b = 0; b < bands_.size(); ++b) sweepBand(b);
+    return;
+  }
   // Bands touch disjoint line records and sides (a side gathers from its own line only).
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, bands_.size(), 1),
@@ -670,7 +703,10 @@ std::vector<uint32_t> DiscreteLineSweep::lineOfEachCell(const IVec3& step,
 }
 
 std::vector<uint32_t> DiscreteLineSweep::passOrder(const IVec3& step) {
-  return passOrderInBands(step, 1).front();
+  prepareLines(step);
+  std::vector<uint32_t> order;
+  forEachCellInPassOrder(step, {}, [&](uint32_t cell, uint32_t, int32_t) { order.push_back(cell); });
+  return order;
 }
 
 std::vector<std::vector<uint32_t>> DiscreteLineSweep::passOrderInBands(const IVec3& step,
