@@ -25,6 +25,15 @@ struct VoxelMaterial {
   bool operator==(const VoxelMaterial&) const = default;
 };
 
+/// What a voxel side is made of and whose it is. Sides share a handful of these, so each side
+/// keeps a 4-byte index instead of its material, object and face (9 bytes).
+struct VoxelSurface {
+  VoxelMaterial material;
+  uint32_t object = 0;    ///< the scene object the side belongs to
+  bool backSide = false;  ///< the back of a two-sided face (results per object count fronts)
+  bool operator==(const VoxelSurface&) const = default;
+};
+
 /// A unit normal in 16-bit signed fixed point, 6 bytes instead of 12: each component to
 /// 1.5e-5, far below the sweep's plane tolerance (a twentieth of a voxel).
 struct PackedNormal {
@@ -56,14 +65,11 @@ struct VoxelGrid {
   std::vector<PackedNormal> normal;  ///< unit, area-weighted mean of the side's triangles
   std::vector<Vec3> centroid;   ///< area-weighted centroid of the surface inside the voxel
   std::vector<float> area;      ///< surface area the entry stands for (scene units^2)
-  std::vector<uint32_t> material;  ///< index into materials
-  std::vector<uint32_t> object;    ///< the scene object the side belongs to
+  std::vector<uint32_t> surface;  ///< index into surfaces
   /// True when the entry has the orientation of the entry before it in the same cell: the
   /// pieces of several objects in one plane (a lamp in a ceiling), which light sees as one.
   std::vector<uint8_t> sharesOrientation;
-  /// True for the back side of a two-sided material (results per object count front sides).
-  std::vector<uint8_t> backSide;
-  std::vector<VoxelMaterial> materials;
+  std::vector<VoxelSurface> surfaces;
 
   size_t cellCount() const { return cellZ.size(); }
   size_t entryCount() const { return normal.size(); }
@@ -71,6 +77,9 @@ struct VoxelGrid {
   /// Integer coordinates of a cell (found from the row structure; O(log rows)).
   IVec3 cellCoordinates(uint32_t cell) const;
   Vec3 unitNormal(size_t entry) const { return normal[entry].unpack(); }
+  const VoxelMaterial& materialOf(size_t entry) const { return surfaces[surface[entry]].material; }
+  uint32_t objectOf(size_t entry) const { return surfaces[surface[entry]].object; }
+  bool isBackSide(size_t entry) const { return surfaces[surface[entry]].backSide; }
   Vec3 cellCenter(const IVec3& c) const { return origin + (Vec3(c) + 0.5f) * voxelSize; }
   /// The cell at integer coordinates, or UINT32_MAX when that voxel is empty. O(log) search.
   uint32_t findCell(const IVec3& c) const;

@@ -112,8 +112,9 @@ std::vector<ObjectRadiometry> VoxelRadiosity::objectRadiometry() const {
 const VoxelRadiosityStats& VoxelRadiosity::stats() const { return impl_->stats; }
 
 SurfaceSample VoxelRadiosity::Impl::sample(size_t e) const {
-  const VoxelMaterial& m = grid.materials[grid.material[e]];
-  return {grid.object[e],
+  const VoxelSurface& surface = grid.surfaces[grid.surface[e]];
+  const VoxelMaterial& m = surface.material;
+  return {surface.object,
           grid.area[e],
           grid.centroid[e],
           grid.unitNormal(e),
@@ -121,7 +122,7 @@ SurfaceSample VoxelRadiosity::Impl::sample(size_t e) const {
           m.rho,
           solution.irradiance[e],
           solution.radiosity[e],
-          bool(grid.backSide[e])};
+          surface.backSide};
 }
 
 std::vector<SurfaceSample> VoxelRadiosity::Impl::samples() const {

@@ -237,9 +237,9 @@ class SideLight {
 
  private:
   Color emitted(size_t e) const {
-    return glm::pi<float>() * grid_.materials[grid_.material[e]].emission;
+    return glm::pi<float>() * grid_.materialOf(e).emission;
   }
-  Color rho(size_t e) const { return grid_.materials[grid_.material[e]].rho; }
+  Color rho(size_t e) const { return grid_.materialOf(e).rho; }
   Color radiosity(size_t e) const { return emitted(e) + rho(e) * irradiance_[e]; }
   Vec3d power(size_t e, const Color& c) const { return double(grid_.area[e]) * Vec3d(c); }
   /// The light the last iteration's sweeps brought side e, normalized.

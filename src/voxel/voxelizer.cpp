@@ -162,23 +162,27 @@ void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orien
   side->keArea += w * Vec3d(m.emission);
 }
 
-uint32_t internMaterial(VoxelGrid& grid, std::map<std::array<float, 6>, uint32_t>& index,
-                        const VoxelMaterial& m) {
-  const std::array<float, 6> key{m.rho.r, m.rho.g, m.rho.b, m.emission.r, m.emission.g, m.emission.b};
-  auto [it, inserted] = index.emplace(key, uint32_t(grid.materials.size()));
-  if (inserted) grid.materials.push_back(m);
+// The grid's surfaces by content, so that sides made of the same share one.
+using SurfaceKey = std::tuple<std::array<float, 6>, uint32_t, bool>;
+
+uint32_t internSurface(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& index,
+                       const VoxelSurface& s) {
+  const VoxelMaterial& m = s.material;
+  const SurfaceKey key{{m.rho.r, m.rho.g, m.rho.b, m.emission.r, m.emission.g, m.emission.b},
+                       s.object,
+                       s.backSide};
+  auto [it, inserted] = index.emplace(key, uint32_t(grid.surfaces.size()));
+  if (inserted) grid.surfaces.push_back(s);
   return it->second;
 }
 
-void appendSide(VoxelGrid& grid, std::map<std::array<float, 6>, uint32_t>& materialIndex,
-                const Side& side) {
+void appendSide(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& surfaceIndex, const Side& side) {
   grid.normal.push_back(PackedNormal::pack(Vec3(glm::normalize(side.normalSum))));
   grid.centroid.push_back(Vec3(side.centroidSum / side.weight));
   grid.area.push_back(float(side.area));
   const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};
-  grid.material.push_back(internMaterial(grid, materialIndex, m));
-  grid.object.push_back(side.object);
-  grid.backSide.push_back(side.backArea > 0.5 * side.area);
+  grid.surface.push_back(
+      internSurface(grid, surfaceIndex, {m, side.object, side.backArea > 0.5 * side.area}));
 }
 
 // Calls f(cell key, sides) for each cell of the fragments (sorted by cell): its fragments
@@ -218,16 +222,14 @@ void reserveEntries(const Scene& scene, const std::vector<Fragment>& fragments, 
   grid.normal.reserve(entries);
   grid.centroid.reserve(entries);
   grid.area.reserve(entries);
-  grid.material.reserve(entries);
-  grid.object.reserve(entries);
+  grid.surface.reserve(entries);
   grid.sharesOrientation.reserve(entries);
-  grid.backSide.reserve(entries);
 }
 
 // Fills the grid's cells, rows, slabs and entries from fragments sorted by cell.
 void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, VoxelGrid& grid) {
   reserveEntries(scene, fragments, grid);
-  std::map<std::array<float, 6>, uint32_t> materialIndex;
+  std::map<SurfaceKey, uint32_t> surfaceIndex;
   grid.slabRowBegin.assign(size_t(grid.dims.x) + 1, 0);
   int lastX = -1, lastY = -1;
   forEachCellsSides(scene, fragments, [&](uint64_t key, const std::vector<Side>& sides) {
@@ -242,7 +244,7 @@ void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, Vo
     grid.cellZ.push_back(int16_t(c.z));
     grid.cellEntryBegin.push_back(uint32_t(grid.normal.size()));
     for (size_t k = 0; k < sides.size(); ++k) {
-      appendSide(grid, materialIndex, sides[k]);
+      appendSide(grid, surfaceIndex, sides[k]);
       grid.sharesOrientation.push_back(k > 0 && sides[k].orientation == sides[k - 1].orientation);
     }
   });

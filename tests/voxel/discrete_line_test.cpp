@@ -344,7 +344,8 @@ TEST(Voxelizer, SameGridWhateverTheThreadCount) {
   EXPECT_EQ(one.normal, four.normal);
   EXPECT_EQ(one.centroid, four.centroid);
   EXPECT_EQ(one.area, four.area);
-  EXPECT_EQ(one.material, four.material);
+  EXPECT_EQ(one.surface, four.surface);
+  EXPECT_EQ(one.surfaces, four.surfaces);
 }
 
 // A direction of the sweep with factor pi, so that w = 1 and a side gathers B cos.
@@ -389,7 +390,7 @@ TEST(DiscreteLineSweep, FacingPlatesGetTheSameLightWhicheverWayTheLinesRun) {
     for (size_t e = 0; e < grid.entryCount(); ++e) {
       const float g = gathered[e].x;
       EXPECT_TRUE(g == 0.0f || std::abs(g - std::sqrt(0.5f)) < 1e-6f) << e << " " << g;
-      total[grid.object[e]] += g;
+      total[grid.objectOf(e)] += g;
     }
     EXPECT_GT(total[0], 0.0);
     EXPECT_DOUBLE_EQ(total[0], total[1]);
@@ -412,13 +413,13 @@ TEST(DiscreteLineSweep, EveryVoxelOfAGrazingRunGetsTheLightAhead) {
   const VoxelGrid grid = voxelizeScene(b.build(), settings);
   std::vector<DiscreteLineSweep::Slot> slots(grid.entryCount());
   const DiscreteLineSweep::Source source = DiscreteLineSweep::packSides(
-      grid, [&](size_t e) { return Color(grid.object[e] == floorObject ? 0.0f : 1.0f); }, slots);
+      grid, [&](size_t e) { return Color(grid.objectOf(e) == floorObject ? 0.0f : 1.0f); }, slots);
   DiscreteLineSweep sweep(grid, {});
   std::vector<Color> gathered(grid.entryCount(), Color(0.0f));
   sweep.sweepPair(unitWeightDirection(IVec3(4, 1, 0)), source, gathered);
   size_t floorSides = 0;
   for (size_t e = 0; e < grid.entryCount(); ++e) {
-    if (grid.object[e] != floorObject) continue;
+    if (grid.objectOf(e) != floorObject) continue;
     ++floorSides;
     EXPECT_NEAR(gathered[e].x, 1.0f / std::sqrt(17.0f), 1e-4f) << e;  // cos = n . s = 1 / sqrt(17)
   }

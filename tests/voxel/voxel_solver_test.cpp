@@ -103,7 +103,7 @@ TEST(VoxelSolver, FurnaceHoldsAroundATurnedBox) {
   const double expected = glm::pi<double>() * 1.0 / 0.5;
   double boxArea = 0.0, boxPower = 0.0;
   for (size_t e = 0; e < grid.entryCount(); ++e)
-    if (grid.object[e] == box) boxArea += grid.area[e], boxPower += grid.area[e] * s.radiosity[e].x;
+    if (grid.objectOf(e) == box) boxArea += grid.area[e], boxPower += grid.area[e] * s.radiosity[e].x;
   EXPECT_NEAR(boxPower / boxArea, expected, 0.015 * expected);
 }
 
@@ -159,7 +159,7 @@ UniformRoom uniformRoom(const Color& rho) {
   room.settings.directSamples = 16;
   std::vector<Color> emitted(room.grid.entryCount());
   for (size_t e = 0; e < emitted.size(); ++e)
-    emitted[e] = glm::pi<float>() * room.grid.materials[room.grid.material[e]].emission;
+    emitted[e] = glm::pi<float>() * room.grid.materialOf(e).emission;
   for (int c = 0; c < 3; ++c)
     room.balancedPower[size_t(c)] = weightedSum(room.grid, emitted, c) / (1.0 - double(rho[c]));
   return room;
@@ -258,11 +258,11 @@ void expectLightStaysInTheBox(const glm::mat3& turn, double leak) {
     double insideLight = 0.0, emitted = 0.0, leaked = 0.0;
     size_t outside = 0;
     for (size_t e = 0; e < grid.entryCount(); ++e) {
-      emitted += grid.area[e] * glm::pi<float>() * maxComponent(grid.materials[grid.material[e]].emission);
+      emitted += grid.area[e] * glm::pi<float>() * maxComponent(grid.materialOf(e).emission);
       const Vec3 fromCentre = glm::transpose(turn) * (grid.centroid[e] - centre);
-      const bool onFloor = grid.object[e] == floorObject;
+      const bool onFloor = grid.objectOf(e) == floorObject;
       const bool facesOut = glm::dot(grid.unitNormal(e), grid.centroid[e] - centre) > 0.0f &&
-                            grid.object[e] != lampObject;
+                            grid.objectOf(e) != lampObject;
       const bool wallSide = glm::compMax(glm::abs(fromCentre)) > 0.45f;
       if (onFloor || (wallSide && facesOut)) {
         ++outside;
