@@ -4,6 +4,7 @@
 
 #include <radiosity/error.h>
 
+#include <fmt/format.h>
 #include <immintrin.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -13,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -215,6 +217,10 @@ void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset
       dominantTable_[axis][t] = k == 0 ? int32_t(sign * int64_t(t)) : 0;
     }
   }
+  size_t lines = 0;
+  for (size_t row = 0; row < layout_.vLow.size(); ++row)
+    lines += size_t(layout_.vHigh[row] - layout_.vLow[row] + 1);
+  checkLineCount(grid_, lines);
   // Row U's lines follow row U - 1's: line = rowStart_[U] + V.
   rowStart_.resize(layout_.vLow.size());
   int64_t lineCount = 0;
@@ -240,6 +246,16 @@ DiscreteLineSweep::LineState* DiscreteLineSweep::BandScratch::recordsFor(size_t 
     stamp = 1;
   }
   return lines.data();
+}
+
+void DiscreteLineSweep::checkLineCount(const VoxelGrid& grid, size_t lines) {
+  // rowStart_ holds a row's first line less its lowest V, signed: 2^31 - 1 lines at most.
+  constexpr size_t kMostLines = size_t(INT32_MAX);
+  if (lines > kMostLines)
+    throw InputError("voxel grid",
+                     fmt::format("{} lines cross the grid's {} x {} x {} voxels along one direction, "
+                                 "more than the sweep's limit of {}; use a larger voxel size",
+                                 lines, grid.dims.x, grid.dims.y, grid.dims.z, kMostLines));
 }
 
 size_t DiscreteLineSweep::maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps) {

@@ -113,6 +113,9 @@ class DiscreteLineSweep {
   /// and the bytes a sweep of `grid` holds for directions of that many lines, known before it is
   /// built.
   static size_t maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps);
+  /// Throws InputError when a direction of `lines` lines is more than the sweep can number
+  /// (line indices are 32-bit): a grid whose box is very large in voxels, however few it holds.
+  static void checkLineCount(const VoxelGrid& grid, size_t lines);
   static size_t workingBytesFor(const VoxelGrid& grid, size_t lines) {
     const size_t threads = threadCount();
     const size_t bandBytes = threads > 1 ? kMaxSamples * sizeof(SampleCell) : 0;

@@ -272,6 +272,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   solution.laterDirections = laterDirections.size();
   // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
   const size_t lines = widestLineTable(grid, sweepDirections);
+  DiscreteLineSweep::checkLineCount(grid, lines);
   checkMemory(grid, lines, settings);
   solution.sweepThreads = DiscreteLineSweep::threadCount();
   std::vector<Color> direct(grid.entryCount(), Color(0.0f));

@@ -398,5 +398,35 @@ TEST(VoxelSolver, RefusesBeforeItAllocatesWhatTheProcessMayNotHold) {
   EXPECT_EQ(solveVoxelRadiosity(scene, grid, settings).radiosity.size(), grid.entryCount());
 }
 
+TEST(VoxelSolver, RefusesAGridWithMoreLinesThanTheSweepCanNumber) {
+  // Two 2 mm squares 30 m apart in voxels of 1 mm: a handful of voxels in a box 30,000 voxels
+  // wide, across which the diagonal (1, 1, 1) has X Y + Y Z + Z X - X - Y - Z + 1, about 2.7e9,
+  // lines: more than the sweep's 32-bit line numbers hold. An input error naming the remedy,
+  // before any allocation: the records alone would take 16 GB a thread, which the memory check
+  // refuses on two threads here but not on one (checked: without the limit a one-thread solve
+  // ran, 16 GB resident, 43 s for 14 voxels, its line numbers past 2^31).
+  SceneBuilder b("far apart");
+  const uint32_t lamp = b.addMaterial({"lamp", Color(0.5f), Color(1.0f), false});
+  const uint32_t grey = b.addMaterial({"grey", Color(0.5f), Color(0.0f), false});
+  test::addQuadFacing(b, test::axisSquare(Vec3(0.0f), 0, 0.002f), Vec3(1, 0, 0), lamp,
+                      b.addObject("lamp"));
+  test::addQuadFacing(b, test::axisSquare(Vec3(30.0f), 0, 0.002f), Vec3(-1, 0, 0), grey,
+                      b.addObject("far"));
+  const Scene scene = b.build();
+  const VoxelGrid grid = voxelize(scene, 0.001f);
+  ASSERT_GT(grid.dims.x, 30000);
+  VoxelSolverSettings settings;
+  settings.sphereRadius = 2;  // holds (1, 1, 1)
+  settings.iterations = 1;
+  try {
+    solveVoxelRadiosity(scene, grid, settings);
+    ADD_FAILURE() << "solved a grid of more lines than the sweep can number";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("lines cross the grid"), std::string::npos) << message;
+    EXPECT_NE(message.find("use a larger voxel size"), std::string::npos) << message;
+  }
+}
+
 }  // namespace
 }  // namespace rad
