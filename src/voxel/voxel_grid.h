@@ -79,7 +79,6 @@ struct VoxelGrid {
   Vec3 unitNormal(size_t entry) const { return normal[entry].unpack(); }
   const VoxelMaterial& materialOf(size_t entry) const { return surfaces[surface[entry]].material; }
   uint32_t objectOf(size_t entry) const { return surfaces[surface[entry]].object; }
-  bool isBackSide(size_t entry) const { return surfaces[surface[entry]].backSide; }
   Vec3 cellCenter(const IVec3& c) const { return origin + (Vec3(c) + 0.5f) * voxelSize; }
   /// The cell at integer coordinates, or UINT32_MAX when that voxel is empty. O(log) search.
   uint32_t findCell(const IVec3& c) const;

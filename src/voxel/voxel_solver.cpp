@@ -107,7 +107,7 @@ Color tailFactor(const std::vector<Vec3d>& bouncePower) {
 }
 
 double luminance(const Vec3d& power) {
-  return 0.2126 * power.r + 0.7152 * power.g + 0.0722 * power.b;
+  return double(rad::luminance(Color(power)));
 }
 
 // The directions of the first sweep (R) and of the later ones: the same set, or a coarser one
