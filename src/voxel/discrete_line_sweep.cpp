@@ -217,17 +217,15 @@ void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset
       dominantTable_[axis][t] = k == 0 ? int32_t(sign * int64_t(t)) : 0;
     }
   }
-  size_t lines = 0;
-  for (size_t row = 0; row < layout_.vLow.size(); ++row)
-    lines += size_t(layout_.vHigh[row] - layout_.vLow[row] + 1);
-  checkLineCount(grid_, lines);
-  // Row U's lines follow row U - 1's: line = rowStart_[U] + V.
+  // Row U's lines follow row U - 1's: line = rowStart_[U] + V (row starts past 32 bits are
+  // never used: the count is checked just below, before a sweep reads them).
   rowStart_.resize(layout_.vLow.size());
   int64_t lineCount = 0;
   for (size_t row = 0; row < rowStart_.size(); ++row) {
     rowStart_[row] = int32_t(lineCount - layout_.vLow[row]);
     lineCount += layout_.vHigh[row] - layout_.vLow[row] + 1;
   }
+  checkLineCount(grid_, size_t(lineCount));
   lineCount_ = size_t(lineCount);
   // Without a reservation (a sweep of a single direction), bands are sized for this one.
   reserveLines(lineCount_);
