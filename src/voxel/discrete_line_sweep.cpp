@@ -663,8 +663,8 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
       visitSeveralSides<kTangentCorrection>(view, cell, state, ringDominant[i]);
   };
   forEachCellInPassOrder(step, band, [&](uint32_t cell, uint32_t line, int32_t dominant) {
+    line -= firstLine;  // the band's records hold its lines from firstLine on
     // A 48-byte record may straddle two cache lines: fetch both.
-    line -= firstLine;
     __builtin_prefetch(&lines[line], 1);
     __builtin_prefetch(reinterpret_cast<const char*>(&lines[line]) + sizeof(LineState) - 1, 1);
     const uint32_t first = view.entryBegin[cell];
@@ -718,8 +718,14 @@ std::vector<uint32_t> DiscreteLineSweep::lineOfEachCell(const IVec3& step,
 
 std::vector<uint32_t> DiscreteLineSweep::passOrder(const IVec3& step) {
   prepareLines(step);
+  return cellsInPassOrder(step, {});
+}
+
+std::vector<uint32_t> DiscreteLineSweep::cellsInPassOrder(const IVec3& step,
+                                                          const LineBand& band) const {
   std::vector<uint32_t> order;
-  forEachCellInPassOrder(step, {}, [&](uint32_t cell, uint32_t, int32_t) { order.push_back(cell); });
+  forEachCellInPassOrder(step, band,
+                         [&](uint32_t cell, uint32_t, int32_t) { order.push_back(cell); });
   return order;
 }
 
@@ -728,11 +734,7 @@ std::vector<std::vector<uint32_t>> DiscreteLineSweep::passOrderInBands(const IVe
   prepareLines(step);
   cutBands(bands);
   std::vector<std::vector<uint32_t>> orders;
-  for (const LineBand& band : bands_) {
-    std::vector<uint32_t>& order = orders.emplace_back();
-    forEachCellInPassOrder(step, band,
-                           [&](uint32_t cell, uint32_t, int32_t) { order.push_back(cell); });
-  }
+  for (const LineBand& band : bands_) orders.push_back(cellsInPassOrder(step, band));
   return orders;
 }
 

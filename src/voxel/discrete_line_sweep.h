@@ -28,9 +28,10 @@
 // dominant, a range of z in every slab, since a line's row then depends on x and z).
 // Bands touch disjoint lines and sides, so one accumulator serves all threads, and a side's sum
 // over the directions is the same whatever their number. A band's lines are a contiguous range
-// of the table, and each thread keeps the records of the band it sweeps only: bands hold at most
-// an eighth of a direction's lines, one thread as many, so the records take an eighth of the
-// memory a whole table would and are reused, warm in the cache, from band to band.
+// of the line numbers, and each thread keeps the records of the band it sweeps only: a band holds
+// at most an eighth of the widest direction's lines (plus a row), with one thread as with
+// several, so each thread's records take an eighth of the memory a whole table would and are
+// reused, warm in the cache, from band to band.
 
 #include "voxel/direction_set.h"
 #include "voxel/side_visibility.h"
@@ -255,8 +256,9 @@ class DiscreteLineSweep {
     std::vector<LineState> lines;
     uint16_t stamp = 0;
     DeferredGathers later;
-    /// Records for a band of `lines` lines, none of them holding an earlier pass's voxels.
-    LineState* recordsFor(size_t lines, size_t capacity);
+    /// Records for a band of `count` lines (room for `capacity`, the most a band holds), none of
+    /// them holding an earlier pass's voxels.
+    LineState* recordsFor(size_t count, size_t capacity);
   };
   template <bool kTangentCorrection>
   void pass(const IVec3& step, const LineBand& band, const Vec3& unit, float weight,
@@ -300,6 +302,8 @@ class DiscreteLineSweep {
   template <typename F>
   [[gnu::always_inline]] inline void forEachCellInPassOrder(const IVec3& step,
                                                             const LineBand& band, F&& f) const;
+  /// The cells of one band of the direction prepared last, in pass order (for tests).
+  std::vector<uint32_t> cellsInPassOrder(const IVec3& step, const LineBand& band) const;
   /// The rows of slab x whose lines lie in the band (x or y dominant).
   [[gnu::noinline]] std::pair<uint32_t, uint32_t> rowsInBand(uint32_t x,
                                                              const LineBand& band) const;

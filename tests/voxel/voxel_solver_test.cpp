@@ -153,7 +153,7 @@ UniformRoom uniformRoom(const Color& rho) {
   const uint32_t wall = b.addMaterial({"wall", rho, Color(0.0f), false});
   const uint32_t lamp = b.addMaterial({"lamp", rho, Color(1.0f), false});
   test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : wall; });
-  UniformRoom room{b.build(), {}, {}, 0.0};
+  UniformRoom room{b.build(), {}, {}, {}};
   room.grid = voxelize(room.scene, 1.0f / 20.0f);
   room.settings.sphereRadius = 10;
   room.settings.directSamples = 16;
@@ -197,9 +197,9 @@ TEST(VoxelSolver, BrightRoomBalancesEnergyAfterFiveIterations) {
 TEST(VoxelSolver, ColouredRoomBalancesEnergyInEveryChannelAfterFiveIterations) {
   // Walls sending on 80% of red, 50% of green and 20% of blue: each channel's bounces fall by
   // their own ratio, and the tail must follow each (2% asked per channel). One ratio of the
-  // luminance's powers after five iterations, sum_c w_c 0.8^5 / sum_c w_c 0.8^4 with the
-  // luminance weights (0.2126, 0.7152, 0.0722) and 0.5, 0.2 for green and blue, is 0.70 where
-  // red's is 0.8: it adds 2.3 last bounces to red instead of 4 (checked: red 7.7% dark).
+  // luminance's powers after five iterations, sum_c w_c rho_c^5 / sum_c w_c rho_c^4 with the
+  // luminance weights w = (0.2126, 0.7152, 0.0722), is 0.70 where red's is 0.8: it adds 2.3
+  // last bounces to red instead of 4 (checked: red 7.7% dark).
   UniformRoom room = uniformRoom(Color(0.8f, 0.5f, 0.2f));
   room.settings.iterations = 5;
   const VoxelSolution s = solveVoxelRadiosity(room.scene, room.grid, room.settings);
