@@ -250,10 +250,11 @@ void DiscreteLineSweep::checkLineCount(const VoxelGrid& grid, size_t lines) {
   // rowStart_ holds a row's first line less its lowest V, signed: 2^31 - 1 lines at most.
   constexpr size_t kMostLines = size_t(INT32_MAX);
   if (lines > kMostLines)
-    throw InputError("voxel grid",
-                     fmt::format("{} lines cross the grid's {} x {} x {} voxels along one direction, "
-                                 "more than the sweep's limit of {}; use a larger voxel size",
-                                 lines, grid.dims.x, grid.dims.y, grid.dims.z, kMostLines));
+    throw InputError(
+        "voxel grid",
+        fmt::format("{} lines cross the grid's {} x {} x {} voxels along one direction, "
+                    "more than the sweep's limit of {}; use a larger voxel size",
+                    lines, grid.dims.x, grid.dims.y, grid.dims.z, kMostLines));
 }
 
 size_t DiscreteLineSweep::maxLineCount(const VoxelGrid& grid, std::span<const IVec3> steps) {

@@ -103,7 +103,8 @@ TEST(VoxelSolver, FurnaceHoldsAroundATurnedBox) {
   const double expected = glm::pi<double>() * 1.0 / 0.5;
   double boxArea = 0.0, boxPower = 0.0;
   for (size_t e = 0; e < grid.entryCount(); ++e)
-    if (grid.objectOf(e) == box) boxArea += grid.area[e], boxPower += grid.area[e] * s.radiosity[e].x;
+    if (grid.objectOf(e) == box)
+      boxArea += grid.area[e], boxPower += grid.area[e] * s.radiosity[e].x;
   EXPECT_NEAR(boxPower / boxArea, expected, 0.015 * expected);
 }
 
