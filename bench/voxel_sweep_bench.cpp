@@ -32,7 +32,7 @@ const VoxelGrid& roomGrid(size_t voxels) {
 void BM_DiscreteLineSweepPair(benchmark::State& state) {
   const VoxelGrid& grid = roomGrid(size_t(state.range(0)));
   const DirectionSet directions(38);
-  std::vector<DiscreteLineSweep::Slot> slots(grid.entryCount());
+  std::vector<DiscreteLineSweep::SentLight> slots(grid.entryCount());
   const DiscreteLineSweep::Source source =
       DiscreteLineSweep::packSides(grid, [](size_t) { return Color(1.0f); }, slots);
   std::vector<Color> gathered(grid.entryCount());
@@ -65,7 +65,7 @@ void BM_Voxelize(benchmark::State& state) {
   for (auto _ : state) {
     const VoxelGrid grid = voxelizeScene(scene, settings);
     cells += grid.cellCount();
-    benchmark::DoNotOptimize(grid.normal.data());
+    benchmark::DoNotOptimize(grid.orientation.data());
   }
   state.counters["voxels"] = benchmark::Counter(double(cells), benchmark::Counter::kIsRate);
 }

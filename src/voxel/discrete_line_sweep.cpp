@@ -283,8 +283,9 @@ bool holdsCell(const int16_t normal[3]) {
   return (normal[0] | normal[1] | normal[2]) == 0;
 }
 
-// A packed normal and radiosity (a Slot's or a RecentVoxel's first 12 bytes) decode with one
-// 8-byte load and one conversion each; the fourth lane, read from the field after, is dropped.
+// A packed normal and radiosity (a Slot's or a RecentVoxel's first 12 bytes, a SideOrientation,
+// a SentLight) decode with one 8-byte load and one conversion each; the fourth lane, read from
+// the field after, is dropped.
 Vec3 lanes(__m128 v) {
   alignas(16) float f[4];
   _mm_store_ps(f, v);
@@ -299,8 +300,7 @@ __m128i eightBytesAt(const void* p) {
 
 template <typename Packed>
 Vec3 slotNormal(const Packed& p) {
-  static_assert(offsetof(Packed, normal) == 0 && offsetof(Packed, radiosity) == 6 &&
-                sizeof(Packed) >= 14);
+  static_assert(offsetof(Packed, normal) == 0 && sizeof(Packed) >= 8);
   const __m128 n = _mm_cvtepi32_ps(_mm_cvtepi16_epi32(eightBytesAt(&p)));
   return lanes(_mm_mul_ps(n, _mm_set1_ps(1.0f / PackedNormal::kScale)));
 }
@@ -309,6 +309,15 @@ template <typename Packed>
 Color halfColor(const Packed& p) {
   return lanes(
       _mm_cvtph_ps(eightBytesAt(reinterpret_cast<const char*>(&p) + offsetof(Packed, radiosity))));
+}
+
+// Side e's unit normal and the radiosity it sends (over the Source's scale), read from the
+// Source's two arrays.
+Vec3 sideNormal(const DiscreteLineSweep::Source& source, size_t e) {
+  return slotNormal(source.normals[e]);
+}
+Color sideLight(const DiscreteLineSweep::Source& source, size_t e) {
+  return halfColor(source.sides[e]);
 }
 
 uint32_t slotCell(float offset) {
@@ -321,13 +330,15 @@ uint32_t slotCell(float offset) {
 
 DiscreteLineSweep::Source DiscreteLineSweep::packSides(const VoxelGrid& grid,
                                                        const std::function<Color(size_t)>& sends,
-                                                       std::span<Slot> slots) {
+                                                       std::span<SentLight> sides) {
+  static_assert(sizeof(SentLight) == 10 && offsetof(Slot, radiosity) + sizeof(SentLight) ==
+                                               sizeof(Slot));
   // A group's mean is at most its largest member: the largest side bounds every slot.
-  const float scale = halfScaleFor(largestComponent(slots.size(), sends));
+  const float scale = halfScaleFor(largestComponent(sides.size(), sends));
   const float inverse = 1.0f / scale;  // a power of two: exact
-  for (size_t begin = 0; begin < slots.size();) {
+  for (size_t begin = 0; begin < sides.size();) {
     size_t end = begin + 1;
-    while (end < slots.size() && grid.sharesOrientation[end]) ++end;
+    while (end < sides.size() && grid.orientation[end].sharesPrevious) ++end;
     Color b = sends(begin);
     if (end - begin > 1) {
       Vec3d sum(0.0);
@@ -340,15 +351,14 @@ DiscreteLineSweep::Source DiscreteLineSweep::packSides(const VoxelGrid& grid,
     }
     b *= inverse;
     for (size_t e = begin; e < end; ++e) {
-      Slot& slot = slots[e];
-      std::memcpy(slot.normal, grid.normal[e].v.data(), sizeof slot.normal);
-      for (int k = 0; k < 3; ++k) slot.radiosity[k] = _cvtss_sh(b[k], _MM_FROUND_TO_NEAREST_INT);
-      // A unit normal has a component of at least 0.57: it never packs to the cell marker.
-      slot.offset = glm::dot(slotNormal(slot), grid.centroid[e]);
+      SentLight& side = sides[e];
+      for (int k = 0; k < 3; ++k) side.radiosity[k] = _cvtss_sh(b[k], _MM_FROUND_TO_NEAREST_INT);
+      const float offset = glm::dot(slotNormal(grid.orientation[e]), grid.centroid[e]);
+      std::memcpy(side.offset, &offset, sizeof offset);
     }
     begin = end;
   }
-  return {slots, scale};
+  return {grid.orientation.data(), sides, scale};
 }
 
 inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
@@ -378,7 +388,7 @@ inline Sight DiscreteLineSweep::look(const Vec3& centroid, const Slot& s, const 
   if (holdsCell(s.normal)) {
     uint32_t side = 0;
     const Sight sight = visibility_->look(centroid, slotCell(s.offset), unit, side);
-    if (sight == Sight::Source) light = sentRadiosity(source[side]);
+    if (sight == Sight::Source) light = sideLight(source, side);
     return sight;
   }
   const Vec3 n = slotNormal(s);
@@ -393,8 +403,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
                                                int32_t dominant) const {
   // Most cells hold one side and most recent voxels are one side: the plane test against the
   // recent voxel serves the look back, the run test and the waiting sides, computed once.
-  const Slot& slot = view.source[e];
-  const Vec3 n = slotNormal(slot);
+  const Vec3 n = sideNormal(view.source, e);
   const Vec3 c = view.centroid[e];
   const float facing = glm::dot(n, view.unit);  // < 0: e looks back along the line, > 0: ahead
   const RecentVoxel& recent = state.recent;
@@ -421,10 +430,10 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
     if (state.pending == state.recentRef && state.pendingLink == kNoPending && recentIsSide &&
         recentSight != Sight::Through) {
       if (recentSight == Sight::Source)
-        gatherLater(view, state.pending, sentRadiosity(slot) * (recentFacing * view.weight));
+        gatherLater(view, state.pending, sideLight(view.source, e) * (recentFacing * view.weight));
       state.pending = kNoPending;
     } else {
-      resolvePending<kTangentCorrection>(view, state, slot);
+      resolvePending<kTangentCorrection>(view, state, view.source[e]);
     }
   }
   if (facing < 0.0f && hasRecent) {
@@ -443,8 +452,11 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
     wait(view, state, e, continues && state.pending == state.recentRef);
   }
   becomeRecent(state, e, dominant, continues);
-  std::memcpy(state.recent.normal, slot.normal, sizeof slot.normal);
-  std::memcpy(state.recent.radiosity, slot.radiosity, sizeof slot.radiosity);
+  // Eight bytes each, in this order: the normal's spare lane lands where the radiosity goes, and
+  // the radiosity's spare lane where the centroid goes.
+  static_assert(offsetof(RecentVoxel, radiosity) == 6 && offsetof(RecentVoxel, centroid) == 12);
+  std::memcpy(&state.recent, &view.source.normals[e], 8);
+  std::memcpy(state.recent.radiosity, &view.source.sides[e], 8);
   state.recent.centroid = c;
 }
 
@@ -482,14 +494,14 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
     resolvePending<kTangentCorrection>(view, state, slot);
   const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
   for (uint32_t e = begin; e < end; ++e) {
-    const float facing = glm::dot(slotNormal(source[e]), unit);
+    const float facing = glm::dot(sideNormal(source, e), unit);
     if (facing == 0.0f) continue;
     const float w = std::abs(facing) * view.weight;
     // The cell's own other sides first (the faces of an inner edge see each other).
     uint32_t own = 0;
     if (visibility_->hasFold(e) &&
         visibility_->lookWithinCell(e, cell, facing < 0.0f ? unit : -unit, own)) {
-      view.gathered[e] += sentRadiosity(source[own]) * w;
+      view.gathered[e] += sideLight(source, own) * w;
     } else if (facing > 0.0f) {
       wait(view, state, e, false);
     } else if (state.recentRef != kNoVoxel) {
@@ -541,7 +553,7 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
       const Vec3 centroid = recent ? state.recent.centroid : view.centroid[m];
       sight = look(centroid, slot, back, view.source, light);
       if (sight == Sight::Source) {
-        const Vec3 normal = recent ? slotNormal(state.recent) : slotNormal(view.source[m]);
+        const Vec3 normal = recent ? slotNormal(state.recent) : sideNormal(view.source, m);
         weight = glm::dot(normal, view.unit) * view.weight;
       }
     }
@@ -671,7 +683,8 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
     const uint32_t first = view.entryBegin[cell];
     __builtin_prefetch(&view.centroid[first]);
     __builtin_prefetch(&view.gathered[first], 1);
-    __builtin_prefetch(&view.source[first]);
+    __builtin_prefetch(&view.source.normals[first]);
+    __builtin_prefetch(&view.source.sides[first]);
     const uint32_t i = count++ & kMask;
     if (count > kAhead) visit(i);
     ringCell[i] = cell, ringLine[i] = line, ringDominant[i] = dominant;

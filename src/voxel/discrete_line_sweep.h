@@ -42,6 +42,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <memory>
 #include <span>
@@ -68,29 +69,43 @@ class DiscreteLineSweep {
   DiscreteLineSweep(const DiscreteLineSweep&) = delete;
   DiscreteLineSweep& operator=(const DiscreteLineSweep&) = delete;
 
-  /// A voxel behind on the line, 16 bytes: a single side inline (its plane n.x = d with n in
-  /// snorm16, its radiosity in half floats), or, with a zero normal, a cell of several sides
-  /// whose index is stored in `offset`'s bits and which is looked up in the grid.
+  /// A voxel as a look meets it, 16 bytes: a single side (its plane n.x = d with n in snorm16,
+  /// its radiosity in half floats), or, with a zero normal, a cell of several sides whose index
+  /// is stored in `offset`'s bits and which is looked up in the grid.
   struct Slot {
     int16_t normal[3];
     uint16_t radiosity[3];
     float offset;
   };
-  /// What the sweeps read of every side: its slot, whose radiosity is the one it sends divided
-  /// by `scale`, a power of two that keeps the largest within half floats (halfScaleFor); the
-  /// sweep multiplies the light it gathers back by it.
-  struct Source {
-    std::span<const Slot> slots;
-    float scale = 1.0f;
-    const Slot& operator[](size_t e) const { return slots[e]; }
+  /// What the sweeps keep of each side besides its normal (the grid's): the radiosity it sends,
+  /// in half floats, and its plane's offset n . centroid, 10 bytes (the offset's float in two
+  /// halves, so that the array packs without padding).
+  struct SentLight {
+    uint16_t radiosity[3];
+    uint16_t offset[2];
   };
-  /// Packs every entry's plane and the radiosity it sends, `sends(e)` (finite, >= 0), into
-  /// `slots`: what the sweeps read of each side, prepared once per iteration (B changes
-  /// between). Sides of several objects sharing one orientation in a cell (a lamp set in a
-  /// ceiling) send light as one surface: their area-weighted mean, whichever of them a line
-  /// happens to meet.
+  /// What the sweeps read of every side: its normal and the light it sends, whose radiosity is
+  /// the one it sends divided by `scale`, a power of two that keeps the largest within half
+  /// floats (halfScaleFor); the sweep multiplies the light it gathers back by it.
+  struct Source {
+    const SideOrientation* normals = nullptr;
+    std::span<const SentLight> sides;
+    float scale = 1.0f;
+    /// Side e as a look meets it.
+    Slot operator[](size_t e) const {
+      Slot slot;
+      std::memcpy(slot.normal, &normals[e].normal, sizeof slot.normal);
+      std::memcpy(slot.radiosity, &sides[e], sizeof(SentLight));
+      return slot;
+    }
+  };
+  /// Packs the radiosity every entry sends, `sends(e)` (finite, >= 0), and its plane's offset
+  /// into `sides`: what the sweeps read of each side besides its normal, prepared once per
+  /// iteration (B changes between). Sides of several objects sharing one orientation in a cell
+  /// (a lamp set in a ceiling) send light as one surface: their area-weighted mean, whichever of
+  /// them a line happens to meet.
   static Source packSides(const VoxelGrid& grid, const std::function<Color(size_t)>& sends,
-                          std::span<Slot> slots);
+                          std::span<SentLight> sides);
   /// The radiosity a packed side sends, divided by its Source's scale.
   static Color sentRadiosity(const Slot& slot);
 

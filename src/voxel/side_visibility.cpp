@@ -83,7 +83,7 @@ void SideVisibility::findNeighbourFolds() {
                 known = glm::dot(neighbourFolds_[k].normal.unpack(), ng) > kSamePlaneCos &&
                         std::abs(neighbourFolds_[k].offset - offset) <= tolerance_;
               if (!known && neighbourFolds_.size() - first < kMostPlanes)
-                neighbourFolds_.push_back({f, grid.normal[g], offset});
+                neighbourFolds_.push_back({f, grid.orientation[g].normal, offset});
             }
           if (neighbourFolds_.size() > first) frontOf_[f] |= kNeighbourFolds;
         }

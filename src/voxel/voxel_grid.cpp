@@ -39,8 +39,8 @@ uint32_t VoxelGrid::findCell(const IVec3& c) const {
 
 size_t VoxelGrid::memoryBytes() const {
   return bytes(cellZ) + bytes(cellEntryBegin) + bytes(rowY) + bytes(rowCellBegin) +
-         bytes(slabRowBegin) + bytes(normal) + bytes(centroid) + bytes(area) + bytes(surface) +
-         bytes(sharesOrientation) + bytes(surfaces);
+         bytes(slabRowBegin) + bytes(orientation) + bytes(centroid) + bytes(area) + bytes(surface) +
+         bytes(surfaces);
 }
 
 }  // namespace rad

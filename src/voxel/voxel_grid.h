@@ -48,6 +48,17 @@ struct PackedNormal {
   bool operator==(const PackedNormal&) const = default;
 };
 
+/// A side's orientation, 8 bytes that the sweeps read in one aligned load for every side they
+/// visit: its unit normal and whether it continues the orientation of the side before it in its
+/// cell (the pieces of several objects in one plane, a lamp set in a ceiling, which light sees
+/// as one surface).
+struct SideOrientation {
+  PackedNormal normal;
+  bool sharesPrevious = false;
+  bool operator==(const SideOrientation&) const = default;
+};
+static_assert(sizeof(SideOrientation) == 8);
+
 struct VoxelGrid {
   Vec3 origin{0.0f};  ///< corner of voxel (0, 0, 0)
   float voxelSize = 1.0f;
@@ -62,21 +73,20 @@ struct VoxelGrid {
   std::vector<uint32_t> slabRowBegin;  ///< dims.x + 1 offsets into the rows
 
   // Entries (one per surface side in a cell).
-  std::vector<PackedNormal> normal;  ///< unit, area-weighted mean of the side's triangles
+  /// The unit normal, area-weighted mean of the side's triangles, and whether it shares the
+  /// orientation of the entry before it.
+  std::vector<SideOrientation> orientation;
   std::vector<Vec3> centroid;   ///< area-weighted centroid of the surface inside the voxel
   std::vector<float> area;      ///< surface area the entry stands for (scene units^2)
   std::vector<uint32_t> surface;  ///< index into surfaces
-  /// True when the entry has the orientation of the entry before it in the same cell: the
-  /// pieces of several objects in one plane (a lamp in a ceiling), which light sees as one.
-  std::vector<uint8_t> sharesOrientation;
   std::vector<VoxelSurface> surfaces;
 
   size_t cellCount() const { return cellZ.size(); }
-  size_t entryCount() const { return normal.size(); }
+  size_t entryCount() const { return orientation.size(); }
   size_t rowCount() const { return rowY.size(); }
   /// Integer coordinates of a cell (found from the row structure; O(log rows)).
   IVec3 cellCoordinates(uint32_t cell) const;
-  Vec3 unitNormal(size_t entry) const { return normal[entry].unpack(); }
+  Vec3 unitNormal(size_t entry) const { return orientation[entry].normal.unpack(); }
   const VoxelMaterial& materialOf(size_t entry) const { return surfaces[surface[entry]].material; }
   uint32_t objectOf(size_t entry) const { return surfaces[surface[entry]].object; }
   Vec3 cellCenter(const IVec3& c) const { return origin + (Vec3(c) + 0.5f) * voxelSize; }

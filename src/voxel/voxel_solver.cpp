@@ -58,7 +58,8 @@ std::vector<uint16_t> facingWeights(const VoxelGrid& grid, const DirectionSet& d
   std::vector<Vec3> distinct;
   std::vector<uint32_t> normalOf(grid.entryCount());
   for (size_t e = 0; e < grid.entryCount(); ++e) {
-    const auto [it, inserted] = index.try_emplace(grid.normal[e].v, uint32_t(distinct.size()));
+    const auto [it, inserted] =
+        index.try_emplace(grid.orientation[e].normal.v, uint32_t(distinct.size()));
     if (inserted) distinct.push_back(grid.unitNormal(e));
     normalOf[e] = it->second;
   }
@@ -146,7 +147,7 @@ void gatherAllDirections(const DirectionSet& directions, DiscreteLineSweep& swee
 uint64_t solverBytesPerSide(const VoxelSolverSettings& settings) {
   return sizeof(Color) +                                          // the bounce being gathered
          sizeof(Color) +                                          // irradiance so far
-         sizeof(DiscreteLineSweep::Slot) +                        // packed sides
+         sizeof(DiscreteLineSweep::SentLight) +                   // light sent, planes
          (settings.normalize ? sizeof(uint16_t) : 0) +            // normalization weights
          sizeof(uint16_t);                                        // fold masks (SideVisibility)
 }
@@ -284,7 +285,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   SideLight light(grid, settings, directions, std::move(direct));
   auto sweep = std::make_unique<DiscreteLineSweep>(grid, settings.sweep);
   sweep->reserveLines(lines);
-  std::vector<DiscreteLineSweep::Slot> packed(grid.entryCount());
+  std::vector<DiscreteLineSweep::SentLight> packed(grid.entryCount());
   const size_t laterIterations = size_t(std::max(settings.iterations - 1, 0));
   ProgressTicker ticker(progress,
                         directions.pairCount() + laterDirections.pairCount() * laterIterations);

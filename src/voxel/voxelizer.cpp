@@ -176,8 +176,10 @@ uint32_t internSurface(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& index,
   return it->second;
 }
 
-void appendSide(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& surfaceIndex, const Side& side) {
-  grid.normal.push_back(PackedNormal::pack(Vec3(glm::normalize(side.normalSum))));
+void appendSide(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& surfaceIndex, const Side& side,
+                bool sharesPrevious) {
+  grid.orientation.push_back(
+      {PackedNormal::pack(Vec3(glm::normalize(side.normalSum))), sharesPrevious});
   grid.centroid.push_back(Vec3(side.centroidSum / side.weight));
   grid.area.push_back(float(side.area));
   const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};
@@ -219,11 +221,10 @@ void reserveEntries(const Scene& scene, const std::vector<Fragment>& fragments, 
   grid.cellEntryBegin.reserve(cells + 1);
   grid.rowY.reserve(rows);
   grid.rowCellBegin.reserve(rows + 1);
-  grid.normal.reserve(entries);
+  grid.orientation.reserve(entries);
   grid.centroid.reserve(entries);
   grid.area.reserve(entries);
   grid.surface.reserve(entries);
-  grid.sharesOrientation.reserve(entries);
 }
 
 // Fills the grid's cells, rows, slabs and entries from fragments sorted by cell.
@@ -242,15 +243,14 @@ void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, Vo
       lastY = c.y;
     }
     grid.cellZ.push_back(int16_t(c.z));
-    grid.cellEntryBegin.push_back(uint32_t(grid.normal.size()));
-    for (size_t k = 0; k < sides.size(); ++k) {
-      appendSide(grid, surfaceIndex, sides[k]);
-      grid.sharesOrientation.push_back(k > 0 && sides[k].orientation == sides[k - 1].orientation);
-    }
+    grid.cellEntryBegin.push_back(uint32_t(grid.orientation.size()));
+    for (size_t k = 0; k < sides.size(); ++k)
+      appendSide(grid, surfaceIndex, sides[k],
+                 k > 0 && sides[k].orientation == sides[k - 1].orientation);
   });
   for (int x = lastX + 1; x <= grid.dims.x; ++x) grid.slabRowBegin[x] = uint32_t(grid.rowY.size());
   grid.rowCellBegin.push_back(uint32_t(grid.cellZ.size()));
-  grid.cellEntryBegin.push_back(uint32_t(grid.normal.size()));
+  grid.cellEntryBegin.push_back(uint32_t(grid.orientation.size()));
 }
 
 // A planar piece of area A with unit normal n covers about A (|nx| + |ny| + |nz|) / s^2 voxels

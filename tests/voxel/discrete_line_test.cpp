@@ -341,7 +341,7 @@ TEST(Voxelizer, SameGridWhateverTheThreadCount) {
   const VoxelGrid one = gridOn(1), four = gridOn(4);
   EXPECT_EQ(one.cellZ, four.cellZ);
   EXPECT_EQ(one.cellEntryBegin, four.cellEntryBegin);
-  EXPECT_EQ(one.normal, four.normal);
+  EXPECT_EQ(one.orientation, four.orientation);
   EXPECT_EQ(one.centroid, four.centroid);
   EXPECT_EQ(one.area, four.area);
   EXPECT_EQ(one.surface, four.surface);
@@ -370,7 +370,7 @@ TEST(DiscreteLineSweep, FacingPlatesGetTheSameLightWhicheverWayTheLinesRun) {
   // In one traversal along s the plate behind waits for light from ahead while the other looks
   // back: both ways must give every side B cos w = 1 along the normal.
   const VoxelGrid grid = facingPlates();
-  std::vector<DiscreteLineSweep::Slot> slots(grid.entryCount());
+  std::vector<DiscreteLineSweep::SentLight> slots(grid.entryCount());
   const DiscreteLineSweep::Source source =
       DiscreteLineSweep::packSides(grid, [](size_t) { return Color(1.0f); }, slots);
   for (const IVec3& step : {IVec3(1, 0, 0), IVec3(-1, 0, 0)}) {
@@ -411,7 +411,7 @@ TEST(DiscreteLineSweep, EveryVoxelOfAGrazingRunGetsTheLightAhead) {
   VoxelizerSettings settings;
   settings.voxelSize = 0.1f;
   const VoxelGrid grid = voxelizeScene(b.build(), settings);
-  std::vector<DiscreteLineSweep::Slot> slots(grid.entryCount());
+  std::vector<DiscreteLineSweep::SentLight> slots(grid.entryCount());
   const DiscreteLineSweep::Source source = DiscreteLineSweep::packSides(
       grid, [&](size_t e) { return Color(grid.objectOf(e) == floorObject ? 0.0f : 1.0f); }, slots);
   DiscreteLineSweep sweep(grid, {});
