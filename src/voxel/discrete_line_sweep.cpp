@@ -344,8 +344,8 @@ DiscreteLineSweep::Source DiscreteLineSweep::packSides(const VoxelGrid& grid,
       Vec3d sum(0.0);
       double area = 0.0;
       for (size_t e = begin; e < end; ++e) {
-        sum += double(grid.area[e]) * Vec3d(e == begin ? b : sends(e));
-        area += grid.area[e];
+        sum += double(grid.areaOf(e)) * Vec3d(e == begin ? b : sends(e));
+        area += grid.areaOf(e);
       }
       if (area > 0.0) b = Color(sum / area);
     }

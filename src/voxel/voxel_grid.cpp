@@ -1,5 +1,7 @@
 #include "voxel/voxel_grid.h"
 
+#include <immintrin.h>
+
 #include <algorithm>
 
 namespace rad {
@@ -37,10 +39,14 @@ uint32_t VoxelGrid::findCell(const IVec3& c) const {
   return uint32_t(cellIt - cellZ.begin());
 }
 
+float VoxelGrid::areaOf(size_t entry) const {
+  return _cvtsh_ss(faceArea[entry]) * (voxelSize * voxelSize);
+}
+
 size_t VoxelGrid::memoryBytes() const {
   return bytes(cellZ) + bytes(cellEntryBegin) + bytes(rowY) + bytes(rowCellBegin) +
-         bytes(slabRowBegin) + bytes(orientation) + bytes(centroid) + bytes(area) + bytes(surface) +
-         bytes(surfaces);
+         bytes(slabRowBegin) + bytes(orientation) + bytes(centroid) + bytes(faceArea) +
+         bytes(surface) + bytes(surfaces);
 }
 
 }  // namespace rad

@@ -77,7 +77,9 @@ struct VoxelGrid {
   /// orientation of the entry before it.
   std::vector<SideOrientation> orientation;
   std::vector<Vec3> centroid;   ///< area-weighted centroid of the surface inside the voxel
-  std::vector<float> area;      ///< surface area the entry stands for (scene units^2)
+  /// The surface area the entry stands for, in voxel faces (voxelSize^2), as a half float:
+  /// to 2^-12 of its value, 2 bytes (areaOf gives it in scene units^2).
+  std::vector<uint16_t> faceArea;
   std::vector<uint32_t> surface;  ///< index into surfaces
   std::vector<VoxelSurface> surfaces;
 
@@ -87,6 +89,8 @@ struct VoxelGrid {
   /// Integer coordinates of a cell (found from the row structure; O(log rows)).
   IVec3 cellCoordinates(uint32_t cell) const;
   Vec3 unitNormal(size_t entry) const { return orientation[entry].normal.unpack(); }
+  /// The surface area the entry stands for (scene units^2).
+  float areaOf(size_t entry) const;
   const VoxelMaterial& materialOf(size_t entry) const { return surfaces[surface[entry]].material; }
   uint32_t objectOf(size_t entry) const { return surfaces[surface[entry]].object; }
   Vec3 cellCenter(const IVec3& c) const { return origin + (Vec3(c) + 0.5f) * voxelSize; }

@@ -115,7 +115,7 @@ SurfaceSample VoxelRadiosity::Impl::sample(size_t e) const {
   const VoxelSurface& surface = grid.surfaces[grid.surface[e]];
   const VoxelMaterial& m = surface.material;
   return {surface.object,
-          grid.area[e],
+          grid.areaOf(e),
           grid.centroid[e],
           grid.unitNormal(e),
           glm::pi<float>() * m.emission,

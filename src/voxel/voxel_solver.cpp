@@ -287,7 +287,7 @@ class SideLight {
   Color rho(size_t e) const { return grid_.materialOf(e).rho; }
   Color irradiance(size_t e) const { return irradiance_[e].value(); }
   Color radiosity(size_t e) const { return emitted(e) + rho(e) * irradiance(e); }
-  Vec3d power(size_t e, const Color& c) const { return double(grid_.area[e]) * Vec3d(c); }
+  Vec3d power(size_t e, const Color& c) const { return double(grid_.areaOf(e)) * Vec3d(c); }
   /// The light the last iteration's sweeps brought side e, normalized.
   Color lastBounce(size_t e) const {
     const float weight = weights_.empty() ? 1.0f : 1.0f + _cvtsh_ss(weights_[e]);

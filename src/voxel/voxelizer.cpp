@@ -5,6 +5,7 @@
 #include "core/memory_usage.h"
 
 #include <fmt/format.h>
+#include <immintrin.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -181,7 +182,8 @@ void appendSide(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& surfaceIndex, c
   grid.orientation.push_back(
       {PackedNormal::pack(Vec3(glm::normalize(side.normalSum))), sharesPrevious});
   grid.centroid.push_back(Vec3(side.centroidSum / side.weight));
-  grid.area.push_back(float(side.area));
+  const float faces = float(side.area / (double(grid.voxelSize) * grid.voxelSize));
+  grid.faceArea.push_back(_cvtss_sh(faces, _MM_FROUND_TO_NEAREST_INT));
   const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};
   grid.surface.push_back(
       internSurface(grid, surfaceIndex, {m, side.object, side.backArea > 0.5 * side.area}));
@@ -223,7 +225,7 @@ void reserveEntries(const Scene& scene, const std::vector<Fragment>& fragments, 
   grid.rowCellBegin.reserve(rows + 1);
   grid.orientation.reserve(entries);
   grid.centroid.reserve(entries);
-  grid.area.reserve(entries);
+  grid.faceArea.reserve(entries);
   grid.surface.reserve(entries);
 }
 

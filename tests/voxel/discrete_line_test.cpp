@@ -287,7 +287,7 @@ TEST(Voxelizer, AreasAddUpToTheSurface) {
   settings.voxelSize = 0.043f;
   const VoxelGrid grid = voxelizeScene(test::uniformCube(Color(0.5f), Color(0.0f)), settings);
   double area = 0.0;
-  for (float a : grid.area) area += a;
+  for (size_t e = 0; e < grid.entryCount(); ++e) area += grid.areaOf(e);
   EXPECT_NEAR(area, 6.0, 1e-4);
   // Each face's voxels hold its normal.
   for (size_t e = 0; e < grid.entryCount(); ++e)
@@ -343,7 +343,7 @@ TEST(Voxelizer, SameGridWhateverTheThreadCount) {
   EXPECT_EQ(one.cellEntryBegin, four.cellEntryBegin);
   EXPECT_EQ(one.orientation, four.orientation);
   EXPECT_EQ(one.centroid, four.centroid);
-  EXPECT_EQ(one.area, four.area);
+  EXPECT_EQ(one.faceArea, four.faceArea);
   EXPECT_EQ(one.surface, four.surface);
   EXPECT_EQ(one.surfaces, four.surfaces);
 }

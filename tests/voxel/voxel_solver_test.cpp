@@ -104,13 +104,13 @@ TEST(VoxelSolver, FurnaceHoldsAroundATurnedBox) {
   double boxArea = 0.0, boxPower = 0.0;
   for (size_t e = 0; e < grid.entryCount(); ++e)
     if (grid.objectOf(e) == box)
-      boxArea += grid.area[e], boxPower += grid.area[e] * s.radiosity[e].x;
+      boxArea += grid.areaOf(e), boxPower += grid.areaOf(e) * s.radiosity[e].x;
   EXPECT_NEAR(boxPower / boxArea, expected, 0.015 * expected);
 }
 
 double weightedSum(const VoxelGrid& grid, const std::vector<Color>& values, int channel) {
   double sum = 0.0;
-  for (size_t e = 0; e < grid.entryCount(); ++e) sum += grid.area[e] * values[e][channel];
+  for (size_t e = 0; e < grid.entryCount(); ++e) sum += grid.areaOf(e) * values[e][channel];
   return sum;
 }
 
@@ -259,7 +259,7 @@ void expectLightStaysInTheBox(const glm::mat3& turn, double leak) {
     double insideLight = 0.0, emitted = 0.0, leaked = 0.0;
     size_t outside = 0;
     for (size_t e = 0; e < grid.entryCount(); ++e) {
-      emitted += grid.area[e] * glm::pi<float>() * maxComponent(grid.materialOf(e).emission);
+      emitted += grid.areaOf(e) * glm::pi<float>() * maxComponent(grid.materialOf(e).emission);
       const Vec3 fromCentre = glm::transpose(turn) * (grid.centroid[e] - centre);
       const bool onFloor = grid.objectOf(e) == floorObject;
       const bool facesOut = glm::dot(grid.unitNormal(e), grid.centroid[e] - centre) > 0.0f &&
@@ -267,7 +267,7 @@ void expectLightStaysInTheBox(const glm::mat3& turn, double leak) {
       const bool wallSide = glm::compMax(glm::abs(fromCentre)) > 0.45f;
       if (onFloor || (wallSide && facesOut)) {
         ++outside;
-        leaked += grid.area[e] * maxComponent(s.radiosity[e]);
+        leaked += grid.areaOf(e) * maxComponent(s.radiosity[e]);
         if (leak == 0.0) {
           ASSERT_EQ(maxComponent(s.radiosity[e]), 0.0f)
               << "entry " << e << " at " << grid.centroid[e].x << "," << grid.centroid[e].y << ","
