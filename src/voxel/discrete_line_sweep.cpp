@@ -283,9 +283,9 @@ bool holdsCell(const int16_t normal[3]) {
   return (normal[0] | normal[1] | normal[2]) == 0;
 }
 
-// A packed normal and radiosity (a Slot's or a RecentVoxel's first 12 bytes, a SideOrientation,
-// a SentLight) decode with one 8-byte load and one conversion each; the fourth lane, read from
-// the field after, is dropped.
+// A packed normal and radiosity (a Slot's or a RecentVoxel's first 12 bytes, a SideOrientation)
+// decode with one 8-byte load and one conversion each; the fourth lane, read from the field
+// after, is dropped.
 Vec3 lanes(__m128 v) {
   alignas(16) float f[4];
   _mm_store_ps(f, v);
@@ -312,12 +312,24 @@ Color halfColor(const Packed& p) {
 }
 
 // Side e's unit normal and the radiosity it sends (over the Source's scale), read from the
-// Source's two arrays.
+// Source's arrays (a SentLight's 6 bytes as 4 + 2: its array ends where its last side does).
 Vec3 sideNormal(const DiscreteLineSweep::Source& source, size_t e) {
   return slotNormal(source.normals[e]);
 }
 Color sideLight(const DiscreteLineSweep::Source& source, size_t e) {
-  return halfColor(source.sides[e]);
+  uint32_t low;
+  uint16_t high;
+  std::memcpy(&low, source.sides[e].radiosity, sizeof low);
+  std::memcpy(&high, source.sides[e].radiosity + 2, sizeof high);
+  return lanes(_mm_cvtph_ps(_mm_insert_epi16(_mm_cvtsi32_si128(int(low)), high, 2)));
+}
+// Side e as a look meets it: its plane and the radiosity it sends.
+DiscreteLineSweep::Slot sideSlot(const DiscreteLineSweep::Source& source, size_t e) {
+  DiscreteLineSweep::Slot slot;
+  std::memcpy(slot.normal, &source.normals[e].normal, sizeof slot.normal);
+  std::memcpy(slot.radiosity, &source.sides[e], sizeof slot.radiosity);
+  slot.offset = glm::dot(slotNormal(source.normals[e]), source.centroids[e]);
+  return slot;
 }
 
 uint32_t slotCell(float offset) {
@@ -331,8 +343,6 @@ uint32_t slotCell(float offset) {
 DiscreteLineSweep::Source DiscreteLineSweep::packSides(const VoxelGrid& grid,
                                                        const std::function<Color(size_t)>& sends,
                                                        std::span<SentLight> sides) {
-  static_assert(sizeof(SentLight) == 10 && offsetof(Slot, radiosity) + sizeof(SentLight) ==
-                                               sizeof(Slot));
   // A group's mean is at most its largest member: the largest side bounds every slot.
   const float scale = halfScaleFor(largestComponent(sides.size(), sends));
   const float inverse = 1.0f / scale;  // a power of two: exact
@@ -350,15 +360,12 @@ DiscreteLineSweep::Source DiscreteLineSweep::packSides(const VoxelGrid& grid,
       if (area > 0.0) b = Color(sum / area);
     }
     b *= inverse;
-    for (size_t e = begin; e < end; ++e) {
-      SentLight& side = sides[e];
-      for (int k = 0; k < 3; ++k) side.radiosity[k] = _cvtss_sh(b[k], _MM_FROUND_TO_NEAREST_INT);
-      const float offset = glm::dot(slotNormal(grid.orientation[e]), grid.centroid[e]);
-      std::memcpy(side.offset, &offset, sizeof offset);
-    }
+    for (size_t e = begin; e < end; ++e)
+      for (int k = 0; k < 3; ++k)
+        sides[e].radiosity[k] = _cvtss_sh(b[k], _MM_FROUND_TO_NEAREST_INT);
     begin = end;
   }
-  return {grid.orientation.data(), sides, scale};
+  return {grid.orientation.data(), grid.centroid.data(), sides, scale};
 }
 
 inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
@@ -433,7 +440,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
         gatherLater(view, state.pending, sideLight(view.source, e) * (recentFacing * view.weight));
       state.pending = kNoPending;
     } else {
-      resolvePending<kTangentCorrection>(view, state, view.source[e]);
+      resolvePending<kTangentCorrection>(view, state, sideSlot(view.source, e));
     }
   }
   if (facing < 0.0f && hasRecent) {
@@ -452,11 +459,10 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
     wait(view, state, e, continues && state.pending == state.recentRef);
   }
   becomeRecent(state, e, dominant, continues);
-  // Eight bytes each, in this order: the normal's spare lane lands where the radiosity goes, and
-  // the radiosity's spare lane where the centroid goes.
-  static_assert(offsetof(RecentVoxel, radiosity) == 6 && offsetof(RecentVoxel, centroid) == 12);
+  // The normal's eight bytes first: its spare lane lands where the radiosity goes.
+  static_assert(offsetof(RecentVoxel, radiosity) == 6);
   std::memcpy(&state.recent, &view.source.normals[e], 8);
-  std::memcpy(state.recent.radiosity, &view.source.sides[e], 8);
+  std::memcpy(state.recent.radiosity, &view.source.sides[e], sizeof state.recent.radiosity);
   state.recent.centroid = c;
 }
 
@@ -585,7 +591,7 @@ Sight DiscreteLineSweep::lookOlder(const Vec3& centroid, const LineState& state,
   // decide (a slot for a cell of several sides is made from its reference).
   for (const uint32_t ref : state.olderRef) {
     if (ref == kNoVoxel) break;
-    const Slot older = ref & kCellRef ? cellSlot(ref & ~kCellRef) : source[ref];
+    const Slot older = ref & kCellRef ? cellSlot(ref & ~kCellRef) : sideSlot(source, ref);
     const Sight sight = look(centroid, older, unit, source, light);
     if (sight != Sight::Through) return sight;
   }

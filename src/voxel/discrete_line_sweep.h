@@ -42,7 +42,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <functional>
 #include <memory>
 #include <span>
@@ -77,31 +76,24 @@ class DiscreteLineSweep {
     uint16_t radiosity[3];
     float offset;
   };
-  /// What the sweeps keep of each side besides its normal (the grid's): the radiosity it sends,
-  /// in half floats, and its plane's offset n . centroid, 10 bytes (the offset's float in two
-  /// halves, so that the array packs without padding).
+  /// What the sweeps keep of each side besides the grid's normal and centroid: the radiosity it
+  /// sends, in half floats, 6 bytes.
   struct SentLight {
     uint16_t radiosity[3];
-    uint16_t offset[2];
   };
-  /// What the sweeps read of every side: its normal and the light it sends, whose radiosity is
-  /// the one it sends divided by `scale`, a power of two that keeps the largest within half
-  /// floats (halfScaleFor); the sweep multiplies the light it gathers back by it.
+  /// What the sweeps read of every side: its normal and centroid (the grid's) and the light it
+  /// sends, whose radiosity is the one it sends divided by `scale`, a power of two that keeps
+  /// the largest within half floats (halfScaleFor); the sweep multiplies the light it gathers
+  /// back by it.
   struct Source {
     const SideOrientation* normals = nullptr;
+    const Vec3* centroids = nullptr;
     std::span<const SentLight> sides;
     float scale = 1.0f;
-    /// Side e as a look meets it.
-    Slot operator[](size_t e) const {
-      Slot slot;
-      std::memcpy(slot.normal, &normals[e].normal, sizeof slot.normal);
-      std::memcpy(slot.radiosity, &sides[e], sizeof(SentLight));
-      return slot;
-    }
   };
-  /// Packs the radiosity every entry sends, `sends(e)` (finite, >= 0), and its plane's offset
-  /// into `sides`: what the sweeps read of each side besides its normal, prepared once per
-  /// iteration (B changes between). Sides of several objects sharing one orientation in a cell
+  /// Packs the radiosity every entry sends, `sends(e)` (finite, >= 0), into `sides`: what the
+  /// sweeps read of each side besides the grid's data, prepared once per iteration (B changes
+  /// between). Sides of several objects sharing one orientation in a cell
   /// (a lamp set in a ceiling) send light as one surface: their area-weighted mean, whichever of
   /// them a line happens to meet.
   static Source packSides(const VoxelGrid& grid, const std::function<Color(size_t)>& sends,
