@@ -39,6 +39,26 @@ uint32_t VoxelGrid::findCell(const IVec3& c) const {
   return uint32_t(cellIt - cellZ.begin());
 }
 
+void NarrowIndices::push_back(uint32_t index) {
+  if (!widened_ && index > UINT16_MAX) {
+    wide_.reserve(narrow_.capacity());
+    wide_.assign(narrow_.begin(), narrow_.end());
+    narrow_ = {};
+    widened_ = true;
+  }
+  if (widened_)
+    wide_.push_back(index);
+  else
+    narrow_.push_back(uint16_t(index));
+}
+
+bool NarrowIndices::operator==(const NarrowIndices& other) const {
+  if (size() != other.size()) return false;
+  for (size_t i = 0; i < size(); ++i)
+    if ((*this)[i] != other[i]) return false;
+  return true;
+}
+
 float VoxelGrid::areaOf(size_t entry) const {
   return _cvtsh_ss(faceArea[entry]) * (voxelSize * voxelSize);
 }
@@ -46,7 +66,7 @@ float VoxelGrid::areaOf(size_t entry) const {
 size_t VoxelGrid::memoryBytes() const {
   return bytes(cellZ) + bytes(cellEntryBegin) + bytes(rowY) + bytes(rowCellBegin) +
          bytes(slabRowBegin) + bytes(orientation) + bytes(centroid) + bytes(faceArea) +
-         bytes(surface) + bytes(surfaces);
+         surface.memoryBytes() + bytes(surfaces);
 }
 
 }  // namespace rad

@@ -59,6 +59,25 @@ struct SideOrientation {
 };
 static_assert(sizeof(SideOrientation) == 8);
 
+/// Indices that take 2 bytes each while every one is below 65,536 (a scene's distinct surfaces,
+/// usually a few dozen) and 4 once one is not: the array widens itself on the first such index.
+class NarrowIndices {
+ public:
+  uint32_t operator[](size_t i) const { return widened_ ? wide_[i] : narrow_[i]; }
+  size_t size() const { return widened_ ? wide_.size() : narrow_.size(); }
+  void reserve(size_t count) { narrow_.reserve(count); }
+  void push_back(uint32_t index);
+  size_t memoryBytes() const {
+    return narrow_.capacity() * sizeof(uint16_t) + wide_.capacity() * sizeof(uint32_t);
+  }
+  bool operator==(const NarrowIndices& other) const;
+
+ private:
+  std::vector<uint16_t> narrow_;
+  std::vector<uint32_t> wide_;
+  bool widened_ = false;
+};
+
 struct VoxelGrid {
   Vec3 origin{0.0f};  ///< corner of voxel (0, 0, 0)
   float voxelSize = 1.0f;
@@ -80,7 +99,7 @@ struct VoxelGrid {
   /// The surface area the entry stands for, in voxel faces (voxelSize^2), as a half float:
   /// to 2^-12 of its value, 2 bytes (areaOf gives it in scene units^2).
   std::vector<uint16_t> faceArea;
-  std::vector<uint32_t> surface;  ///< index into surfaces
+  NarrowIndices surface;  ///< index into surfaces
   std::vector<VoxelSurface> surfaces;
 
   size_t cellCount() const { return cellZ.size(); }

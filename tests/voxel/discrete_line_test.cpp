@@ -353,6 +353,22 @@ DiscreteDirection unitWeightDirection(const IVec3& step) {
   return {step, glm::normalize(Vec3d(step)), glm::pi<double>()};
 }
 
+// Side surface indices take 2 bytes while they fit: the first index past 16 bits widens the
+// array, and every index read back is the one stored, before and after.
+TEST(VoxelGrid, SurfaceIndicesWidenPastSixteenBitsKeepingEveryIndex) {
+  NarrowIndices indices;
+  const std::vector<uint32_t> values = {0, 7, 65535, 65536, 3, 4000000000u};
+  for (size_t i = 0; i < values.size(); ++i) {
+    indices.push_back(values[i]);
+    ASSERT_EQ(indices.size(), i + 1);
+    for (size_t k = 0; k <= i; ++k) EXPECT_EQ(indices[k], values[k]) << i << " " << k;
+    EXPECT_GE(indices.memoryBytes(), (i + 1) * (i >= 3 ? 4 : 2));  // widened at 65536
+  }
+  NarrowIndices narrow;
+  for (uint32_t v : {0u, 7u, 65535u}) narrow.push_back(v);
+  EXPECT_LT(narrow.memoryBytes(), 3 * sizeof(uint32_t));
+}
+
 // Two parallel plates 0.6 apart facing each other, voxelized at 0.1: objects "a" (x = 0, facing
 // +x) and "b" (x = 0.6, facing -x).
 VoxelGrid facingPlates() {
