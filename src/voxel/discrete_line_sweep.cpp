@@ -499,14 +499,15 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
   if (!continues && state.pending != kNoPending)
     resolvePending<kTangentCorrection>(view, state, slot);
   const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
+  const SideVisibility::CellFolds folds = visibility_->foldsOf(cell);
   for (uint32_t e = begin; e < end; ++e) {
     const float facing = glm::dot(sideNormal(source, e), unit);
     if (facing == 0.0f) continue;
     const float w = std::abs(facing) * view.weight;
     // The cell's own other sides first (the faces of an inner edge see each other).
     uint32_t own = 0;
-    if (visibility_->hasFold(e) &&
-        visibility_->lookWithinCell(e, cell, facing < 0.0f ? unit : -unit, own)) {
+    if (folds.hasFold(e) &&
+        visibility_->lookWithinCell(e, folds, facing < 0.0f ? unit : -unit, own)) {
       view.gathered[e] += sideLight(source, own) * w;
     } else if (facing > 0.0f) {
       wait(view, state, e, false);

@@ -127,7 +127,7 @@ class DiscreteLineSweep {
   static size_t workingBytesFor(const VoxelGrid& grid, size_t lines) {
     const size_t threads = threadCount();
     const size_t bandBytes = threads > 1 ? kMaxSamples * sizeof(SampleCell) : 0;
-    return grid.entryCount() * sizeof(uint32_t) + bandBytes +
+    return grid.entryCount() * sizeof(uint32_t) + bandBytes + SideVisibility::maskBytesFor(grid) +
            threads * (bandLineCapacity(grid, lines) * sizeof(LineState) +
                       DeferredGathers::kCapacity * sizeof(DeferredGathers::Item));
   }
@@ -144,15 +144,15 @@ class DiscreteLineSweep {
   /// The most lines a band holds: each thread's records, sized for the widest direction yet.
   size_t bandLineLimit() const { return bandLines_; }
   /// Working memory of this sweep: each thread's line records and deferred light, the waiting
-  /// sides' links, the cells the bands are balanced on and the folds with neighbouring voxels
-  /// (the fold masks are counted by the solver).
+  /// sides' links, the cells the bands are balanced on and the folds within cells and with
+  /// neighbouring voxels.
   size_t workingBytes() const {
     size_t threads = 0;
     for (const BandScratch& scratch : scratch_)
       threads += scratch.lines.capacity() * sizeof(LineState) +
                  DeferredGathers::kCapacity * sizeof(DeferredGathers::Item);
     return threads + pendingNext_.capacity() * sizeof(uint32_t) +
-           sampleCells_.capacity() * sizeof(SampleCell) + visibility_->neighbourFoldBytes();
+           sampleCells_.capacity() * sizeof(SampleCell) + visibility_->foldBytes();
   }
 
  private:

@@ -19,8 +19,36 @@ constexpr float kEdgeTolerance = 1e-3f;
 SideVisibility::SideVisibility(const VoxelGrid& grid)
     : grid_(grid),
       tolerance_(kPlaneTolerance * grid.voxelSize),
-      edge_(kEdgeTolerance * grid.voxelSize),
-      frontOf_(grid.entryCount(), 0) {
+      edge_(kEdgeTolerance * grid.voxelSize) {
+  findFoldsWithinCells();
+  findNeighbourFolds();
+}
+
+size_t SideVisibility::maskBytesFor(const VoxelGrid& grid) {
+  size_t severalSided = 0;
+  for (size_t cell = 0; cell < grid.cellCount(); ++cell) {
+    const uint32_t sides = grid.cellEntryBegin[cell + 1] - grid.cellEntryBegin[cell];
+    if (sides > 1) severalSided += sides;
+  }
+  const size_t words = (grid.entryCount() + 63) / 64;
+  return severalSided * sizeof(uint16_t) + words * (sizeof(uint64_t) + sizeof(uint32_t));
+}
+
+void SideVisibility::findFoldsWithinCells() {
+  const VoxelGrid& grid = grid_;
+  severalSided_.assign((grid.entryCount() + 63) / 64, 0);
+  for (size_t cell = 0; cell < grid.cellCount(); ++cell) {
+    const uint32_t begin = grid.cellEntryBegin[cell], end = grid.cellEntryBegin[cell + 1];
+    if (end - begin < 2) continue;
+    for (uint32_t f = begin; f < end; ++f) severalSided_[f / 64] |= uint64_t(1) << (f % 64);
+  }
+  severalBefore_.resize(severalSided_.size());
+  uint32_t count = 0;
+  for (size_t w = 0; w < severalSided_.size(); ++w) {
+    severalBefore_[w] = count;
+    count += uint32_t(std::popcount(severalSided_[w]));
+  }
+  folds_.assign(count, 0);
   // Sides of one plane (several objects', a thin wall's two) stand in front of each other only
   // past the plane tolerance. Sides at an angle meet at an edge, often in a corner of the voxel,
   // where both centroids lie within the tolerance of the other's plane: the sign of the offset
@@ -28,22 +56,23 @@ SideVisibility::SideVisibility(const VoxelGrid& grid)
   // inside face of a turned thin-walled box met rays from below the box: 2.4% of the light in
   // the box leaked out of it, 1.0% with this, 0.17% with the neighbours' folds as well (the
   // leak tests).
-  for (size_t cell = 0; cell < grid.cellCount(); ++cell) {
+  for (uint32_t cell = 0; cell < grid.cellCount(); ++cell) {
     // A voxel crossed by more than 15 sides (many objects in one voxel) leaves its sides past
     // the 15th out of its folds.
     const uint32_t begin = grid.cellEntryBegin[cell];
     const uint32_t end = std::min(grid.cellEntryBegin[cell + 1], begin + 15);
+    if (end - begin < 2) continue;
+    uint16_t* masks = &folds_[foldIndex(begin)];
     for (uint32_t f = begin; f < end; ++f) {
       const Vec3 nf = grid.unitNormal(f);
       for (uint32_t g = begin; g < end; ++g) {
         if (g == f) continue;
         const bool onePlane = std::abs(glm::dot(nf, grid.unitNormal(g))) > kSamePlaneCos;
         if (glm::dot(nf, grid.centroid[g] - grid.centroid[f]) > (onePlane ? tolerance_ : edge_))
-          frontOf_[f] = uint16_t(frontOf_[f] | (1u << (g - begin)));
+          masks[f - begin] = uint16_t(masks[f - begin] | (1u << (g - begin)));
       }
     }
   }
-  findNeighbourFolds();
 }
 
 void SideVisibility::findNeighbourFolds() {
@@ -85,7 +114,7 @@ void SideVisibility::findNeighbourFolds() {
               if (!known && neighbourFolds_.size() - first < kMostPlanes)
                 neighbourFolds_.push_back({f, grid.orientation[g].normal, offset});
             }
-          if (neighbourFolds_.size() > first) frontOf_[f] |= kNeighbourFolds;
+          if (neighbourFolds_.size() > first) folds_[foldIndex(f)] |= kNeighbourFolds;
         }
       }
 }
@@ -102,23 +131,24 @@ bool SideVisibility::insideNeighbourFolds(uint32_t f, const Vec3& point,
   return true;
 }
 
-inline bool SideVisibility::meets(uint32_t f, uint32_t q, Sight met, const Vec3& point,
-                           const Vec3& origin) const {
-  if ((frontOf_[f] & kSidesInFront) != 0 && !insideFold(f, q, point, origin)) return false;
+inline bool SideVisibility::meets(uint32_t f, uint32_t q, const CellFolds& folds, Sight met,
+                                  const Vec3& point, const Vec3& origin) const {
+  if ((folds.of(f) & kSidesInFront) != 0 && !insideFold(f, folds, point, origin)) return false;
   // A back met past a convex edge is a ray passing the corner outside the solid: through.
   // A front met there still counts (the surface's own light where the face would be): the
   // discrete line may step inside past the corner, and a front keeps it from carrying light
   // out of a closed box (the leak tests fail with fronts let through). Without the rule a
   // floating box in a closed room found a source in 95.4% of its hemisphere (30k voxels,
   // R = 8), with it 99.5%; room:4 96.2% -> 98.8% (its walls hide parts of one another).
-  if (met == Sight::Blocked) return insideConvexEdges(f, q, point);
-  return (frontOf_[f] & kNeighbourFolds) == 0 || insideNeighbourFolds(f, point, origin);
+  if (met == Sight::Blocked) return insideConvexEdges(f, q, folds, point);
+  return (folds.of(f) & kNeighbourFolds) == 0 || insideNeighbourFolds(f, point, origin);
 }
 
 Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_t& source) const {
   const float tolerance = tolerance_;
   Sight sight = Sight::Through;
   float nearest = std::numeric_limits<float>::max();
+  const CellFolds folds = foldsOf(q);
   for (uint32_t f = grid_.cellEntryBegin[q]; f < grid_.cellEntryBegin[q + 1]; ++f) {
     const Vec3 nf = grid_.unitNormal(f);
     const float height = glm::dot(nf, ce - grid_.centroid[f]);
@@ -126,7 +156,7 @@ Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_
     const Sight met = planeSight(height, approach, tolerance);
     if (met == Sight::Through) continue;
     const float t = height / approach;
-    if (t >= nearest || !meets(f, q, met, ce - t * unit, ce)) continue;
+    if (t >= nearest || !meets(f, q, folds, met, ce - t * unit, ce)) continue;
     nearest = t;
     sight = met;
     source = f;
@@ -134,7 +164,8 @@ Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_
   return sight;
 }
 
-bool SideVisibility::insideConvexEdges(uint32_t f, uint32_t q, const Vec3& point) const {
+bool SideVisibility::insideConvexEdges(uint32_t f, uint32_t q, const CellFolds& folds,
+                                       const Vec3& point) const {
   // Where f meets another side g of the cell at a convex edge (each behind the other, like two
   // faces of a box), f's polygon ends at g's plane: a crossing of f's plane in front of g is past
   // the edge of f, in the open. Sides in one plane (a thin wall's two, several objects' in one
@@ -142,20 +173,19 @@ bool SideVisibility::insideConvexEdges(uint32_t f, uint32_t q, const Vec3& point
   const uint32_t begin = grid_.cellEntryBegin[q];
   const uint32_t end = std::min(grid_.cellEntryBegin[q + 1], begin + 15);
   for (uint32_t g = begin; g < end; ++g) {
-    if (g == f || inFront(f, g, begin) || inFront(g, f, begin)) continue;
+    if (g == f || folds.inFront(f, g) || folds.inFront(g, f)) continue;
     if (glm::dot(grid_.unitNormal(g), point - grid_.centroid[g]) > tolerance_) return false;
   }
   return true;
 }
 
-bool SideVisibility::insideFold(uint32_t f, uint32_t q, const Vec3& point,
+bool SideVisibility::insideFold(uint32_t f, const CellFolds& folds, const Vec3& point,
                                 const Vec3& origin) const {
   // Where f meets another side g of the cell in a concave fold (g stands in front of f), f's
   // polygon ends at g's plane: a crossing of f's plane behind g is past the edge of f.
   // The fold's own edge is sharp: a side lying in g's plane is not in front of it.
-  const uint32_t begin = grid_.cellEntryBegin[q];
-  for (uint32_t front = frontOf_[f] & kSidesInFront; front != 0; front &= front - 1) {
-    const uint32_t g = begin + uint32_t(std::countr_zero(front));
+  for (uint32_t front = folds.of(f) & kSidesInFront; front != 0; front &= front - 1) {
+    const uint32_t g = folds.begin + uint32_t(std::countr_zero(front));
     // The crossing must lie in front of g, and so must the ray's origin: a ray from behind g
     // reaches f's front only through g.
     const Vec3 ng = grid_.unitNormal(g);
@@ -166,16 +196,15 @@ bool SideVisibility::insideFold(uint32_t f, uint32_t q, const Vec3& point,
   return true;
 }
 
-bool SideVisibility::lookWithinCell(uint32_t e, uint32_t cell, const Vec3& unit,
+bool SideVisibility::lookWithinCell(uint32_t e, const CellFolds& folds, const Vec3& unit,
                                     uint32_t& source) const {
   // Only sides of a concave fold (each in front of the other) see each other; the outer sides
   // of a convex corner, or a wall's two sides, never do.
-  const uint32_t begin = grid_.cellEntryBegin[cell];
   float best = 0.0f;
-  for (uint32_t front = frontOf_[e] & kSidesInFront; front != 0; front &= front - 1) {
-    const uint32_t f = begin + uint32_t(std::countr_zero(front));
+  for (uint32_t front = folds.of(e) & kSidesInFront; front != 0; front &= front - 1) {
+    const uint32_t f = folds.begin + uint32_t(std::countr_zero(front));
     const float approach = glm::dot(grid_.unitNormal(f), unit);
-    if (!inFront(f, e, begin) || approach <= best) continue;
+    if (!folds.inFront(f, e) || approach <= best) continue;
     best = approach;
     source = f;
   }

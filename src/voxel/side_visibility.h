@@ -13,6 +13,7 @@
 
 #include "voxel/voxel_grid.h"
 
+#include <bit>
 #include <cmath>
 #include <vector>
 
@@ -37,40 +38,68 @@ class SideVisibility {
   /// the side it sees when the answer is Source. The point is a side's centroid, which the
   /// caller often holds already (the side was visited long ago).
   Sight look(const Vec3& point, uint32_t cell, const Vec3& unit, uint32_t& source) const;
-  /// The side of e's own cell that e sees along -unit, if any (the faces of an inner edge).
-  bool lookWithinCell(uint32_t e, uint32_t cell, const Vec3& unit, uint32_t& source) const;
-  /// False when no other side of e's cell stands in front of e: e sees nothing within its cell.
-  bool hasFold(uint32_t e) const { return (frontOf_[e] & kSidesInFront) != 0; }
+  /// The fold masks of the sides of a cell of several sides: bits 0-14, the sides of the cell
+  /// in front of the side's plane (a cell's first 15 sides); bit 15: the side has folds with
+  /// sides of neighbouring voxels (neighbourFolds_).
+  struct CellFolds {
+    const uint16_t* masks;
+    uint32_t begin;  ///< the cell's first entry
+    uint16_t of(uint32_t f) const { return masks[f - begin]; }
+    /// True when side g of the cell stands in front of side f's plane.
+    bool inFront(uint32_t f, uint32_t g) const { return (of(f) >> (g - begin)) & 1u; }
+    /// False when no other side of the cell stands in front of e: e sees nothing within it.
+    bool hasFold(uint32_t e) const { return (of(e) & kSidesInFront) != 0; }
+  };
+  /// The fold masks of a cell of several sides (found once per visit: several reads).
+  CellFolds foldsOf(uint32_t cell) const {
+    const uint32_t begin = grid_.cellEntryBegin[cell];
+    return {folds_.data() + foldIndex(begin), begin};
+  }
+  /// The side of e's own cell (whose folds are `folds`) that e sees along -unit, if any (the
+  /// faces of an inner edge).
+  bool lookWithinCell(uint32_t e, const CellFolds& folds, const Vec3& unit,
+                      uint32_t& source) const;
   /// True when cell p holds the same planes as cell q (a floor, or the two faces of an edge):
   /// consecutive such cells on a line are one run.
   bool continuesPlanes(uint32_t p, uint32_t q) const;
-  /// Bytes of the folds with neighbouring voxels (the masks, 2 bytes a side, are not counted).
-  size_t neighbourFoldBytes() const { return neighbourFolds_.capacity() * sizeof(FoldPlane); }
+  /// Bytes of the fold masks a grid's sides take (foldBytes less the folds with neighbouring
+  /// voxels), known before the folds are found.
+  static size_t maskBytesFor(const VoxelGrid& grid);
+  /// Bytes of the folds within cells and with neighbouring voxels.
+  size_t foldBytes() const {
+    return folds_.capacity() * sizeof(uint16_t) + severalSided_.capacity() * sizeof(uint64_t) +
+           severalBefore_.capacity() * sizeof(uint32_t) +
+           neighbourFolds_.capacity() * sizeof(FoldPlane);
+  }
   /// Distance under which a point lies in a plane: a grazing line runs inside it.
   float planeTolerance() const { return tolerance_; }
 
  private:
+  static constexpr uint16_t kSidesInFront = 0x7fff, kNeighbourFolds = 0x8000;
+  /// Where the mask of `entry`, a side of a cell of several sides, lies in folds_.
+  size_t foldIndex(uint32_t entry) const {
+    const uint32_t word = entry / 64, bit = entry % 64;
+    const uint64_t below = severalSided_[word] & ((uint64_t(1) << bit) - 1);
+    return severalBefore_[word] + size_t(std::popcount(below));
+  }
   /// True when the ray from `origin` that met f's plane at `point` (front or back, `met`) met f
   /// itself: its polygon as far as the sides of f's cell and of the cells around bound it.
   /// (Inlined into look: called, it cost 2% more instructions in the sweeps.)
-  [[gnu::always_inline]] inline bool meets(uint32_t f, uint32_t cell, Sight met,
-                                           const Vec3& point, const Vec3& origin) const;
-  bool insideFold(uint32_t f, uint32_t cell, const Vec3& point, const Vec3& origin) const;
+  [[gnu::always_inline]] inline bool meets(uint32_t f, uint32_t cell, const CellFolds& folds,
+                                           Sight met, const Vec3& point,
+                                           const Vec3& origin) const;
+  bool insideFold(uint32_t f, const CellFolds& folds, const Vec3& point,
+                  const Vec3& origin) const;
   /// False when f meets a side of a neighbouring voxel in a concave fold and the ray from
   /// `origin` to `point` (on f's plane) comes from behind that side or crosses f past it.
   bool insideNeighbourFolds(uint32_t f, const Vec3& point, const Vec3& origin) const;
   void findNeighbourFolds();
   /// False when `point`, on f's plane, lies past a convex edge of f (in front of a side of the
   /// cell that f stands behind and that stands behind f).
-  bool insideConvexEdges(uint32_t f, uint32_t cell, const Vec3& point) const;
-  /// True when side g of f's cell (whose first side is `cellBegin`) stands in front of f's plane.
-  bool inFront(uint32_t f, uint32_t g, uint32_t cellBegin) const {
-    return (frontOf_[f] >> (g - cellBegin)) & 1u;
-  }
+  bool insideConvexEdges(uint32_t f, uint32_t cell, const CellFolds& folds,
+                         const Vec3& point) const;
+  void findFoldsWithinCells();
 
-  /// frontOf_ bits 0-14: the sides of the cell in front of the entry's plane (a cell's first 15
-  /// sides); bit 15: the entry has folds with sides of neighbouring voxels (neighbourFolds_).
-  static constexpr uint16_t kSidesInFront = 0x7fff, kNeighbourFolds = 0x8000;
   /// The plane of a side of a neighbouring voxel that meets `entry` in a concave fold.
   struct FoldPlane {
     uint32_t entry;
@@ -81,9 +110,16 @@ class SideVisibility {
   const VoxelGrid& grid_;
   float tolerance_;
   float edge_;  ///< distance under which a point lies on the edge where two sides meet
-  /// Per entry: bit j set when the cell's j-th side stands in front of the entry's plane (the
-  /// two form a concave fold). Computed once: the tests it saves would run for every direction.
-  std::vector<uint16_t> frontOf_;
+  /// The fold masks (CellFolds) of the sides of cells of several sides, cell after cell: the
+  /// only sides that have folds within their cell or are looked at through them (a single side
+  /// is tested inline by the sweep), a few percent of the sides. Computed once: the tests they
+  /// save would run for every direction. Until 6 commits after b76a6fa, a mask for every side
+  /// (2 bytes a side).
+  std::vector<uint16_t> folds_;
+  /// A bit per entry, set for the sides of cells of several sides, and the count of set bits
+  /// before each 64: where an entry's mask lies in folds_.
+  std::vector<uint64_t> severalSided_;
+  std::vector<uint32_t> severalBefore_;
   std::vector<FoldPlane> neighbourFolds_;  ///< sorted by entry
 };
 

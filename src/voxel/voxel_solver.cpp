@@ -180,9 +180,8 @@ static_assert(sizeof(Float24Color) == 9);
 uint64_t solverBytesPerSide(const VoxelSolverSettings& settings) {
   return sizeof(Color) +                                          // the bounce being gathered
          sizeof(Float24Color) +                                   // irradiance so far
-         sizeof(DiscreteLineSweep::SentLight) +                   // light sent, planes
-         (settings.normalize ? sizeof(uint16_t) : 0) +            // normalization weights
-         sizeof(uint16_t);                                        // fold masks (SideVisibility)
+         sizeof(DiscreteLineSweep::SentLight) +                   // light sent
+         (settings.normalize ? sizeof(uint16_t) : 0);             // normalization weights
 }
 
 // The line table the sweeps need, over all their directions: as large as the widest
