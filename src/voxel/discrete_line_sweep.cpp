@@ -323,13 +323,31 @@ Color sideLight(const DiscreteLineSweep::Source& source, size_t e) {
   std::memcpy(&high, source.sides[e].radiosity + 2, sizeof high);
   return lanes(_mm_cvtph_ps(_mm_insert_epi16(_mm_cvtsi32_si128(int(low)), high, 2)));
 }
-// Side e as a look meets it: its plane and the radiosity it sends.
-DiscreteLineSweep::Slot sideSlot(const DiscreteLineSweep::Source& source, size_t e) {
+// Side e, whose centroid is c, as a look meets it: its plane and the radiosity it sends.
+DiscreteLineSweep::Slot sideSlot(const DiscreteLineSweep::Source& source, size_t e,
+                                 const Vec3& c) {
   DiscreteLineSweep::Slot slot;
   std::memcpy(slot.normal, &source.normals[e].normal, sizeof slot.normal);
   std::memcpy(slot.radiosity, &source.sides[e], sizeof slot.radiosity);
-  slot.offset = glm::dot(slotNormal(source.normals[e]), source.centroids[e]);
+  slot.offset = glm::dot(slotNormal(source.normals[e]), c);
   return slot;
+}
+
+// Side e's centroid, as the grid's centroidOf gives it (its three fields shifted into three
+// 64-bit lanes at once, their low halves converted and scaled with one FMA, as there).
+template <typename View>
+Vec3 centroidOf(const View& view, size_t e) {
+  constexpr int64_t kMask = (int64_t(1) << 21) - 1;
+  const __m256i bits = _mm256_set1_epi64x(int64_t(view.centroid[e].bits));
+  const __m256i fields = _mm256_and_si256(
+      _mm256_srlv_epi64(bits, _mm256_setr_epi64x(0, 21, 42, 0)), _mm256_set1_epi64x(kMask));
+  const __m128i low = _mm256_castsi256_si128(
+      _mm256_permutevar8x32_epi32(fields, _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0)));
+  // The origin and the step, one load: (x, y, z, step).
+  static_assert(offsetof(View, pointStep) == offsetof(View, pointOrigin) + 3 * sizeof(float));
+  const __m128 frame = _mm_loadu_ps(&view.pointOrigin.x);
+  const __m128 step = _mm_shuffle_ps(frame, frame, _MM_SHUFFLE(3, 3, 3, 3));
+  return lanes(_mm_fmadd_ps(_mm_cvtepi32_ps(low), step, frame));
 }
 
 uint32_t slotCell(float offset) {
@@ -365,7 +383,7 @@ DiscreteLineSweep::Source DiscreteLineSweep::packSides(const VoxelGrid& grid,
         sides[e].radiosity[k] = _cvtss_sh(b[k], _MM_FROUND_TO_NEAREST_INT);
     begin = end;
   }
-  return {grid.orientation.data(), grid.centroid.data(), sides, scale};
+  return {grid.orientation.data(), sides, scale};
 }
 
 inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
@@ -411,7 +429,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
   // Most cells hold one side and most recent voxels are one side: the plane test against the
   // recent voxel serves the look back, the run test and the waiting sides, computed once.
   const Vec3 n = sideNormal(view.source, e);
-  const Vec3 c = view.centroid[e];
+  const Vec3 c = centroidOf(view, e);
   const float facing = glm::dot(n, view.unit);  // < 0: e looks back along the line, > 0: ahead
   const RecentVoxel& recent = state.recent;
   const bool hasRecent = state.recentRef != kNoVoxel;
@@ -440,7 +458,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
         gatherLater(view, state.pending, sideLight(view.source, e) * (recentFacing * view.weight));
       state.pending = kNoPending;
     } else {
-      resolvePending<kTangentCorrection>(view, state, sideSlot(view.source, e));
+      resolvePending<kTangentCorrection>(view, state, sideSlot(view.source, e, c));
     }
   }
   if (facing < 0.0f && hasRecent) {
@@ -453,7 +471,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
       sight = look(c, recentSlot(state), view.unit, view.source, light);
     }
     if (kTangentCorrection && sight == Sight::Through)
-      sight = lookOlder(c, state, view.unit, view.source, light);
+      sight = lookOlder(view, c, state, light);
     if (sight == Sight::Source) view.gathered[e] += light * (-facing * view.weight);
   } else if (facing > 0.0f) {
     wait(view, state, e, continues && state.pending == state.recentRef);
@@ -513,10 +531,10 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
       wait(view, state, e, false);
     } else if (state.recentRef != kNoVoxel) {
       Color light(0.0f);
-      const Vec3 c = view.centroid[e];
+      const Vec3 c = centroidOf(view, e);
       Sight sight = look(c, recentSlot(state), unit, source, light);
       if (kTangentCorrection && sight == Sight::Through)
-        sight = lookOlder(c, state, unit, source, light);
+        sight = lookOlder(view, c, state, light);
       if (sight == Sight::Source) view.gathered[e] += light * w;
     }
   }
@@ -557,7 +575,7 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
   while (true) {
     if (!sameRunAsBefore) {
       const bool recent = m == state.recentRef;
-      const Vec3 centroid = recent ? state.recent.centroid : view.centroid[m];
+      const Vec3 centroid = recent ? state.recent.centroid : centroidOf(view, m);
       sight = look(centroid, slot, back, view.source, light);
       if (sight == Sight::Source) {
         const Vec3 normal = recent ? slotNormal(state.recent) : sideNormal(view.source, m);
@@ -586,14 +604,15 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
   state.pendingLink = waitingLink;
 }
 
-Sight DiscreteLineSweep::lookOlder(const Vec3& centroid, const LineState& state,
-                                   const Vec3& unit, const Source& source, Color& light) const {
+Sight DiscreteLineSweep::lookOlder(const PassView& view, const Vec3& centroid,
+                                   const LineState& state, Color& light) const {
   // With the tangent correction a grazed voxel is looked through: the two voxels before it
   // decide (a slot for a cell of several sides is made from its reference).
   for (const uint32_t ref : state.olderRef) {
     if (ref == kNoVoxel) break;
-    const Slot older = ref & kCellRef ? cellSlot(ref & ~kCellRef) : sideSlot(source, ref);
-    const Sight sight = look(centroid, older, unit, source, light);
+    const Slot older = ref & kCellRef ? cellSlot(ref & ~kCellRef)
+                                      : sideSlot(view.source, ref, centroidOf(view, ref));
+    const Sight sight = look(centroid, older, view.unit, view.source, light);
     if (sight != Sight::Through) return sight;
   }
   return Sight::Through;
@@ -652,6 +671,8 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
                              BandScratch& scratch) {
   const PassView view{grid_.cellEntryBegin.data(),
                       grid_.centroid.data(),
+                      grid_.origin,
+                      grid_.pointStep,
                       source,
                       gathered.data(),
                       pendingNext_.data(),

@@ -87,7 +87,6 @@ class DiscreteLineSweep {
   /// back by it.
   struct Source {
     const SideOrientation* normals = nullptr;
-    const Vec3* centroids = nullptr;
     std::span<const SentLight> sides;
     float scale = 1.0f;
   };
@@ -273,7 +272,9 @@ class DiscreteLineSweep {
   /// What a pass reads and writes, as raw pointers the compiler can keep in registers.
   struct PassView {
     const uint32_t* entryBegin;
-    const Vec3* centroid;
+    const PackedPoint* centroid;
+    Vec3 pointOrigin;
+    float pointStep;
     Source source;
     Color* gathered;
     uint32_t* pendingNext;
@@ -296,8 +297,8 @@ class DiscreteLineSweep {
   Sight look(const Vec3& centroid, const Slot& s, const Vec3& unit, const Source& source,
              Color& light) const;
   /// What a side sees past the line's recent voxel (the two voxels before it).
-  Sight lookOlder(const Vec3& centroid, const LineState& state, const Vec3& unit,
-                  const Source& source, Color& light) const;
+  Sight lookOlder(const PassView& view, const Vec3& centroid, const LineState& state,
+                  Color& light) const;
   /// Queues light for side e (a side that waited) in the pass's deferred batch.
   static void gatherLater(const PassView& view, uint32_t e, const Color& light);
   /// Makes side e wait on the line for light from ahead; `sameRun` when the side waiting before

@@ -68,7 +68,7 @@ void SideVisibility::findFoldsWithinCells() {
       for (uint32_t g = begin; g < end; ++g) {
         if (g == f) continue;
         const bool onePlane = std::abs(glm::dot(nf, grid.unitNormal(g))) > kSamePlaneCos;
-        if (glm::dot(nf, grid.centroid[g] - grid.centroid[f]) > (onePlane ? tolerance_ : edge_))
+        if (glm::dot(nf, grid.centroidOf(g) - grid.centroidOf(f)) > (onePlane ? tolerance_ : edge_))
           masks[f - begin] = uint16_t(masks[f - begin] | (1u << (g - begin)));
       }
     }
@@ -98,11 +98,11 @@ void SideVisibility::findNeighbourFolds() {
           if (q != UINT32_MAX) around.push_back(q);
         }
         for (uint32_t f = begin; f < end; ++f) {
-          const Vec3 nf = grid.unitNormal(f), cf = grid.centroid[f];
+          const Vec3 nf = grid.unitNormal(f), cf = grid.centroidOf(f);
           const size_t first = neighbourFolds_.size();
           for (const uint32_t q : around)
             for (uint32_t g = grid.cellEntryBegin[q]; g < grid.cellEntryBegin[q + 1]; ++g) {
-              const Vec3 ng = grid.unitNormal(g), cg = grid.centroid[g];
+              const Vec3 ng = grid.unitNormal(g), cg = grid.centroidOf(g);
               if (std::abs(glm::dot(nf, ng)) >= kAtAngle || glm::dot(nf, cg - cf) <= edge_ ||
                   glm::dot(ng, cf - cg) <= edge_)
                 continue;
@@ -151,7 +151,7 @@ Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_
   const CellFolds folds = foldsOf(q);
   for (uint32_t f = grid_.cellEntryBegin[q]; f < grid_.cellEntryBegin[q + 1]; ++f) {
     const Vec3 nf = grid_.unitNormal(f);
-    const float height = glm::dot(nf, ce - grid_.centroid[f]);
+    const float height = glm::dot(nf, ce - grid_.centroidOf(f));
     const float approach = glm::dot(nf, unit);
     const Sight met = planeSight(height, approach, tolerance);
     if (met == Sight::Through) continue;
@@ -174,7 +174,7 @@ bool SideVisibility::insideConvexEdges(uint32_t f, uint32_t q, const CellFolds& 
   const uint32_t end = std::min(grid_.cellEntryBegin[q + 1], begin + 15);
   for (uint32_t g = begin; g < end; ++g) {
     if (g == f || folds.inFront(f, g) || folds.inFront(g, f)) continue;
-    if (glm::dot(grid_.unitNormal(g), point - grid_.centroid[g]) > tolerance_) return false;
+    if (glm::dot(grid_.unitNormal(g), point - grid_.centroidOf(g)) > tolerance_) return false;
   }
   return true;
 }
@@ -189,8 +189,8 @@ bool SideVisibility::insideFold(uint32_t f, const CellFolds& folds, const Vec3& 
     // The crossing must lie in front of g, and so must the ray's origin: a ray from behind g
     // reaches f's front only through g.
     const Vec3 ng = grid_.unitNormal(g);
-    if (glm::dot(ng, point - grid_.centroid[g]) < -edge_ ||
-        glm::dot(ng, origin - grid_.centroid[g]) < -edge_)
+    if (glm::dot(ng, point - grid_.centroidOf(g)) < -edge_ ||
+        glm::dot(ng, origin - grid_.centroidOf(g)) < -edge_)
       return false;
   }
   return true;
@@ -218,10 +218,11 @@ bool SideVisibility::continuesPlanes(uint32_t p, uint32_t q) const {
   const float tolerance = tolerance_;
   for (uint32_t a = pBegin; a < pEnd; ++a) {
     bool matched = false;
-    for (uint32_t b = qBegin; b < qEnd && !matched; ++b)
-      matched = glm::dot(grid_.unitNormal(a), grid_.unitNormal(b)) > kSamePlaneCos &&
-                std::abs(glm::dot(grid_.unitNormal(b), grid_.centroid[a] - grid_.centroid[b])) <=
-                    tolerance;
+    for (uint32_t b = qBegin; b < qEnd && !matched; ++b) {
+      const Vec3 nb = grid_.unitNormal(b);
+      matched = glm::dot(grid_.unitNormal(a), nb) > kSamePlaneCos &&
+                std::abs(glm::dot(nb, grid_.centroidOf(a) - grid_.centroidOf(b))) <= tolerance;
+    }
     if (!matched) return false;
   }
   return true;

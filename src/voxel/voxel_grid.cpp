@@ -3,6 +3,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace rad {
 
@@ -57,6 +58,23 @@ bool NarrowIndices::operator==(const NarrowIndices& other) const {
   for (size_t i = 0; i < size(); ++i)
     if ((*this)[i] != other[i]) return false;
   return true;
+}
+
+float VoxelGrid::pointStepFor(const IVec3& dims, float voxelSize) {
+  const int widest = std::max({dims.x, dims.y, dims.z, 1});
+  int k = 21;  // widest * 2^k <= 2^21
+  while (k > 0 && (int64_t(widest) << k) > (int64_t(1) << 21)) --k;
+  return std::ldexp(voxelSize, -k);
+}
+
+PackedPoint VoxelGrid::pack(const Vec3d& p) const {
+  constexpr double kMost = double((1 << 21) - 1);
+  uint64_t bits = 0;
+  for (int k = 2; k >= 0; --k) {
+    const double steps = std::clamp(std::round((p[k] - double(origin[k])) / pointStep), 0.0, kMost);
+    bits = bits << 21 | uint64_t(steps);
+  }
+  return {bits};
 }
 
 float VoxelGrid::areaOf(size_t entry) const {

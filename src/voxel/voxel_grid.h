@@ -78,9 +78,28 @@ class NarrowIndices {
   bool widened_ = false;
 };
 
+/// A point of a grid's box in fixed point, 21 bits an axis in one 8-byte word (4 bytes less
+/// than three floats): steps of the grid's pointStep, a power-of-two fraction of a voxel, at most
+/// 2^-21 of the box's widest side (1/8,192 of a voxel up to 256 voxels a side, 1/512 at 4,096).
+/// Floats hold points that far from the origin to about the same (2^-24 of the coordinate),
+/// and only near it better.
+struct PackedPoint {
+  uint64_t bits = 0;
+  bool operator==(const PackedPoint&) const = default;
+};
+/// The point p stands for in a box whose first corner is `origin`, in steps of `step`.
+inline Vec3 unpack(PackedPoint p, const Vec3& origin, float step) {
+  // Through int32 (the fields fit): a 64-bit unsigned conversion takes several instructions.
+  constexpr uint64_t kMask = (uint64_t(1) << 21) - 1;
+  const Vec3 steps(float(int32_t(p.bits & kMask)), float(int32_t((p.bits >> 21) & kMask)),
+                   float(int32_t(p.bits >> 42)));
+  return origin + steps * step;
+}
+
 struct VoxelGrid {
   Vec3 origin{0.0f};  ///< corner of voxel (0, 0, 0)
   float voxelSize = 1.0f;
+  float pointStep = 1.0f;  ///< a PackedPoint's step (scene units): pointStepFor(dims, voxelSize)
   IVec3 dims{0};      ///< voxels per axis; every coordinate fits in int16
 
   // Cells, sorted by (x, y, z).
@@ -95,7 +114,8 @@ struct VoxelGrid {
   /// The unit normal, area-weighted mean of the side's triangles, and whether it shares the
   /// orientation of the entry before it.
   std::vector<SideOrientation> orientation;
-  std::vector<Vec3> centroid;   ///< area-weighted centroid of the surface inside the voxel
+  /// The area-weighted centroid of the surface inside the voxel (centroidOf).
+  std::vector<PackedPoint> centroid;
   /// The surface area the entry stands for, in voxel faces (voxelSize^2), as a half float:
   /// to 2^-12 of its value, 2 bytes (areaOf gives it in scene units^2).
   std::vector<uint16_t> faceArea;
@@ -108,6 +128,13 @@ struct VoxelGrid {
   /// Integer coordinates of a cell (found from the row structure; O(log rows)).
   IVec3 cellCoordinates(uint32_t cell) const;
   Vec3 unitNormal(size_t entry) const { return orientation[entry].normal.unpack(); }
+  Vec3 centroidOf(size_t entry) const { return unpack(centroid[entry]); }
+  Vec3 unpack(PackedPoint p) const { return rad::unpack(p, origin, pointStep); }
+  /// The nearest point of the box's fixed point to p (inside the box).
+  PackedPoint pack(const Vec3d& p) const;
+  /// The step of PackedPoints in a box of `dims` voxels: voxelSize / 2^k, the finest whose
+  /// 2^21 steps span the widest side.
+  static float pointStepFor(const IVec3& dims, float voxelSize);
   /// The surface area the entry stands for (scene units^2).
   float areaOf(size_t entry) const;
   const VoxelMaterial& materialOf(size_t entry) const { return surfaces[surface[entry]].material; }

@@ -21,7 +21,7 @@ bool VoxelIrradianceField::accumulate(const IVec3& c, const Vec3& p, const Vec3&
   for (uint32_t e = grid_.cellEntryBegin[cell]; e < grid_.cellEntryBegin[cell + 1]; ++e) {
     const Vec3 normal = grid_.unitNormal(e);
     const float cosine = glm::dot(normal, n);
-    const float distance = std::abs(glm::dot(normal, p - grid_.centroid[e]));
+    const float distance = std::abs(glm::dot(normal, p - grid_.centroidOf(e)));
     if (cosine > bestCos && distance < kPlaneDistance * grid_.voxelSize) bestCos = cosine, best = e;
   }
   if (best == UINT32_MAX) return false;

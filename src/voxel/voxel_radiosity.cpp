@@ -116,7 +116,7 @@ SurfaceSample VoxelRadiosity::Impl::sample(size_t e) const {
   const VoxelMaterial& m = surface.material;
   return {surface.object,
           grid.areaOf(e),
-          grid.centroid[e],
+          grid.centroidOf(e),
           grid.unitNormal(e),
           glm::pi<float>() * m.emission,
           m.rho,

@@ -41,7 +41,7 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
       Rng rng(settings.seed, e);
       Vec3d sum(0.0);
       for (int s = 0; s < settings.directSamples; ++s)
-        sum += Vec3d(direct.irradiance(grid.centroid[e], grid.unitNormal(e), rng));
+        sum += Vec3d(direct.irradiance(grid.centroidOf(e), grid.unitNormal(e), rng));
       h[e] = Color(sum / double(settings.directSamples));
     }
   });

@@ -181,7 +181,7 @@ void appendSide(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& surfaceIndex, c
                 bool sharesPrevious) {
   grid.orientation.push_back(
       {PackedNormal::pack(Vec3(glm::normalize(side.normalSum))), sharesPrevious});
-  grid.centroid.push_back(Vec3(side.centroidSum / side.weight));
+  grid.centroid.push_back(grid.pack(side.centroidSum / side.weight));
   const float faces = float(side.area / (double(grid.voxelSize) * grid.voxelSize));
   grid.faceArea.push_back(_cvtss_sh(faces, _MM_FROUND_TO_NEAREST_INT));
   const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};
@@ -296,6 +296,7 @@ VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
     throw InputError(scene.name, fmt::format("voxel size {:g} gives a {:g} x {:g} x {:g} grid (at most "
                                              "32767 per axis)", grid.voxelSize, cells.x, cells.y, cells.z));
   grid.dims = IVec3(cells);
+  grid.pointStep = VoxelGrid::pointStepFor(grid.dims, grid.voxelSize);
   // Refused before the fragments are made, rather than killed for memory while making them.
   const double expected = settings.voxelSize > 0.0f ? expectedVoxelCount(scene, grid.voxelSize)
                                                    : double(settings.targetVoxels);

@@ -1,4 +1,5 @@
 // Properties of the discrete lines and of the voxelization they run through.
+#include "core/rng.h"
 #include "voxel/direction_set.h"
 #include "voxel/discrete_line_sweep.h"
 #include "voxel/voxelizer.h"
@@ -351,6 +352,34 @@ TEST(Voxelizer, SameGridWhateverTheThreadCount) {
 // A direction of the sweep with factor pi, so that w = 1 and a side gathers B cos.
 DiscreteDirection unitWeightDirection(const IVec3& step) {
   return {step, glm::normalize(Vec3d(step)), glm::pi<double>()};
+}
+
+// Centroids are kept in 21-bit fixed point over the grid's box: any point of the box comes
+// back within half a step (plus the float's rounding), and the step is the finest power-of-two
+// fraction of a voxel whose 2^21 steps span the widest side (1/8,192 voxel at 256 voxels).
+TEST(VoxelGrid, PackedPointsComeBackWithinHalfAStep) {
+  for (const IVec3& dims : {IVec3(256, 40, 3), IVec3(300, 300, 300), IVec3(1, 1, 32767)}) {
+    VoxelGrid grid;
+    grid.origin = Vec3(-1000.0f, 2.5f, 0.125f);
+    grid.voxelSize = 0.037f;
+    grid.dims = dims;
+    grid.pointStep = VoxelGrid::pointStepFor(dims, grid.voxelSize);
+    const int widest = std::max({dims.x, dims.y, dims.z});
+    EXPECT_LE(double(widest) * grid.voxelSize, double(grid.pointStep) * (1 << 21));
+    EXPECT_GT(double(widest) * grid.voxelSize, double(grid.pointStep) * (1 << 20));
+    if (widest == 256) {
+      EXPECT_FLOAT_EQ(grid.pointStep * 8192.0f, grid.voxelSize);
+    }
+    Rng rng(7, uint64_t(widest));
+    for (int i = 0; i < 1000; ++i) {
+      Vec3d p;
+      for (int k = 0; k < 3; ++k)
+        p[k] = double(grid.origin[k]) + double(rng.uniform()) * dims[k] * grid.voxelSize;
+      const Vec3 back = grid.unpack(grid.pack(p));
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(double(back[k]), p[k], 0.5 * grid.pointStep + 1e-6 * std::abs(p[k])) << i;
+    }
+  }
 }
 
 // Side surface indices take 2 bytes while they fit: the first index past 16 bits widens the

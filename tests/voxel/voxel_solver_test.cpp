@@ -260,18 +260,18 @@ void expectLightStaysInTheBox(const glm::mat3& turn, double leak) {
     size_t outside = 0;
     for (size_t e = 0; e < grid.entryCount(); ++e) {
       emitted += grid.areaOf(e) * glm::pi<float>() * maxComponent(grid.materialOf(e).emission);
-      const Vec3 fromCentre = glm::transpose(turn) * (grid.centroid[e] - centre);
+      const Vec3 fromCentre = glm::transpose(turn) * (grid.centroidOf(e) - centre);
       const bool onFloor = grid.objectOf(e) == floorObject;
-      const bool facesOut = glm::dot(grid.unitNormal(e), grid.centroid[e] - centre) > 0.0f &&
+      const bool facesOut = glm::dot(grid.unitNormal(e), grid.centroidOf(e) - centre) > 0.0f &&
                             grid.objectOf(e) != lampObject;
       const bool wallSide = glm::compMax(glm::abs(fromCentre)) > 0.45f;
       if (onFloor || (wallSide && facesOut)) {
         ++outside;
         leaked += grid.areaOf(e) * maxComponent(s.radiosity[e]);
         if (leak == 0.0) {
+          const Vec3 c = grid.centroidOf(e);
           ASSERT_EQ(maxComponent(s.radiosity[e]), 0.0f)
-              << "entry " << e << " at " << grid.centroid[e].x << "," << grid.centroid[e].y << ","
-              << grid.centroid[e].z;
+              << "entry " << e << " at " << c.x << "," << c.y << "," << c.z;
         }
       } else if (wallSide) {
         insideLight += maxComponent(s.radiosity[e]);
