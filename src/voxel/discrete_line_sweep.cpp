@@ -683,7 +683,7 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
   LineState* const lines = scratch.recordsFor(band.lineCount, bandLines_);
   const uint16_t stamp = scratch.stamp;
   const uint32_t firstLine = band.firstLine;
-  // Line records are scattered over the band's (up to an eighth of the scene's cross-section),
+  // Line records are scattered over the band's (up to a sixteenth of the scene's cross-section),
   // and the cells' own data is read in an order that jumps back row by row: fetch both kAhead
   // cells ahead of the visit so that the misses overlap instead of queueing.
   constexpr uint32_t kAhead = 32, kMask = kAhead - 1;
