@@ -44,7 +44,7 @@ void NarrowIndices::push_back(uint32_t index) {
   if (!widened_ && index > UINT16_MAX) {
     wide_.reserve(narrow_.capacity());
     wide_.assign(narrow_.begin(), narrow_.end());
-    narrow_ = {};
+    std::vector<uint16_t>().swap(narrow_);
     widened_ = true;
   }
   if (widened_)

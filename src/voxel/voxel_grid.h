@@ -79,10 +79,11 @@ class NarrowIndices {
 };
 
 /// A point of a grid's box in fixed point, 21 bits an axis in one 8-byte word (4 bytes less
-/// than three floats): steps of the grid's pointStep, a power-of-two fraction of a voxel, at most
-/// 2^-21 of the box's widest side (1/8,192 of a voxel up to 256 voxels a side, 1/512 at 4,096).
-/// Floats hold points that far from the origin to about the same (2^-24 of the coordinate),
-/// and only near it better.
+/// than three floats): steps of the grid's pointStep, the finest power-of-two fraction of a voxel
+/// whose 2^21 steps span the box's widest side (1/8,192 of a voxel up to 256 voxels a side). A
+/// point comes back within half a step: below the sweep's edge tolerance (1/1,000 of a voxel)
+/// up to 2,048 voxels a side. Floats hold the box's far side to 2^-24 of its size, at most 8
+/// times finer, and any point far from the scene's origin coarser.
 struct PackedPoint {
   uint64_t bits = 0;
   bool operator==(const PackedPoint&) const = default;

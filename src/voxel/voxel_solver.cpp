@@ -265,8 +265,8 @@ class SideLight {
   }
   /// Lets the last bounce go (no more sends, no tail): its memory goes before the results come.
   void releaseBounce() {
-    gathered_ = {};
-    weights_ = {};
+    std::vector<Color>().swap(gathered_);  // `= {}` would keep their memory
+    std::vector<uint16_t>().swap(weights_);
   }
   std::vector<Color> radiosities() const {
     std::vector<Color> b(irradiance_.size());
@@ -365,7 +365,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   solution.workingBytes = grid.entryCount() * solverBytesPerSide(settings) + sweep->workingBytes();
   // The sweep's arrays go before the results are made, so they never coexist.
   sweep.reset();
-  packed = {};
+  std::vector<DiscreteLineSweep::SentLight>().swap(packed);
   light.releaseBounce();
   solution.radiosity = light.radiosities();
   solution.irradiance = light.irradiances();
