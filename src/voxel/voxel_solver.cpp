@@ -144,9 +144,10 @@ void gatherAllDirections(const DirectionSet& directions, DiscreteLineSweep& swee
 }
 
 // A colour in three 24-bit floats, 9 bytes: a float rounded to its 15 high bits of mantissa
-// (to 2^-16 of its value), its sign and exponent kept, so that any scene's units fit. H so far
-// is kept so: it changes only between the sweeps, a bounce at a time, and six bounces' roundings
-// leave it within 1e-5 of its float sum.
+// (to 2^-16 of its value), its sign and exponent kept, so that any scene's units fit; the bytes
+// are the float's high three on this little-endian target. H so far is kept so: it changes only
+// between the sweeps, a bounce at a time, and six bounces' roundings leave it within 1e-4 of its
+// float sum (typically 2e-5).
 class Float24Color {
  public:
   Float24Color() = default;
