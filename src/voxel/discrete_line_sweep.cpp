@@ -386,10 +386,6 @@ DiscreteLineSweep::Source DiscreteLineSweep::packSides(const VoxelGrid& grid,
   return {grid.orientation.data(), sides, scale};
 }
 
-inline Color DiscreteLineSweep::sentRadiosity(const Slot& s) {
-  return halfColor(s);
-}
-
 DiscreteLineSweep::Slot DiscreteLineSweep::cellSlot(uint32_t cell) {
   Slot slot{};
   std::memcpy(&slot.offset, &cell, sizeof cell);
@@ -419,7 +415,7 @@ inline Sight DiscreteLineSweep::look(const Vec3& centroid, const Slot& s, const 
   const Vec3 n = slotNormal(s);
   const Sight sight =
       planeSight(glm::dot(n, centroid) - s.offset, glm::dot(n, unit), visibility_->planeTolerance());
-  if (sight == Sight::Source) light = sentRadiosity(s);
+  if (sight == Sight::Source) light = halfColor(s);
   return sight;
 }
 

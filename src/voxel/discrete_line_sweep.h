@@ -92,13 +92,11 @@ class DiscreteLineSweep {
   };
   /// Packs the radiosity every entry sends, `sends(e)` (finite, >= 0), into `sides`: what the
   /// sweeps read of each side besides the grid's data, prepared once per iteration (B changes
-  /// between). Sides of several objects sharing one orientation in a cell
-  /// (a lamp set in a ceiling) send light as one surface: their area-weighted mean, whichever of
-  /// them a line happens to meet.
+  /// between). Sides of several objects sharing one orientation in a cell (a lamp set in a
+  /// ceiling) send light as one surface: their area-weighted mean, whichever of them a line
+  /// happens to meet.
   static Source packSides(const VoxelGrid& grid, const std::function<Color(size_t)>& sends,
                           std::span<SentLight> sides);
-  /// The radiosity a packed side sends, divided by its Source's scale.
-  static Color sentRadiosity(const Slot& slot);
 
   /// Sweeps the direction s and its opposite in one traversal along s. For each entry e and each
   /// of d = s, -s with cos = -n_e . d > 0: gathered[e] += B(source) * cos * w, w = solidAngle / pi,

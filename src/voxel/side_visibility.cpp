@@ -14,6 +14,15 @@ constexpr float kPlaneTolerance = 0.05f;
 // Where two sides meet, a point this close to an edge (in voxels) lies on it.
 constexpr float kEdgeTolerance = 1e-3f;
 
+// Calls f(first entry, end) for each cell of several sides: the only ones with fold masks.
+template <typename F>
+void forEachCellOfSeveralSides(const VoxelGrid& grid, F&& f) {
+  for (size_t cell = 0; cell < grid.cellCount(); ++cell) {
+    const uint32_t begin = grid.cellEntryBegin[cell], end = grid.cellEntryBegin[cell + 1];
+    if (end - begin > 1) f(begin, end);
+  }
+}
+
 }  // namespace
 
 SideVisibility::SideVisibility(const VoxelGrid& grid)
@@ -26,10 +35,8 @@ SideVisibility::SideVisibility(const VoxelGrid& grid)
 
 size_t SideVisibility::maskBytesFor(const VoxelGrid& grid) {
   size_t severalSided = 0;
-  for (size_t cell = 0; cell < grid.cellCount(); ++cell) {
-    const uint32_t sides = grid.cellEntryBegin[cell + 1] - grid.cellEntryBegin[cell];
-    if (sides > 1) severalSided += sides;
-  }
+  forEachCellOfSeveralSides(grid,
+                            [&](uint32_t begin, uint32_t end) { severalSided += end - begin; });
   const size_t words = (grid.entryCount() + 63) / 64;
   return severalSided * sizeof(uint16_t) + words * (sizeof(uint64_t) + sizeof(uint32_t));
 }
@@ -37,11 +44,9 @@ size_t SideVisibility::maskBytesFor(const VoxelGrid& grid) {
 void SideVisibility::findFoldsWithinCells() {
   const VoxelGrid& grid = grid_;
   severalSided_.assign((grid.entryCount() + 63) / 64, 0);
-  for (size_t cell = 0; cell < grid.cellCount(); ++cell) {
-    const uint32_t begin = grid.cellEntryBegin[cell], end = grid.cellEntryBegin[cell + 1];
-    if (end - begin < 2) continue;
+  forEachCellOfSeveralSides(grid, [&](uint32_t begin, uint32_t end) {
     for (uint32_t f = begin; f < end; ++f) severalSided_[f / 64] |= uint64_t(1) << (f % 64);
-  }
+  });
   severalBefore_.resize(severalSided_.size());
   uint32_t count = 0;
   for (size_t w = 0; w < severalSided_.size(); ++w) {
@@ -56,12 +61,10 @@ void SideVisibility::findFoldsWithinCells() {
   // inside face of a turned thin-walled box met rays from below the box: 2.4% of the light in
   // the box leaked out of it, 1.0% with this, 0.17% with the neighbours' folds as well (the
   // leak tests).
-  for (uint32_t cell = 0; cell < grid.cellCount(); ++cell) {
+  forEachCellOfSeveralSides(grid, [&](uint32_t begin, uint32_t cellEnd) {
     // A voxel crossed by more than 15 sides (many objects in one voxel) leaves its sides past
     // the 15th out of its folds.
-    const uint32_t begin = grid.cellEntryBegin[cell];
-    const uint32_t end = std::min(grid.cellEntryBegin[cell + 1], begin + 15);
-    if (end - begin < 2) continue;
+    const uint32_t end = std::min(cellEnd, begin + 15);
     uint16_t* masks = &folds_[foldIndex(begin)];
     for (uint32_t f = begin; f < end; ++f) {
       const Vec3 nf = grid.unitNormal(f);
@@ -72,7 +75,7 @@ void SideVisibility::findFoldsWithinCells() {
           masks[f - begin] = uint16_t(masks[f - begin] | (1u << (g - begin)));
       }
     }
-  }
+  });
 }
 
 void SideVisibility::findNeighbourFolds() {

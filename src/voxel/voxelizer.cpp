@@ -351,9 +351,9 @@ VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
   });
   std::vector<size_t>().swap(firstFragment);  // `= {}` would keep its memory
   if (progress && !progress(0.5)) throw Cancelled();
-  // By cell, and within a cell in the order the blocks made them (by triangle, its front before
-  // its back: one piece of each per cell): a total order, sorted in place and in parallel, where
-  // a stable sort would hold a second copy of the fragments.
+  // By cell, and within a cell by triangle, its front before its back (one piece of each per
+  // cell): a total order, sorted in place and in parallel, where a stable sort would hold a
+  // second copy of the fragments.
   tbb::parallel_sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) {
     return std::tie(a.cellKey, a.triangle, a.backSide) < std::tie(b.cellKey, b.triangle, b.backSide);
   });
