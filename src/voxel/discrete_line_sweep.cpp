@@ -386,13 +386,13 @@ DiscreteLineSweep::Source DiscreteLineSweep::packSides(const VoxelGrid& grid,
   return {grid.orientation.data(), sides, scale};
 }
 
-DiscreteLineSweep::Slot DiscreteLineSweep::cellSlot(uint32_t cell) {
+inline DiscreteLineSweep::Slot DiscreteLineSweep::cellSlot(uint32_t cell) {
   Slot slot{};
   std::memcpy(&slot.offset, &cell, sizeof cell);
   return slot;
 }
 
-DiscreteLineSweep::Slot DiscreteLineSweep::recentSlot(const LineState& state) {
+inline DiscreteLineSweep::Slot DiscreteLineSweep::recentSlot(const LineState& state) {
   Slot slot;
   std::memcpy(slot.normal, state.recent.normal, sizeof slot.normal);
   std::memcpy(slot.radiosity, state.recent.radiosity, sizeof slot.radiosity);
@@ -472,6 +472,15 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
   } else if (facing > 0.0f) {
     wait(view, state, e, continues && state.pending == state.recentRef);
   }
+  if (!continues && hasRecent) {
+    // The recent voxel becomes the older one: its slot, from what is at hand.
+    if (recentIsSide) {
+      std::memcpy(&state.older, &recent, offsetof(Slot, offset));
+      state.older.offset = glm::dot(recentNormal, recent.centroid);
+    } else {
+      state.older = cellSlot(state.recentRef & ~kCellRef);
+    }
+  }
   becomeRecent(state, e, dominant, continues);
   // The normal's eight bytes first: its spare lane lands where the radiosity goes.
   static_assert(offsetof(RecentVoxel, radiosity) == 6);
@@ -534,6 +543,7 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
       if (sight == Sight::Source) view.gathered[e] += light * w;
     }
   }
+  if (!continues && state.recentRef != kNoVoxel) state.older = recentSlot(state);
   becomeRecent(state, kCellRef | cell, dominant, continues);
   state.recent.normal[0] = state.recent.normal[1] = state.recent.normal[2] = 0;
 }
@@ -604,10 +614,12 @@ Sight DiscreteLineSweep::lookOlder(const PassView& view, const Vec3& centroid,
                                    const LineState& state, Color& light) const {
   // With the tangent correction a grazed voxel is looked through: the two voxels before it
   // decide (a slot for a cell of several sides is made from its reference).
-  for (const uint32_t ref : state.olderRef) {
+  for (size_t k = 0; k < 2; ++k) {
+    const uint32_t ref = state.olderRef[k];
     if (ref == kNoVoxel) break;
-    const Slot older = ref & kCellRef ? cellSlot(ref & ~kCellRef)
-                                      : sideSlot(view.source, ref, centroidOf(view, ref));
+    const Slot older = k == 0              ? state.older
+                       : ref & kCellRef ? cellSlot(ref & ~kCellRef)
+                                        : sideSlot(view.source, ref, centroidOf(view, ref));
     const Sight sight = look(centroid, older, view.unit, view.source, light);
     if (sight != Sight::Through) return sight;
   }
@@ -679,9 +691,9 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
   LineState* const lines = scratch.recordsFor(band.lineCount, bandLines_);
   const uint16_t stamp = scratch.stamp;
   const uint32_t firstLine = band.firstLine;
-  // Line records are scattered over the band's (up to a sixteenth of the scene's cross-section),
-  // and the cells' own data is read in an order that jumps back row by row: fetch both kAhead
-  // cells ahead of the visit so that the misses overlap instead of queueing.
+  // Line records are scattered over the band's (up to a twenty-fourth of the scene's
+  // cross-section), and the cells' own data is read in an order that jumps back row by row: fetch
+  // both kAhead cells ahead of the visit so that the misses overlap instead of queueing.
   constexpr uint32_t kAhead = 32, kMask = kAhead - 1;
   uint32_t ringCell[kAhead], ringLine[kAhead];
   int32_t ringDominant[kAhead];
@@ -701,9 +713,7 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
   };
   forEachCellInPassOrder(step, band, [&](uint32_t cell, uint32_t line, int32_t dominant) {
     line -= firstLine;  // the band's records hold its lines from firstLine on
-    // A 48-byte record may straddle two cache lines: fetch both.
     __builtin_prefetch(&lines[line], 1);
-    __builtin_prefetch(reinterpret_cast<const char*>(&lines[line]) + sizeof(LineState) - 1, 1);
     const uint32_t first = view.entryBegin[cell];
     __builtin_prefetch(&view.centroid[first]);
     __builtin_prefetch(&view.gathered[first], 1);

@@ -29,9 +29,9 @@
 // Bands touch disjoint lines and sides, so one accumulator serves all threads, and a side's sum
 // over the directions is the same whatever their number. A band's lines are a contiguous range
 // of the line numbers, and each thread keeps the records of the band it sweeps only: a band holds
-// at most a sixteenth of the widest direction's lines (plus a row), with one thread as with
-// several, so each thread's records take a sixteenth of the memory a whole table would and are
-// reused, warm in the cache, from band to band.
+// at most a twenty-fourth of the widest direction's lines (plus a row), with one thread as with
+// several, so each thread's records take a twenty-fourth of the memory a whole table would and
+// are reused, warm in the cache, from band to band.
 
 #include "voxel/direction_set.h"
 #include "voxel/side_visibility.h"
@@ -170,11 +170,13 @@ class DiscreteLineSweep {
     uint16_t radiosity[3];
     Vec3 centroid;
   };
-  /// 48 bytes per line: its last voxel (runs along the same planes collapsed to their nearest
-  /// voxel) inline, the two voxels before it by reference (an entry, kCellRef | cell, or
-  /// kNoVoxel) and the sides waiting on it, so that a visit mostly touches this record and the
-  /// visited cell's own data only.
-  struct alignas(16) LineState {
+  /// 64 bytes per line, one cache line: its last voxel (runs along the same planes collapsed to
+  /// their nearest voxel) inline, the two voxels before it by reference (an entry,
+  /// kCellRef | cell, or kNoVoxel) and the nearer of them also as a slot, and the sides waiting
+  /// on it, so that a visit mostly touches this record and the visited cell's own data only.
+  /// The slot serves the sides that look past a grazed voxel, a tenth of the visits and most of
+  /// a run's along a wall, which otherwise read a side visited long ago (cache misses).
+  struct alignas(64) LineState {
     uint16_t stamp = 0;
     int16_t lastDominant = 0;
     uint32_t recentRef = kNoVoxel;
@@ -183,8 +185,9 @@ class DiscreteLineSweep {
     /// through pendingNext_), so that a lone waiting side costs no access beyond this record.
     uint32_t pending = kNoPending, pendingLink = kNoPending;
     RecentVoxel recent;
+    Slot older;  ///< olderRef[0] as a look meets it
   };
-  static_assert(sizeof(LineState) == 48);
+  static_assert(sizeof(LineState) == 64);
   /// The slot standing for a cell of several sides (zero normal, the cell's index in `offset`).
   static Slot cellSlot(uint32_t cell);
   /// Makes `ref` (an entry or kCellRef | cell) the line's recent voxel.
@@ -195,9 +198,9 @@ class DiscreteLineSweep {
   /// A direction's lines as coordinates (U, V) >= 0, U = u[0][t0] + u[1][t1] (+ u[2][t2] = 0)
   /// and likewise V, with t_k the cell's coordinate along axes[k] (axes[0] the dominant one,
   /// axes[2] the innermost other axis a pass walks): the naive line
-  /// (floor((a y - b x + u) / a), floor((a z - c x + v) / a)) shifted to start at 0. The lines of row U lie in [vLow[U], vHigh[U]]: the grid's box seen along
-  /// the direction, a hexagon rather than its bounding parallelogram (a quarter fewer lines for
-  /// a diagonal).
+  /// (floor((a y - b x + u) / a), floor((a z - c x + v) / a)) shifted to start at 0. The lines
+  /// of row U lie in [vLow[U], vHigh[U]]: the grid's box seen along the direction, a hexagon
+  /// rather than its bounding parallelogram (a quarter fewer lines for a diagonal).
   struct LineLayout {
     std::array<int, 3> axes;
     std::array<std::vector<int64_t>, 3> u, v;
@@ -220,8 +223,10 @@ class DiscreteLineSweep {
   /// one thread and on two; the sweeps' instructions on one thread 0.7% fewer (room:4, 30k
   /// voxels, R = 8), though a band of a dominant z reads every row of the grid. A sixteenth: 2 B
   /// per side less on two threads (2M voxels), 2.3% more instructions, the same speed (runs side
-  /// by side, 1M voxels: 0.95-1.05).
-  static constexpr size_t kBandShareOfLines = 16;
+  /// by side, 1M voxels: 0.95-1.05). A twenty-fourth since the records grew to 64 bytes: the same
+  /// memory as 48-byte records at a sixteenth (2M voxels, 2 threads: 63.6 B per voxel against
+  /// 63.9), 1.0-1.04 times the speed (1M voxels, one thread, runs side by side).
+  static constexpr size_t kBandShareOfLines = 24;
   static size_t bandLineCapacity(const VoxelGrid& grid, size_t lines) {
     // A row of the table is narrower than the grid's box is wide along all three axes.
     return lines / kBandShareOfLines + size_t(grid.dims.x + grid.dims.y + grid.dims.z);
