@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include "command_support.h"
 #include "commands.h"
 #include "console.h"
 
@@ -26,7 +27,8 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   app.set_version_flag("--version", "radiosity " RADIOSITY_VERSION " (" RADIOSITY_BUILD_TYPE ")");
   int threads = 0;
   bool quiet = false, verbose = false;
-  app.add_option("--threads", threads, "Worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", threads, "Worker threads (default: all cores)")
+      ->check(nonNegativeNumber());
   app.add_flag("-q,--quiet", quiet, "Print errors only");
   app.add_flag("-v,--verbose", verbose, "Print the banner, timings and details");
 

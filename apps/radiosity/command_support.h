@@ -11,7 +11,8 @@
 
 namespace CLI {
 class App;
-}
+class Validator;
+}  // namespace CLI
 
 namespace rad::cli {
 
@@ -19,6 +20,12 @@ namespace rad::cli {
 void addSceneArgument(CLI::App& command, std::string& scene);
 /// The --stats FILE option of the commands that compute light transport (see writeStatsFile).
 void addStatsOption(CLI::App& command, std::string& path);
+
+/// Checks of a numeric option whose messages say what was expected ("--voxel-size: 0 is not
+/// greater than 0"), where CLI11's PositiveNumber and NonNegativeNumber print their ranges'
+/// bounds (a 309-digit largest double).
+const CLI::Validator& positiveNumber();
+const CLI::Validator& nonNegativeNumber();
 
 /// Loads the scene, prints its warnings, refuses a scene with nothing that emits (a black
 /// result), and records the load time and the triangle count.

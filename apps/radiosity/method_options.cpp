@@ -1,5 +1,7 @@
 #include "method_options.h"
 
+#include "command_support.h"
+
 #include <radiosity/error.h>
 
 #include <CLI/CLI.hpp>
@@ -86,7 +88,7 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
   seedFlag_ = c.add_option("--seed", pathTracer_.seed, "Random seed (same seed, same result)");
   const std::string voxel = "Voxel method";
   voxelSizeFlag_ = c.add_option("--voxel-size", voxel_.voxelSize, "Voxel edge in scene units")
-                       ->check(CLI::PositiveNumber)->group(voxel);
+                       ->check(positiveNumber())->group(voxel);
   voxelsFlag_ = c.add_option("--voxels", voxel_.targetVoxels,
                              "Approximate number of surface voxels (default 200000)")
                     ->check(CLI::Range(size_t(1), size_t(1) << 32))->group(voxel);
@@ -98,7 +100,7 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
   toleranceFlag_ = c.add_option("--tolerance", voxel_.tolerance,
                                 "Stop once the relative change of B (voxel) or the relative "
                                 "residual (patch, default 1e-3) is below this")
-                       ->check(CLI::NonNegativeNumber)->group(voxel);
+                       ->check(nonNegativeNumber())->group(voxel);
   tangentFlag_ = c.add_flag("--tangent-correction,!--no-tangent-correction", voxel_.tangentCorrection,
                             "Look through voxels a line only grazes (default on)")->group(voxel);
   firstShotFlag_ = c.add_flag("--first-shot,!--no-first-shot", voxel_.directFirstShot,
@@ -124,7 +126,7 @@ void MethodOptions::addPatchFlags(CLI::App& c) {
   const std::string patch = "Patch method";
   patchSizeFlag_ = c.add_option("--patch-size", patch_.patchSize,
                                  "Longest patch edge in scene units")
-                       ->check(CLI::PositiveNumber)->group(patch);
+                       ->check(positiveNumber())->group(patch);
   patchesFlag_ = c.add_option("--patches", patch_.targetPatches,
                               "Approximate number of patches (default 4000)")
                      ->check(CLI::Range(size_t(1), size_t(1) << 32))->group(patch);

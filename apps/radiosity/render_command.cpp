@@ -136,7 +136,7 @@ void addRenderCommand(CLI::App& app, Console& console, CommandAction& action) {
   addStatsOption(*sub, o->stats);
   sub->add_option("--object-points", o->objectPoints,
                   "pathtrace: surface points per object for the stats' per-object means (0: skip)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegativeNumber());
   sub->callback([o, &console, &action] { action = [o, &console] { return runRender(*o, console); }; });
 }
 

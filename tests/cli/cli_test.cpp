@@ -203,6 +203,22 @@ TEST(Cli, UsageErrorsExitTwo) {
   EXPECT_EQ(run({"--help"}).status, 0);
 }
 
+TEST(Cli, NumbersOutOfRangeSayWhatWasExpected) {
+  // The option, the value and what it should have been; before, CLI11's own checks printed the
+  // range up to the largest double (309 digits).
+  const CliResult size = run({"solve", "cornell", "--method", "voxel", "--voxel-size", "0"});
+  EXPECT_EQ(size.status, 2);
+  EXPECT_NE(size.err.find("--voxel-size: 0 is not greater than 0"), std::string::npos) << size.err;
+  EXPECT_LT(size.err.size(), 200u) << size.err;
+  const CliResult tolerance = run({"solve", "cornell", "--tolerance", "-0.5"});
+  EXPECT_EQ(tolerance.status, 2);
+  EXPECT_NE(tolerance.err.find("--tolerance: -0.5 is below 0"), std::string::npos)
+      << tolerance.err;
+  const CliResult patch = run({"solve", "cornell", "--patch-size", "x"});
+  EXPECT_EQ(patch.status, 2);
+  EXPECT_NE(patch.err.find("'x' is not a number"), std::string::npos) << patch.err;
+}
+
 TEST(Cli, InfoPrintsCountsAndPower) {
   const CliResult r = run({"info", "cornell"});
   ASSERT_EQ(r.status, 0) << r.err;
