@@ -86,6 +86,8 @@ inline std::pair<uint32_t, uint32_t> cellsWithin(const int16_t* z, uint32_t begi
 
 DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings& settings)
     : grid_(grid), settings_(settings), visibility_(std::make_shared<const SideVisibility>(grid)) {
+  for (uint32_t x = 0; x < uint32_t(grid.dims.x); ++x)
+    if (grid.slabRowBegin[x] < grid.slabRowBegin[x + 1]) occupiedSlabs_.push_back(x);
   // Waiting sides are chained by 29-bit entry indices.
   if (grid.entryCount() >= kNoPending)
     throw InputError("voxel grid", std::to_string(grid.entryCount()) +
@@ -649,7 +651,9 @@ void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, const LineBand
   const bool whole = band.holdsAll(rowStart_.size());
   const bool cutRows = !whole && layout_.axes[0] == 2;
   const int16_t* const cellZ = grid.cellZ.data();
-  forEach(0, uint32_t(grid.dims.x), step.x >= 0, [&](uint32_t x) {
+  const uint32_t* const slabs = occupiedSlabs_.data();
+  forEach(0, uint32_t(occupiedSlabs_.size()), step.x >= 0, [&](uint32_t k) {
+    const uint32_t x = slabs[k];
     const uint64_t slabLine = lineTable_[0][x];
     const int32_t slabDominant = dominantTable_[0][x];
     const auto rows = whole || cutRows ? std::pair(grid.slabRowBegin[x], grid.slabRowBegin[x + 1])

@@ -177,8 +177,22 @@ TEST(DiscreteLines, SweepOrderAdvancesAlongTheDirection) {
 // the direction (for a dominant z a band is a range of z in each slab, which cuts the rows).
 // A band holds no more lines than its thread's records: cut 7 ways by cells, or not at all,
 // bands holding more are cut further.
-TEST(DiscreteLines, BandsSplitTheLinesAndKeepEachLineInOrder) {
-  const VoxelGrid grid = sphereAndBoxGrid();
+// Two spheres of radius 0.25 (outward), `apart` from each other along the diagonal of the xy
+// plane, in voxels of 0.02: a box mostly empty, its slabs between the spheres without a cell.
+VoxelGrid spheresApart(float apart) {
+  SceneBuilder b("spheres apart");
+  const uint32_t m = b.addMaterial({"white", Color(0.5f), Color(0.0f), false});
+  test::addSphere(b, Vec3(0.0f), 0.25f, false, m, b.addObject("near"));
+  test::addSphere(b, Vec3(apart, apart, 0.0f), 0.25f, false, m, b.addObject("far"));
+  VoxelizerSettings settings;
+  settings.voxelSize = 0.02f;
+  return voxelizeScene(b.build(), settings);
+}
+
+// Every cell in exactly one band of each pass, each line in one band, its cells in order along
+// the direction, and each band's lines within the records' limit (one band asked for: the limit
+// must cut some passes).
+void expectBandsSplitTheLinesInOrder(const VoxelGrid& grid) {
   DiscreteLineSweep sweep(grid, {});
   std::vector<IVec3> cells(grid.cellCount());
   for (uint32_t c = 0; c < grid.cellCount(); ++c) cells[c] = grid.cellCoordinates(c);
@@ -219,6 +233,44 @@ TEST(DiscreteLines, BandsSplitTheLinesAndKeepEachLineInOrder) {
     }
   }
   EXPECT_GT(cutByLimit, 0u);
+}
+
+TEST(DiscreteLines, BandsSplitTheLinesAndKeepEachLineInOrder) {
+  expectBandsSplitTheLinesInOrder(sphereAndBoxGrid());
+}
+
+TEST(DiscreteLines, BandsOfAMostlyEmptyBoxSplitTheLinesAndKeepEachLineInOrder) {
+  // The passes skip the slabs without cells, and the records' limit (a line per 8 sides) cuts
+  // the lines into many more bands than a sixteenth.
+  expectBandsSplitTheLinesInOrder(spheresApart(4.0f));
+}
+
+TEST(DiscreteLineSweep, MemoryGrowsWithTheSidesNotWithTheEmptyBox) {
+  // Two spheres twice as far apart: the same sides, a box whose cross-section is about four
+  // times as large. The line records were sized by the cross-section (a twenty-fourth of the
+  // widest direction's lines a thread), so the sweep's memory grew with the square of the
+  // distance: at 8 and 16, 690 kB and 2.13 MB for 5,872 sides (3.1x; checked with that sizing,
+  // which fails both assertions). Now the records hold at most a line per 8 sides plus a row of
+  // the table (as wide as the box): 193 and 244 kB (1.26x).
+  tbb::task_arena oneThread(1);
+  oneThread.execute([] {
+    const DirectionSet directions(4);
+    std::vector<IVec3> steps;
+    for (size_t k = 0; k < directions.pairCount(); ++k)
+      steps.push_back(directions.pairFirst(k).step);
+    auto bytes = [&](const VoxelGrid& grid) {
+      return double(DiscreteLineSweep::workingBytesFor(
+          grid, DiscreteLineSweep::maxLineCount(grid, steps)));
+    };
+    const VoxelGrid near = spheresApart(8.0f), far = spheresApart(16.0f);
+    ASSERT_NEAR(double(far.entryCount()) / double(near.entryCount()), 1.0, 0.01);
+    EXPECT_LT(bytes(far) / bytes(near), 2.0);
+    // The far pair's: the waiting links (4 B a side), a row of 64-byte records as wide as the box
+    // (x + y + z voxels) and a line per 8 sides, the deferred light (64 kB) and the fold masks.
+    const double sides = double(far.entryCount());
+    const double row = double(far.dims.x + far.dims.y + far.dims.z);
+    EXPECT_LT(bytes(far), sides * (4.0 + 64.0 / 8.0 + 1.0) + 64.0 * row + 65536.0);
+  });
 }
 
 // Walks the naive line through `start` (a cell inside a closed surface) in direction s and

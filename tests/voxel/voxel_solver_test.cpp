@@ -403,9 +403,9 @@ TEST(VoxelSolver, RefusesAGridWithMoreLinesThanTheSweepCanNumber) {
   // Two 2 mm squares 30 m apart in voxels of 1 mm: a handful of voxels in a box 30,000 voxels
   // wide, across which the diagonal (1, 1, 1) has X Y + Y Z + Z X - X - Y - Z + 1, about 2.7e9,
   // lines: more than the sweep's 32-bit line numbers hold. An input error naming the remedy,
-  // before any allocation: the records alone would take 16 GB a thread, which the memory check
-  // refuses on two threads here but not on one (checked: without the limit a one-thread solve
-  // ran, 16 GB resident, 43 s for 14 voxels, its line numbers past 2^31).
+  // before any allocation (checked while the line records were sized by the box's
+  // cross-section, 16 GB a thread: without the limit a one-thread solve ran, 16 GB resident, 43 s
+  // for 14 voxels, its line numbers past 2^31).
   SceneBuilder b("far apart");
   const uint32_t lamp = b.addMaterial({"lamp", Color(0.5f), Color(1.0f), false});
   const uint32_t grey = b.addMaterial({"grey", Color(0.5f), Color(0.0f), false});
