@@ -20,7 +20,6 @@
 #include <cstring>
 #include <map>
 #include <memory>
-#include <optional>
 
 namespace rad {
 
@@ -117,12 +116,15 @@ double luminance(const Vec3d& power) {
 struct SweepDirections {
   explicit SweepDirections(const VoxelSolverSettings& settings) : first(settings.sphereRadius) {
     const int later = settings.laterSphereRadius;
-    if (later > 0 && later != settings.sphereRadius) coarser.emplace(later);
+    if (later > 0 && later != settings.sphereRadius)
+      coarser = std::make_unique<const DirectionSet>(later);
   }
   const DirectionSet& later() const { return coarser ? *coarser : first; }
 
   DirectionSet first;
-  std::optional<DirectionSet> coarser;
+  /// Null when the later bounces use the first set. (A std::optional here made GCC 12 warn,
+  /// wrongly, that its vectors may be used uninitialized, in the sanitizers' build.)
+  std::unique_ptr<const DirectionSet> coarser;
 };
 
 // One iteration, one bounce: the direction pairs in turn, each swept by all threads (over bands
