@@ -81,7 +81,8 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
   methodFlag_ = c.add_option("--method", method_, "Light transport method (default: " + method_ + ")")
                     ->check(CLI::IsMember(methods_));
   sppFlag_ = c.add_option("--spp", pathTracer_.samplesPerPixel,
-                          "Samples per pixel: paths (pathtrace, default 64) or camera rays (others)")
+                          "Samples per pixel: paths (pathtrace, default 64) or camera rays "
+                          "(others, default 16, one per cell of a 4 x 4 grid)")
                  ->check(CLI::Range(1, 1 << 20));
   maxDepthFlag_ = c.add_option("--max-depth", pathTracer_.maxDepth, "Path tracer bounce limit")
                       ->check(CLI::Range(1, 100000));
@@ -184,7 +185,9 @@ void MethodOptions::resolve(const Scene& scene) {
     throw InputError(scene.name + ": /solver/method",
                      fmt::format("method '{}' is not available here (available: {})", method_,
                                  fmt::join(methods_, ", ")));
-  if (method_ != "pathtrace" && !*sppFlag_) pathTracer_.samplesPerPixel = 4;
+  // A camera ray costs one lookup: 16 stratified ones smooth the edges (4 left a lamp's
+  // nearly level edge stepped), for 0.1 s more at 256 x 256 with voxels, 1 s at 1024 x 1024.
+  if (method_ != "pathtrace" && !*sppFlag_) pathTracer_.samplesPerPixel = 16;
   takeUnlessFlagged(sppFlag_, pathTracer_.samplesPerPixel, s.spp);
   takeUnlessFlagged(maxDepthFlag_, pathTracer_.maxDepth, s.maxDepth);
   takeUnlessFlagged(seedFlag_, pathTracer_.seed, s.seed);

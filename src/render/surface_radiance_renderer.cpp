@@ -27,9 +27,7 @@ Image renderSurfaceRadiance(const Scene& scene, const Camera& camera, const Surf
       for (int x = 0; x < camera.width; ++x) {
         Color sum(0.0f);
         for (int s = 0; s < settings.samplesPerPixel; ++s) {
-          // One ray at the pixel centre, jittered ones after it.
-          const Vec2 offset = s == 0 ? Vec2(0.5f) : uniformSquare(rng);
-          const Ray ray = pinhole.ray(x, y, offset);
+          const Ray ray = pinhole.ray(x, y, pixelSample(s, settings.samplesPerPixel, rng));
           const Hit hit = caster.intersect(ray);
           if (!hit.valid()) continue;
           sum += radiance.radiance({ray.origin + hit.distance * ray.direction, hit.geometricNormal,

@@ -87,6 +87,32 @@ TEST(Sampling, StrataCoverTheSquareOncePerCell) {
   for (int k = 0; k < side * side; ++k) EXPECT_EQ(p[size_t(k)], k);
 }
 
+TEST(Sampling, PixelSamplesAreStratifiedWhereTheCountAllows) {
+  Rng rng(7, 0);
+  EXPECT_EQ(pixelSample(0, 1, rng), Vec2(0.5f));  // one ray: the pixel's centre
+  // 4, 9 and 16 samples: one in each cell of the 2x2, 3x3 and 4x4 grids. 6: one in each quarter,
+  // two anywhere. The mean of many pixels' samples is the pixel's centre for every count.
+  for (const int count : {4, 6, 9, 16}) {
+    const int side = count == 6 ? 2 : int(std::lround(std::sqrt(count)));
+    Vec2 mean(0.0f);
+    constexpr int kPixels = 20000;
+    for (int pixel = 0; pixel < kPixels; ++pixel) {
+      std::vector<int> perCell(size_t(side * side), 0);
+      for (int s = 0; s < count; ++s) {
+        const Vec2 u = pixelSample(s, count, rng);
+        ASSERT_TRUE(u.x >= 0.0f && u.x < 1.0f && u.y >= 0.0f && u.y < 1.0f);
+        const int cell = int(u.x * float(side)) + side * int(u.y * float(side));
+        if (s < side * side) ++perCell[size_t(cell)];
+        mean += u;
+      }
+      for (const int n : perCell) ASSERT_EQ(n, 1) << count;
+    }
+    mean /= float(kPixels * count);
+    EXPECT_NEAR(mean.x, 0.5f, 2e-3f) << count;
+    EXPECT_NEAR(mean.y, 0.5f, 2e-3f) << count;
+  }
+}
+
 TEST(Sampling, OrthonormalBasisIsRightHanded) {
   Rng rng(4, 0);
   std::vector<Vec3> normals{{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, -1, 0}};
