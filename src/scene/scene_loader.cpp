@@ -15,6 +15,7 @@
 #include <charconv>
 #include <filesystem>
 #include <fstream>
+#include <system_error>
 
 namespace rad {
 
@@ -37,6 +38,10 @@ Scene loadScene(const std::string& nameOrPath) {
   if (nameOrPath == "cornell-spot") return makeCornellBox(true);
   if (nameOrPath.rfind("room:", 0) == 0) return makeRoom(parseRoomDetail(nameOrPath));
 
+  std::error_code error;
+  if (std::filesystem::is_directory(nameOrPath, error))
+    throw InputError(nameOrPath, "is a directory, not a scene file (.json, .obj, .gltf, .glb) or "
+                                 "a built-in scene (cornell, cornell-spot, room:N)");
   std::string ext = std::filesystem::path(nameOrPath).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   const bool known = ext == ".json" || ext == ".obj" || ext == ".gltf" || ext == ".glb";

@@ -23,6 +23,11 @@ TEST(SceneErrors, MissingFileAndUnsupportedExtension) {
   const auto dir = test::scratchDir("ext");
   const std::string ply = test::writeFile(dir / "mesh.ply", "ply\n");
   expectMessage(errorOf([&] { loadScene(ply); }), {"mesh.ply", "'.ply'", ".json", ".glb"});
+  // A directory, even one named like a scene file, is not read as one.
+  expectMessage(errorOf([&] { loadScene(dir.string()); }), {"is a directory", ".gltf"});
+  std::filesystem::create_directories(dir / "folder.obj");
+  expectMessage(errorOf([&] { loadScene((dir / "folder.obj").string()); }),
+                {"folder.obj", "is a directory"});
   // Upper-case extensions are accepted.
   const std::string upper = test::writeFile(dir / "TRI.OBJ", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   EXPECT_EQ(loadScene(upper).triangles.size(), 1u);
