@@ -54,7 +54,10 @@ std::pair<uint32_t, uint32_t> withinBand(std::pair<uint32_t, uint32_t> range, co
                                          Row&& row) {
   auto [begin, end] = range;
   if (begin == end) return range;
-  const bool rising = row(begin) <= row(end - 1);
+  const int64_t first = row(begin), last = row(end - 1);
+  // Most ranges of a narrow band (a mostly empty box cuts many) lie wholly outside it.
+  if (std::max(first, last) < band.uBegin || std::min(first, last) >= band.uEnd) return {end, end};
+  const bool rising = first <= last;
   // The first index in [begin, end) whose row is past `bound` (before it when falling).
   auto firstPast = [&](int64_t bound) {
     uint32_t lo = begin, hi = end;
