@@ -29,9 +29,10 @@
 // Bands touch disjoint lines and sides, so one accumulator serves all threads, and a side's sum
 // over the directions is the same whatever their number. A band's lines are a contiguous range
 // of the line numbers, and each thread keeps the records of the band it sweeps only: a band holds
-// at most a twenty-fourth of the widest direction's lines (plus a row), with one thread as with
-// several, so each thread's records take a twenty-fourth of the memory a whole table would and
-// are reused, warm in the cache, from band to band.
+// at most a twenty-fourth of the widest direction's lines and a line per 8 sides (plus a row),
+// with one thread as with several, so each thread's records take at most a twenty-fourth of the
+// memory a whole table would, and no more than the sides in a mostly empty box, and are reused,
+// warm in the cache, from band to band.
 
 #include "voxel/direction_set.h"
 #include "voxel/side_visibility.h"
