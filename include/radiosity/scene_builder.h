@@ -32,6 +32,9 @@ class SceneBuilder {
                        const std::string& where);
 
   Scene& scene() { return scene_; }
+  /// Records a warning about the input `file`. Warnings are shown after the scene's name, so the
+  /// file is named only when it is not the scene's own (a mesh a JSON scene includes).
+  void warn(const std::string& file, const std::string& text);
   /// Finishes the scene: records the degenerate-triangle warning and returns it.
   Scene build();
 

@@ -156,6 +156,10 @@ void SceneBuilder::addTriangleMesh(std::span<const uint32_t> indices, uint32_t m
   }
 }
 
+void SceneBuilder::warn(const std::string& file, const std::string& text) {
+  scene_.warnings.push_back(file == scene_.name ? text : file + ": " + text);
+}
+
 Scene SceneBuilder::build() {
   if (degenerateTriangles_ > 0)
     scene_.warnings.push_back(

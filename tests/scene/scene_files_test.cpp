@@ -98,6 +98,17 @@ TEST(SceneFiles, GltfSkipsNonTrianglePrimitivesWithOneWarning) {
   size_t hits = 0;
   for (const std::string& w : gltf.warnings) hits += w.find("skipped 1 non-triangle") != std::string::npos;
   EXPECT_EQ(hits, 1u);
+  // Shown after the scene's name, a warning names its file only when it is not the scene's own.
+  for (const std::string& w : gltf.warnings)
+    EXPECT_EQ(w.find("small.gltf"), std::string::npos) << w;
+  const auto dir = test::scratchDir("warnings");
+  const std::string json = test::writeFile(
+      dir / "includes.json",
+      R"({"geometry": [{"file": ")" + kData + R"(small/small.gltf"}]})");
+  const Scene composed = loadScene(json);
+  ASSERT_EQ(composed.warnings.size(), gltf.warnings.size());
+  for (const std::string& w : composed.warnings)
+    EXPECT_NE(w.find("small.gltf: "), std::string::npos) << w;
 }
 
 TEST(SceneFiles, JsonSceneComposesFilesLightsCameraSolver) {

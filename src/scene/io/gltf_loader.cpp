@@ -146,8 +146,7 @@ uint32_t GltfReader::material(int index) {
   if (index < 0 || size_t(index) >= model_.materials.size()) {
     if (defaultMaterial_ < 0) {
       defaultMaterial_ = builder_.addMaterial({"default", Color(0.5f)});
-      builder_.scene().warnings.push_back(
-          path_ + ": primitives without a material use the default grey (rho 0.5)");
+      builder_.warn(path_, "primitives without a material use the default grey (rho 0.5)");
     }
     return uint32_t(defaultMaterial_);
   }
@@ -167,9 +166,9 @@ uint32_t GltfReader::material(int index) {
   }
   if (maxComponent(mat.rho) >= 0.999f) {
     ++clampedMaterials_;
-    builder_.scene().warnings.push_back(fmt::format(
-        "{}: material '{}' has baseColorFactor 1.0; rho clamped to 0.999 (rho must be < 1)", path_,
-        mat.name));
+    builder_.warn(path_, fmt::format("material '{}' has baseColorFactor 1.0; rho clamped to 0.999 "
+                                     "(rho must be < 1)",
+                                     mat.name));
   }
   double strength = 1.0;
   if (auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end()) {
@@ -184,7 +183,7 @@ uint32_t GltfReader::material(int index) {
   mat.twoSided = m.doubleSided;
   if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 && !texturesIgnored_) {
     texturesIgnored_ = true;
-    builder_.scene().warnings.push_back(path_ + ": textures are ignored (baseColorFactor used)");
+    builder_.warn(path_, "textures are ignored (baseColorFactor used)");
   }
   materials_[size_t(index)] = builder_.addMaterial(std::move(mat));
   return uint32_t(materials_[size_t(index)]);
@@ -246,9 +245,8 @@ void GltfReader::visit(int nodeIndex, const glm::mat4& parent, int depth) {
 
 void GltfReader::finish() {
   if (skippedPrimitives_ > 0)
-    builder_.scene().warnings.push_back(fmt::format(
-        "{}: skipped {} non-triangle primitive{} (points or lines)", path_, skippedPrimitives_,
-        skippedPrimitives_ == 1 ? "" : "s"));
+    builder_.warn(path_, fmt::format("skipped {} non-triangle primitive{} (points or lines)",
+                                     skippedPrimitives_, skippedPrimitives_ == 1 ? "" : "s"));
 }
 
 std::vector<int> rootNodes(const tinygltf::Model& model) {
@@ -280,7 +278,7 @@ void loadGltf(SceneBuilder& builder, const std::string& path, const glm::mat4& t
                                 : loader.LoadASCIIFromFile(&model, &err, &warn, path);
   if (!ok || !err.empty())
     throw InputError(path, "invalid glTF: " + (err.empty() ? std::string("cannot parse") : oneLine(err)));
-  if (!warn.empty()) builder.scene().warnings.push_back(path + ": " + oneLine(warn));
+  if (!warn.empty()) builder.warn(path, oneLine(warn));
   GltfReader reader(builder, model, path);
   for (int root : rootNodes(model)) reader.visit(root, transform, 0);
   reader.finish();

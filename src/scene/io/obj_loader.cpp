@@ -237,14 +237,13 @@ void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& tr
     }
   }
   if (facesWithoutMaterial > 0)
-    builder.scene().warnings.push_back(
-        fmt::format("{}: {} face{} without a material use the default grey (rho 0.5)", path,
-                    facesWithoutMaterial, facesWithoutMaterial == 1 ? "" : "s"));
+    builder.warn(path, fmt::format("{} face{} without a material use the default grey (rho 0.5)",
+                                   facesWithoutMaterial, facesWithoutMaterial == 1 ? "" : "s"));
   const size_t noKd = std::count_if(mtls.begin(), mtls.end(),
                                     [&](const tinyobj::material_t& m) { return !withKd.count(m.name); });
   if (noKd > 0)
-    builder.scene().warnings.push_back(
-        fmt::format("{}: {} material{} without Kd use rho 0.5", path, noKd, noKd == 1 ? "" : "s"));
+    builder.warn(path, fmt::format("{} material{} without Kd use rho 0.5", noKd,
+                                   noKd == 1 ? "" : "s"));
 }
 
 }  // namespace rad
