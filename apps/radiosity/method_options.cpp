@@ -99,8 +99,8 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
   iterationsFlag_ = c.add_option("--iterations", voxel_.iterations, "Sweeps over all directions (default 6)")
                         ->check(CLI::Range(1, 100000))->group(voxel);
   toleranceFlag_ = c.add_option("--tolerance", voxel_.tolerance,
-                                "Stop once the relative change of B (voxel) or the relative "
-                                "residual (patch, default 1e-3) is below this")
+                                "Stop once the relative residual is below this (voxel: the "
+                                "power an iteration adds over B's; patch: default 1e-3)")
                        ->check(nonNegativeNumber())->group(voxel);
   tangentFlag_ = c.add_flag("--tangent-correction,!--no-tangent-correction", voxel_.tangentCorrection,
                             "Look through voxels a line only grazes (default on)")->group(voxel);

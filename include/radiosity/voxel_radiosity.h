@@ -25,7 +25,7 @@ struct VoxelRadiositySettings {
   /// sphere costs less, as R^2. 0: sphereRadius, as in the paper.
   int laterSphereRadius = 0;
   int iterations = 6;              ///< sweeps over all directions, as in the paper
-  double tolerance = 0.0;          ///< stop earlier once the relative change of B is below it
+  double tolerance = 0.0;          ///< stop earlier once the relative residual is below it
   /// Add the light of the bounces after the last iteration, extrapolated from the last two
   /// (their power falls geometrically): six iterations then miss little even in bright rooms.
   bool estimateTail = true;
@@ -45,7 +45,9 @@ struct VoxelRadiosityStats {
   float voxelSize = 0.0f;
   uint64_t visits = 0;     ///< voxel-direction visits of all sweeps
   uint64_t shadowRays = 0;
-  std::vector<double> residuals;  ///< relative change of B at each iteration
+  /// Each iteration's relative residual: the power (area-weighted luminance) of the light it
+  /// added over that of B so far.
+  std::vector<double> residuals;
   double tailShare = 0.0;         ///< share of B's power the tail estimate added
   double voxelizeSeconds = 0.0, directSeconds = 0.0, sweepSeconds = 0.0;
   /// The sweeps' time in each iteration: their spread shows how steady the machine was.
