@@ -4,8 +4,16 @@
 // only: read from /proc, the cgroup files and the resource limits; elsewhere they return 0.
 
 #include <cstdint>
+#include <vector>
 
 namespace rad {
+
+/// Gives a vector's memory back now, before it goes out of scope: `v = {}` (an initializer-list
+/// assignment) and `v.clear()` keep its capacity.
+template <typename T>
+void releaseMemory(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
 
 /// Peak resident set size (VmHWM) in bytes since the process started; 0 if unavailable.
 uint64_t peakResidentBytes();

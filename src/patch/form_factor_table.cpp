@@ -5,6 +5,8 @@
 // gathering then agree on.
 #include "patch/form_factor_table.h"
 
+#include "core/memory_usage.h"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -39,7 +41,7 @@ FormFactorTable FormFactorTable::fromRows(std::vector<std::vector<FormFactorEntr
       t.columns_[t.offsets_[i] + k] = rows[i][k].column;
       t.values_[t.offsets_[i] + k] = rows[i][k].value;
     }
-    std::vector<FormFactorEntry>().swap(rows[i]);
+    releaseMemory(rows[i]);
   });
   const double est = double(std::accumulate(estimated.begin(), estimated.end(), size_t(0)));
   const double sum = std::accumulate(total.begin(), total.end(), 0.0);

@@ -478,7 +478,8 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
     wait(view, state, e, continues && state.pending == state.recentRef);
   }
   if (!continues && hasRecent) {
-    // The recent voxel becomes the older one: its slot, from what is at hand.
+    // The recent voxel becomes the older one: its slot, from the normal this visit already
+    // converted (recentSlot would convert it again on every new run: 0.90x, measured).
     if (recentIsSide) {
       std::memcpy(&state.older, &recent, offsetof(Slot, offset));
       state.older.offset = glm::dot(recentNormal, recent.centroid);

@@ -191,7 +191,9 @@ class DiscreteLineSweep {
   static_assert(sizeof(LineState) == 64);
   /// The slot standing for a cell of several sides (zero normal, the cell's index in `offset`).
   static Slot cellSlot(uint32_t cell);
-  /// Makes `ref` (an entry or kCellRef | cell) the line's recent voxel.
+  /// Makes `ref` (an entry or kCellRef | cell) the line's recent voxel, pushing the one before
+  /// back unless the run continues; the caller has set `older` to that voxel's slot and then
+  /// writes the new recent voxel's data.
   static void becomeRecent(LineState& state, uint32_t ref, int32_t dominant, bool continues);
   /// The recent voxel as a slot (the cell's index for a cell of several sides).
   static Slot recentSlot(const LineState& state);

@@ -1,5 +1,7 @@
 #include "voxel/voxel_grid.h"
 
+#include "core/memory_usage.h"
+
 #include <immintrin.h>
 
 #include <algorithm>
@@ -44,7 +46,7 @@ void NarrowIndices::push_back(uint32_t index) {
   if (!widened_ && index > UINT16_MAX) {
     wide_.reserve(narrow_.capacity());
     wide_.assign(narrow_.begin(), narrow_.end());
-    std::vector<uint16_t>().swap(narrow_);
+    releaseMemory(narrow_);
     widened_ = true;
   }
   if (widened_)

@@ -268,8 +268,8 @@ class SideLight {
   }
   /// Lets the last bounce go (no more sends, no tail): its memory goes before the results come.
   void releaseBounce() {
-    std::vector<Color>().swap(gathered_);  // `= {}` would keep their memory
-    std::vector<uint16_t>().swap(weights_);
+    releaseMemory(gathered_);
+    releaseMemory(weights_);
   }
   std::vector<Color> radiosities() const {
     std::vector<Color> b(irradiance_.size());
@@ -368,7 +368,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   solution.workingBytes = grid.entryCount() * solverBytesPerSide(settings) + sweep->workingBytes();
   // The sweep's arrays go before the results are made, so they never coexist.
   sweep.reset();
-  std::vector<DiscreteLineSweep::SentLight>().swap(packed);
+  releaseMemory(packed);
   light.releaseBounce();
   solution.radiosity = light.radiosities();
   solution.irradiance = light.irradiances();

@@ -349,7 +349,7 @@ VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
       fragmentTriangle(scene, grid, uint32_t(t), twoSided(t), place);
     }
   });
-  std::vector<size_t>().swap(firstFragment);  // `= {}` would keep its memory
+  releaseMemory(firstFragment);
   if (progress && !progress(0.5)) throw Cancelled();
   // By cell, and within a cell by triangle, its front before its back (one piece of each per
   // cell): a total order, sorted in place and in parallel, where a stable sort would hold a
@@ -358,7 +358,7 @@ VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
     return std::tie(a.cellKey, a.triangle, a.backSide) < std::tie(b.cellKey, b.triangle, b.backSide);
   });
   buildEntries(scene, fragments, grid);
-  std::vector<Fragment>().swap(fragments);
+  releaseMemory(fragments);
   if (progress && !progress(1.0)) throw Cancelled();
   return grid;
 }
