@@ -216,9 +216,11 @@ void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset
     const std::vector<int64_t>& u = layout_.u[size_t(k)];
     const std::vector<int64_t>& v = layout_.v[size_t(k)];
     lineTable_[axis].resize(u.size());
+    if (axis == 2) innerLineTable_.resize(u.size());
     dominantTable_[axis].resize(u.size());
     for (size_t t = 0; t < u.size(); ++t) {
       lineTable_[axis][t] = uint64_t(u[t]) << 32 | uint64_t(v[t]);
+      if (axis == 2) innerLineTable_[t] = int32_t(v[t]);
       dominantTable_[axis][t] = k == 0 ? int32_t(sign * int64_t(t)) : 0;
     }
   }
@@ -653,8 +655,10 @@ void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, const LineBand
   // rows; on x and z for a dominant z, so that a band is a range of z, which cuts each row.
   const VoxelGrid& grid = grid_;
   const bool whole = band.holdsAll(rowStart_.size());
-  const bool cutRows = !whole && layout_.axes[0] == 2;
+  const bool zDominant = layout_.axes[0] == 2;
+  const bool cutRows = !whole && zDominant;
   const int16_t* const cellZ = grid.cellZ.data();
+  const int32_t* const innerV = innerLineTable_.data();
   const uint32_t* const slabs = occupiedSlabs_.data();
   forEach(0, uint32_t(occupiedSlabs_.size()), step.x >= 0, [&](uint32_t k) {
     const uint32_t x = slabs[k];
@@ -671,11 +675,19 @@ void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, const LineBand
       const size_t y = size_t(grid.rowY[row]);
       const uint64_t rowLine = slabLine + lineTable_[1][y];
       const int32_t rowDominant = slabDominant + dominantTable_[1][y];
+      if (zDominant) {
+        forEach(begin, end, step.z >= 0, [&](uint32_t cell) {
+          const size_t z = size_t(cellZ[cell]);
+          const uint64_t uv = rowLine + lineTable_[2][z];
+          f(cell, uint32_t(rowStart_[uv >> 32] + int32_t(uint32_t(uv))),
+            rowDominant + dominantTable_[2][z]);
+        });
+        return;
+      }
+      // Along a row of a dominant x or y only V moves: the row's lines start at one index.
+      const int32_t rowFirst = rowStart_[rowLine >> 32] + int32_t(uint32_t(rowLine));
       forEach(begin, end, step.z >= 0, [&](uint32_t cell) {
-        const size_t z = size_t(cellZ[cell]);
-        const uint64_t uv = rowLine + lineTable_[2][z];
-        f(cell, uint32_t(rowStart_[uv >> 32] + int32_t(uint32_t(uv))),
-          rowDominant + dominantTable_[2][z]);
+        f(cell, uint32_t(rowFirst + innerV[cellZ[cell]]), rowDominant);
       });
     });
   });
