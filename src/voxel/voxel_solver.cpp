@@ -178,15 +178,6 @@ class Float24Color {
 };
 static_assert(sizeof(Float24Color) == 9);
 
-// What the solver holds per side besides the sweep's working memory: the one account of its
-// arrays, for the memory check before solving and the memory reported after.
-uint64_t solverBytesPerSide(const VoxelSolverSettings& settings) {
-  return sizeof(Color) +                                          // the bounce being gathered
-         sizeof(Float24Color) +                                   // irradiance so far
-         sizeof(DiscreteLineSweep::SentLight) +                   // light sent
-         (settings.normalize ? sizeof(uint16_t) : 0);             // normalization weights
-}
-
 // The line table the sweeps need, over all their directions: as large as the widest
 // direction's (reserved at once, so that it never grows by reallocation, which would hold two
 // tables).
@@ -201,7 +192,7 @@ size_t widestLineTable(const VoxelGrid& grid, const SweepDirections& directions)
 }
 
 uint64_t solveBytes(const VoxelGrid& grid, size_t lines, const VoxelSolverSettings& settings) {
-  return grid.entryCount() * solverBytesPerSide(settings) +
+  return grid.entryCount() * voxelSolverBytesPerSide(settings) +
          DiscreteLineSweep::workingBytesFor(grid, lines);
 }
 
@@ -305,6 +296,13 @@ class SideLight {
 
 }  // namespace
 
+uint64_t voxelSolverBytesPerSide(const VoxelSolverSettings& settings) {
+  return sizeof(Color) +                                          // the bounce being gathered
+         sizeof(Float24Color) +                                   // irradiance so far
+         sizeof(DiscreteLineSweep::SentLight) +                   // light sent
+         (settings.normalize ? sizeof(uint16_t) : 0);             // normalization weights
+}
+
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
   return solveBytes(grid, widestLineTable(grid, SweepDirections(settings)), settings);
 }
@@ -365,7 +363,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     const double added = luminance(Vec3d(tail) * bouncePower.back());
     solution.tailShare = added / (luminance(totalPower) + added);
   }
-  solution.workingBytes = grid.entryCount() * solverBytesPerSide(settings) + sweep->workingBytes();
+  solution.workingBytes = grid.entryCount() * voxelSolverBytesPerSide(settings) + sweep->workingBytes();
   // The sweep's arrays go before the results are made, so they never coexist.
   sweep.reset();
   releaseMemory(packed);

@@ -329,6 +329,28 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
   EXPECT_EQ(coarser["voxel"]["later_directions"].get<int>(), 90);
 }
 
+TEST(Cli, BenchVoxelSamplesTheSphereAndCountsMemoryAsASolveDoes) {
+  // R = 38 has 14,790 directions, 7,395 pairs: every 500th pair is 15 of them, 30 directions.
+  // One thread, so that both runs hold one thread's records (a thread that never ran holds none).
+  const CliResult bench = run({"bench", "voxel", "--voxels", "5000", "--pair-stride", "500",
+                               "--threads", "1", "--json", "--quiet"});
+  ASSERT_EQ(bench.status, 0) << bench.err;
+  const nlohmann::json b = nlohmann::json::parse(bench.out)["voxel"];
+  EXPECT_EQ(b["directions"].get<int>(), 14790);
+  EXPECT_EQ(b["directions_swept"].get<int>(), 30);
+  EXPECT_GT(b["visits_per_s"].get<double>(), 0.0);
+  // The bytes it reports are a solve's of the same grid: it sweeps fewer directions, but sizes
+  // its line records for the sphere's widest, as the solve does.
+  const fs::path dir = freshDir("bench_voxel");
+  const std::string stats = (dir / "solve.json").string();
+  ASSERT_EQ(run({"solve", "room:16", "--method", "voxel", "--voxels", "5000", "--iterations", "1",
+                 "--no-first-shot", "--threads", "1", "--stats", stats, "--quiet"}).status, 0);
+  const nlohmann::json solve = readJson(stats)["voxel"];
+  EXPECT_EQ(solve["cells"].get<size_t>(), b["voxels"].get<size_t>());
+  EXPECT_NEAR(b["bytes_per_voxel"].get<double>(), solve["bytes_per_voxel"].get<double>(),
+              0.001 * solve["bytes_per_voxel"].get<double>());
+}
+
 TEST(Cli, RendersWithVoxels) {
   const fs::path dir = freshDir("voxel_render");
   const std::string png = (dir / "v.png").string();
