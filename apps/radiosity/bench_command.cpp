@@ -31,7 +31,8 @@ int runBench(const BenchOptions& o, Console& console) {
   const bool all = o.which == "all";
   if (all || o.which == "pathtrace") results["pathtrace"] = benchPathTracer(console);
   if (all || o.which == "patch") results["patch"] = benchPatch(console);
-  if (all || o.which == "voxel") results["voxel"] = benchVoxel(console, o.voxels, o.sphereRadius, o.pairStride);
+  if (all || o.which == "voxel")
+    results["voxel"] = benchVoxel(console, o.voxels, o.sphereRadius, o.pairStride);
   if (o.which == "voxel-scaling")
     results["voxel-scaling"] = benchVoxelScaling(console, o.scalingRadius, o.scalingMaxVoxels, o.output);
   if (o.json) {

@@ -37,7 +37,8 @@ struct SweepMeasurement {
 
 // One sweep iteration of a whole solve (no first shot, so the time is the sweep's alone) at a
 // voxel size.
-SweepMeasurement measureSweep(const Scene& scene, float voxelSize, int sphereRadius, Console& console) {
+SweepMeasurement measureSweep(const Scene& scene, float voxelSize, int sphereRadius,
+                              Console& console) {
   VoxelRadiositySettings settings;
   settings.voxelSize = voxelSize;
   settings.sphereRadius = sphereRadius;
@@ -50,7 +51,11 @@ SweepMeasurement measureSweep(const Scene& scene, float voxelSize, int sphereRad
   console.finishProgress();
   const VoxelRadiosityStats& s = solution.stats();
   const double seconds = s.iterationSeconds.front();
-  return {s.voxels, s.sides, s.directions, seconds, double(s.visits) / seconds,
+  return {s.voxels,
+          s.sides,
+          s.directions,
+          seconds,
+          double(s.visits) / seconds,
           double(s.memoryBytes) / double(s.sides)};
 }
 
@@ -81,18 +86,20 @@ SampledSweepMeasurement measureSampledSweep(const Scene& scene, size_t voxels, i
   for (size_t k = 0; k < directions.pairCount(); ++k) steps.push_back(directions.pairFirst(k).step);
 
   std::vector<DiscreteLineSweep::SentLight> sent(grid.entryCount());
-  const DiscreteLineSweep::Source source =
-      DiscreteLineSweep::packSides(grid, [](size_t) { return Color(1.0f); }, sent);
+  const DiscreteLineSweep::Source source = DiscreteLineSweep::packSides(
+      grid, [](size_t) { return Color(1.0f); }, sent);
   std::vector<Color> gathered(grid.entryCount(), Color(0.0f));
   DiscreteLineSweep sweep(grid, {});
   sweep.reserveLines(DiscreteLineSweep::maxLineCount(grid, steps));
-  const ProgressCallback progress = console.progress(fmt::format("sweep {} voxels", grid.cellCount()));
+  const ProgressCallback progress =
+      console.progress(fmt::format("sweep {} voxels", grid.cellCount()));
   std::vector<double> seconds;
   for (int round = 0; round < kRounds; ++round) {
     const Stopwatch clock;
     for (size_t i = 0; i < pairs.size(); ++i) {
       sweep.sweepPair(directions.pairFirst(pairs[i]), source, gathered);
-      if (progress && !progress(double(round * pairs.size() + i + 1) / double(kRounds * pairs.size())))
+      if (progress &&
+          !progress(double(round * pairs.size() + i + 1) / double(kRounds * pairs.size())))
         throw Cancelled();
     }
     seconds.push_back(clock.seconds());
@@ -101,8 +108,9 @@ SampledSweepMeasurement measureSampledSweep(const Scene& scene, size_t voxels, i
   // What a solve's stats count: the grid, the solver's arrays and the sweep's.
   VoxelSolverSettings solver;
   solver.sphereRadius = sphereRadius;
-  const double bytes = double(grid.memoryBytes() + grid.entryCount() * voxelSolverBytesPerSide(solver) +
-                              sweep.workingBytes());
+  const double bytes =
+      double(grid.memoryBytes() + grid.entryCount() * voxelSolverBytesPerSide(solver) +
+             sweep.workingBytes());
   std::sort(seconds.begin(), seconds.end());
   // A pair visits every cell once for each of its two directions.
   const double visits = 2.0 * double(pairs.size()) * double(grid.cellCount());
@@ -153,28 +161,31 @@ std::string svgPlot(const std::vector<SweepMeasurement>& points, double slope) {
 
 nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius, size_t pairStride) {
   const Scene scene = loadScene(kScene);
-  const SampledSweepMeasurement m = measureSampledSweep(scene, voxels, sphereRadius, pairStride, console);
+  const SampledSweepMeasurement m =
+      measureSampledSweep(scene, voxels, sphereRadius, pairStride, console);
   const double paperSeconds = kPaperVisits / m.visitsPerSecond;
-  return {{"scene", kScene},
-          {"voxels", m.voxels},
-          {"sides", m.sides},
-          {"directions", m.directions},
-          {"directions_swept", m.directionsSwept},
-          {"seconds_per_round", m.secondsPerRound},
-          {"rounds", kRounds},
-          {"visits_per_s", m.visitsPerSecond},
-          {"visits_per_s_best", m.bestVisitsPerSecond},
-          {"bytes_per_side", m.bytesPerSide},
-          {"bytes_per_voxel", m.bytesPerVoxel},
-          {"paper_workload_s", paperSeconds},
-          {"speedup_over_paper", kPaperSeconds / paperSeconds},
-          {"summary",
-           fmt::format("{:.1f} M visits/s, median of {} rounds (fastest {:.1f}) ({} {} voxels, {} of R {}'s {} "
-                       "directions, {:.2f} s/round, {:.1f} B/side, {:.1f} B/voxel); "
-                       "paper workload (2e6 voxels, R 38, 6 it.) extrapolated: {:.0f} s = {:.0f}x the paper",
-                       m.visitsPerSecond * 1e-6, kRounds, m.bestVisitsPerSecond * 1e-6, kScene, m.voxels,
-                       m.directionsSwept, sphereRadius, m.directions, m.secondsPerRound, m.bytesPerSide,
-                       m.bytesPerVoxel, paperSeconds, kPaperSeconds / paperSeconds)}};
+  return {
+      {"scene", kScene},
+      {"voxels", m.voxels},
+      {"sides", m.sides},
+      {"directions", m.directions},
+      {"directions_swept", m.directionsSwept},
+      {"seconds_per_round", m.secondsPerRound},
+      {"rounds", kRounds},
+      {"visits_per_s", m.visitsPerSecond},
+      {"visits_per_s_best", m.bestVisitsPerSecond},
+      {"bytes_per_side", m.bytesPerSide},
+      {"bytes_per_voxel", m.bytesPerVoxel},
+      {"paper_workload_s", paperSeconds},
+      {"speedup_over_paper", kPaperSeconds / paperSeconds},
+      {"summary",
+       fmt::format(
+           "{:.1f} M visits/s, median of {} rounds (fastest {:.1f}) ({} {} voxels, {} of R {}'s {} "
+           "directions, {:.2f} s/round, {:.1f} B/side, {:.1f} B/voxel); "
+           "paper workload (2e6 voxels, R 38, 6 it.) extrapolated: {:.0f} s = {:.0f}x the paper",
+           m.visitsPerSecond * 1e-6, kRounds, m.bestVisitsPerSecond * 1e-6, kScene, m.voxels,
+           m.directionsSwept, sphereRadius, m.directions, m.secondsPerRound, m.bytesPerSide,
+           m.bytesPerVoxel, paperSeconds, kPaperSeconds / paperSeconds)}};
 }
 
 nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxVoxels,

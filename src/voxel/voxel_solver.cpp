@@ -297,10 +297,10 @@ class SideLight {
 }  // namespace
 
 uint64_t voxelSolverBytesPerSide(const VoxelSolverSettings& settings) {
-  return sizeof(Color) +                                          // the bounce being gathered
-         sizeof(Float24Color) +                                   // irradiance so far
-         sizeof(DiscreteLineSweep::SentLight) +                   // light sent
-         (settings.normalize ? sizeof(uint16_t) : 0);             // normalization weights
+  return sizeof(Color) +                               // the bounce being gathered
+         sizeof(Float24Color) +                        // irradiance so far
+         sizeof(DiscreteLineSweep::SentLight) +        // light sent
+         (settings.normalize ? sizeof(uint16_t) : 0);  // normalization weights
 }
 
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
@@ -363,7 +363,8 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     const double added = luminance(Vec3d(tail) * bouncePower.back());
     solution.tailShare = added / (luminance(totalPower) + added);
   }
-  solution.workingBytes = grid.entryCount() * voxelSolverBytesPerSide(settings) + sweep->workingBytes();
+  solution.workingBytes =
+      grid.entryCount() * voxelSolverBytesPerSide(settings) + sweep->workingBytes();
   // The sweep's arrays go before the results are made, so they never coexist.
   sweep.reset();
   releaseMemory(packed);

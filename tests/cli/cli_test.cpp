@@ -344,7 +344,9 @@ TEST(Cli, BenchVoxelSamplesTheSphereAndCountsMemoryAsASolveDoes) {
   const fs::path dir = freshDir("bench_voxel");
   const std::string stats = (dir / "solve.json").string();
   ASSERT_EQ(run({"solve", "room:16", "--method", "voxel", "--voxels", "5000", "--iterations", "1",
-                 "--no-first-shot", "--threads", "1", "--stats", stats, "--quiet"}).status, 0);
+                 "--no-first-shot", "--threads", "1", "--stats", stats, "--quiet"})
+                .status,
+            0);
   const nlohmann::json solve = readJson(stats)["voxel"];
   EXPECT_EQ(solve["cells"].get<size_t>(), b["voxels"].get<size_t>());
   EXPECT_NEAR(b["bytes_per_voxel"].get<double>(), solve["bytes_per_voxel"].get<double>(),
