@@ -69,10 +69,11 @@ constexpr int kRounds = 3;
 
 // The sweeps of every `pairStride`-th direction pair of the sphere of radius R (all octants and
 // dominant axes, in the sphere's own mix), on all threads, kRounds times, at `voxels` voxels.
-// A sweep's rate depends on the grid (at 93k voxels it visits 30% slower than at 1-2M: more of
-// its cells are edges and corners) and on the directions' mix, not on how many directions there
-// are: sampling the paper's sphere at the paper's voxel count extrapolates to its workload, in
-// a 25th of the time one of its iterations takes. Memory is counted as a solve's stats count it.
+// A sweep's rate depends on the grid (room:16 at 93k voxels visits 30% slower per thread than at
+// 1-2M) and on the directions' mix, not on how many directions there are: the paper's sphere
+// sampled at the paper's voxel count extrapolates to its workload within a few percent of a
+// real iteration, and the default (a 24th of the directions, three times) takes an eighth of
+// one. Memory is counted as a solve's stats count it.
 SampledSweepMeasurement measureSampledSweep(const Scene& scene, size_t voxels, int sphereRadius,
                                             size_t pairStride, Console& console) {
   VoxelizerSettings voxelizer;

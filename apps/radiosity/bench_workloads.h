@@ -20,8 +20,8 @@ nlohmann::json benchPatch(Console& console);
 /// The voxel sweep on a furnished room at `voxels` voxels (the paper's 2e6 by default): every
 /// `pairStride`-th direction pair of the sphere of radius R swept three times on all threads,
 /// voxel-direction visits per second (the median and the fastest round), the bytes per voxel a
-/// solve of that grid holds at most, and the paper's workload (2e6 voxels, R = 38, 6 iterations)
-/// extrapolated from the median rate.
+/// solve of that grid holds (as its stats count them), and the paper's workload (2e6 voxels,
+/// R = 38, 6 iterations) extrapolated from the median rate.
 nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius, size_t pairStride);
 
 /// Time per sweep iteration against the voxel count (room:N at one voxel size, about 1e5 up to
