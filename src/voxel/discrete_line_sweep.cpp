@@ -216,11 +216,9 @@ void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset
     const std::vector<int64_t>& u = layout_.u[size_t(k)];
     const std::vector<int64_t>& v = layout_.v[size_t(k)];
     lineTable_[axis].resize(u.size());
-    if (axis == 2) innerLineTable_.resize(u.size());
     dominantTable_[axis].resize(u.size());
     for (size_t t = 0; t < u.size(); ++t) {
       lineTable_[axis][t] = uint64_t(u[t]) << 32 | uint64_t(v[t]);
-      if (axis == 2) innerLineTable_[t] = int32_t(v[t]);
       dominantTable_[axis][t] = k == 0 ? int32_t(sign * int64_t(t)) : 0;
     }
   }
@@ -658,7 +656,6 @@ void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, const LineBand
   const bool zDominant = layout_.axes[0] == 2;
   const bool cutRows = !whole && zDominant;
   const int16_t* const cellZ = grid.cellZ.data();
-  const int32_t* const innerV = innerLineTable_.data();
   const uint32_t* const slabs = occupiedSlabs_.data();
   forEach(0, uint32_t(occupiedSlabs_.size()), step.x >= 0, [&](uint32_t k) {
     const uint32_t x = slabs[k];
@@ -684,10 +681,12 @@ void DiscreteLineSweep::forEachCellInPassOrder(const IVec3& step, const LineBand
         });
         return;
       }
-      // Along a row of a dominant x or y only V moves: the row's lines start at one index.
+      // Along a row of a dominant x or y only V moves (z's U and dominant parts are 0): the
+      // row's lines start at one index.
       const int32_t rowFirst = rowStart_[rowLine >> 32] + int32_t(uint32_t(rowLine));
+      const uint64_t* const inner = lineTable_[2].data();
       forEach(begin, end, step.z >= 0, [&](uint32_t cell) {
-        f(cell, uint32_t(rowFirst + innerV[cellZ[cell]]), rowDominant);
+        f(cell, uint32_t(rowFirst + int32_t(uint32_t(inner[cellZ[cell]]))), rowDominant);
       });
     });
   });

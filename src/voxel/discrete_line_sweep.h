@@ -343,9 +343,6 @@ class DiscreteLineSweep {
   std::shared_ptr<const SideVisibility> visibility_;
   /// Per axis: contribution to the line's (U, V) as U << 32 | V (the sum never carries).
   std::vector<uint64_t> lineTable_[3];
-  /// lineTable_[2]'s V alone: along a row of a dominant x or y, the line is the row's first
-  /// plus this (U and the dominant coordinate stay the row's).
-  std::vector<int32_t> innerLineTable_;
   std::vector<uint32_t> occupiedSlabs_;  ///< the x of the slabs that hold cells, ascending
   std::vector<int32_t> rowStart_;  ///< per U: the index of line (U, 0); rows hold only lines met
   std::vector<int32_t>
