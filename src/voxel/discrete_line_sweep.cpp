@@ -91,7 +91,7 @@ DiscreteLineSweep::DiscreteLineSweep(const VoxelGrid& grid, const SweepSettings&
     : grid_(grid), settings_(settings), visibility_(std::make_shared<const SideVisibility>(grid)) {
   for (uint32_t x = 0; x < uint32_t(grid.dims.x); ++x)
     if (grid.slabRowBegin[x] < grid.slabRowBegin[x + 1]) occupiedSlabs_.push_back(x);
-  // Waiting sides are chained by 29-bit entry indices.
+  // A line's record holds its first waiting side as a 29-bit entry index.
   if (grid.entryCount() >= kNoPending)
     throw InputError("voxel grid", std::to_string(grid.entryCount()) +
                                        " voxel sides exceed the sweep's limit of " +
@@ -236,10 +236,12 @@ void DiscreteLineSweep::prepareLines(const IVec3& step, const LineOffset& offset
   reserveLines(lineCount_);
 }
 
-DiscreteLineSweep::LineState* DiscreteLineSweep::BandScratch::recordsFor(size_t count,
+DiscreteLineSweep::LineState* DiscreteLineSweep::BandScratch::recordsFor(const VoxelGrid& grid,
+                                                                         size_t count,
                                                                          size_t capacity) {
   if (lines.size() < count) {
     lines = std::vector<LineState>(std::max(count, capacity));
+    waiting.sides.reserve(waitingCapacity(grid, lines.size()));
     stamp = 0;
   }
   // The 16-bit pass stamp tells this pass's records from older ones; when it wraps, the records
@@ -509,8 +511,10 @@ inline void DiscreteLineSweep::becomeRecent(LineState& state, uint32_t ref, int3
 
 inline void DiscreteLineSweep::wait(const PassView& view, LineState& state, uint32_t e,
                                     bool sameRun) {
-  if (state.pending != kNoPending) view.pendingNext[state.pending] = state.pendingLink;
-  state.pendingLink = state.pending | (sameRun ? kSameRun : 0u);
+  const uint32_t next = state.pending == kNoPending
+                            ? kNoPending
+                            : view.waiting->take(state.pending, state.pendingLink);
+  state.pendingLink = next | (sameRun ? kSameRun : 0u);
   state.pending = e;
 }
 
@@ -599,18 +603,21 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
       gatherLater(view, m, light * weight);
     } else if (kTangentCorrection && sight == Sight::Through && depth < kLookThrough) {
       // Kept, in reverse order: the run mark now links it to the side kept before it.
-      if (waiting != kNoPending) view.pendingNext[waiting] = waitingLink;
+      const uint32_t next =
+          waiting == kNoPending ? kNoPending : view.waiting->take(waiting, waitingLink);
       waitingLink =
-          waiting | ((depth + 1) << kDepthShift) | (sameRunAsBefore && keptBefore ? kSameRun : 0u);
+          next | ((depth + 1) << kDepthShift) | (sameRunAsBefore && keptBefore ? kSameRun : 0u);
       waiting = m;
       keptBefore = true;
     } else {
       keptBefore = false;
     }
     sameRunAsBefore = (link & kSameRun) != 0;
-    m = link & kNoPending;
-    if (m == kNoPending) break;
-    link = view.pendingNext[m];
+    const uint32_t next = link & kNoPending;
+    if (next == kNoPending) break;
+    const WaitingSide side = view.waiting->giveBack(next);
+    m = side.entry;
+    link = side.link;
   }
   state.pending = waiting;
   state.pendingLink = waitingLink;
@@ -702,12 +709,13 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
                       grid_.pointStep,
                       source,
                       gathered.data(),
-                      pendingNext_.data(),
+                      &scratch.waiting,
                       &scratch.later,
                       unit,
                       weight,
                       visibility_->planeTolerance()};
-  LineState* const lines = scratch.recordsFor(band.lineCount, bandLines_);
+  LineState* const lines = scratch.recordsFor(grid_, band.lineCount, bandLines_);
+  scratch.waiting.clear();  // the band's lines are new: none of their sides waits
   const uint16_t stamp = scratch.stamp;
   const uint32_t firstLine = band.firstLine;
   // Line records are scattered over the band's (up to a twenty-fourth of the scene's
@@ -749,7 +757,6 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
 void DiscreteLineSweep::sweepPair(const DiscreteDirection& direction, const Source& source,
                                   std::span<Color> gathered, const LineOffset& offset) {
   prepareLines(direction.step, offset);
-  pendingNext_.resize(grid_.entryCount());
   const size_t threads = threadCount();
   cutBands(bandCountFor(threads, layout_.axes[0] == 2));
   const float weight = float(direction.solidAngle / 3.14159265358979323846) * source.scale;

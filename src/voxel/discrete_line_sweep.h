@@ -125,8 +125,9 @@ class DiscreteLineSweep {
   static size_t workingBytesFor(const VoxelGrid& grid, size_t lines) {
     const size_t threads = threadCount();
     const size_t bandBytes = threads > 1 ? kMaxSamples * sizeof(SampleCell) : 0;
-    return grid.entryCount() * sizeof(uint32_t) + bandBytes + SideVisibility::maskBytesFor(grid) +
+    return bandBytes + SideVisibility::maskBytesFor(grid) +
            threads * (bandLineCapacity(grid, lines) * sizeof(LineState) +
+                      waitingCapacity(grid, bandLineCapacity(grid, lines)) * sizeof(WaitingSide) +
                       DeferredGathers::kCapacity * sizeof(DeferredGathers::Item));
   }
 
@@ -141,15 +142,16 @@ class DiscreteLineSweep {
   size_t lineCount() const { return lineCount_; }
   /// The most lines a band holds: each thread's records, sized for the widest direction yet.
   size_t bandLineLimit() const { return bandLines_; }
-  /// Working memory of this sweep: each thread's line records and deferred light, the waiting
-  /// sides' links, the cells the bands are balanced on and the folds within cells and with
-  /// neighbouring voxels.
+  /// Working memory of this sweep: each thread's line records, waiting sides and deferred
+  /// light, the cells the bands are balanced on and the folds within cells and with neighbouring
+  /// voxels.
   size_t workingBytes() const {
     size_t threads = 0;
     for (const BandScratch& scratch : scratch_)
       threads += scratch.lines.capacity() * sizeof(LineState) +
+                 scratch.waiting.sides.capacity() * sizeof(WaitingSide) +
                  DeferredGathers::kCapacity * sizeof(DeferredGathers::Item);
-    return threads + pendingNext_.capacity() * sizeof(uint32_t) +
+    return threads +
            sampleCells_.capacity() * sizeof(SampleCell) + visibility_->foldBytes();
   }
 
@@ -183,7 +185,8 @@ class DiscreteLineSweep {
     uint32_t recentRef = kNoVoxel;
     uint32_t olderRef[2] = {kNoVoxel, kNoVoxel};
     /// The sides waiting for light from ahead: the first, and its link (the rest are chained
-    /// through pendingNext_), so that a lone waiting side costs no access beyond this record.
+    /// through the band's WaitingSide list), so that a lone waiting side costs no access beyond
+    /// this record.
     uint32_t pending = kNoPending, pendingLink = kNoPending;
     RecentVoxel recent;
     Slot older;  ///< olderRef[0] as a look meets it
@@ -275,15 +278,59 @@ class DiscreteLineSweep {
     uint32_t count = 0;
     void addTo(Color* gathered);
   };
+  /// A side waiting on a line behind the first (which the line's record holds): its entry and
+  /// its link (the next waiting side's place in the band's list, or kNoPending).
+  struct WaitingSide {
+    uint32_t entry, link;
+  };
+  /// Places for waiting sides a thread holds from the start for bands of `lines` lines, or for
+  /// half the sides where they are fewer (a side faces ahead along one of s and -s): where more
+  /// wait at once (long runs along a wall), the list grows and the sweep's bytes count it.
+  /// Measured on room:16, R = 38, the most at once in a band: 4.4 a line at 2M voxels (two
+  /// threads), 3.8 at 100k, 7.7 at 5,000 (one thread).
+  static constexpr size_t kWaitingPerLine = 8, kWaitingFloor = 1024;
+  static size_t waitingCapacity(const VoxelGrid& grid, size_t lines) {
+    return std::min(kWaitingPerLine * lines, grid.entryCount() / 2) + kWaitingFloor;
+  }
+  /// The band's waiting sides: a place is taken when a side joins a line's chain and given
+  /// back when the chain is answered, so that the list holds as many as wait at once (a place
+  /// given back is the next taken, still in the cache). Free places are chained by `link`.
+  struct WaitingList {
+    std::vector<WaitingSide> sides;
+    uint32_t free = kNoPending;
+    void clear() {
+      sides.clear();
+      free = kNoPending;
+    }
+    uint32_t take(uint32_t entry, uint32_t link) {
+      if (free == kNoPending) {
+        sides.push_back({entry, link});
+        return uint32_t(sides.size() - 1);
+      }
+      const uint32_t place = free;
+      free = sides[place].link;
+      sides[place] = {entry, link};
+      return place;
+    }
+    WaitingSide giveBack(uint32_t place) {
+      const WaitingSide side = sides[place];
+      sides[place].link = free;
+      free = place;
+      return side;
+    }
+  };
   /// A thread's own: the records of the band it sweeps (line firstLine + i at i), reused from
-  /// band to band, their pass stamp, and its deferred light.
+  /// band to band, their pass stamp, its deferred light and the band's waiting sides (joining a
+  /// chain writes to a place in this list, not beside a side visited long ago).
   struct BandScratch {
     std::vector<LineState> lines;
     uint16_t stamp = 0;
     DeferredGathers later;
+    WaitingList waiting;
     /// Records for a band of `count` lines (room for `capacity`, the most a band holds), none of
-    /// them holding an earlier pass's voxels.
-    LineState* recordsFor(size_t count, size_t capacity);
+    /// them holding an earlier pass's voxels; with them, the places for the waiting sides of
+    /// `grid`'s bands.
+    LineState* recordsFor(const VoxelGrid& grid, size_t count, size_t capacity);
   };
   template <bool kTangentCorrection>
   void pass(const IVec3& step, const LineBand& band, const Vec3& unit, float weight,
@@ -296,7 +343,7 @@ class DiscreteLineSweep {
     float pointStep;
     Source source;
     Color* gathered;
-    uint32_t* pendingNext;
+    WaitingList* waiting;
     DeferredGathers* later;
     Vec3 unit;
     float weight, tolerance;
@@ -349,7 +396,6 @@ class DiscreteLineSweep {
       dominantTable_[3];  ///< per axis: contribution to the signed dominant coordinate
   size_t lineCount_ = 0;     ///< this direction's
   size_t bandLines_ = 0;     ///< the most lines a band holds: its records' size
-  std::vector<uint32_t> pendingNext_;  ///< per entry: the chain of sides waiting on a line
   tbb::enumerable_thread_specific<BandScratch> scratch_;
   std::vector<LineBand> bands_;         ///< this direction's
   /// The coordinates of every 32nd cell, or of 8,192 cells spread evenly over a larger grid:

@@ -265,13 +265,13 @@ TEST(DiscreteLineSweep, MemoryGrowsWithTheSidesNotWithTheEmptyBox) {
     const VoxelGrid near = spheresApart(8.0f), far = spheresApart(16.0f);
     ASSERT_NEAR(double(far.entryCount()) / double(near.entryCount()), 1.0, 0.01);
     EXPECT_LT(bytes(far) / bytes(near), 2.0);
-    // The far pair's, from the design: the waiting links (4 B a side), 64-byte records for a row
-    // as wide as the box (x + y + z voxels) and a line per 8 sides, the deferred light (4,096
-    // items of 16 B) and the fold masks.
+    // The far pair's, from the design: places for half the sides waiting at once and 1,024 more
+    // (8 B each), 64-byte records for a row as wide as the box (x + y + z voxels) and a line per
+    // 8 sides, the deferred light (4,096 items of 16 B) and the fold masks.
     const double sides = double(far.entryCount());
     const double row = double(far.dims.x + far.dims.y + far.dims.z);
-    EXPECT_LE(bytes(far), sides * 4.0 + 64.0 * (sides / 8.0 + row) + 4096.0 * 16.0 +
-                              double(SideVisibility::maskBytesFor(far)));
+    EXPECT_LE(bytes(far), (sides / 2.0 + 1024.0) * 8.0 + 64.0 * (sides / 8.0 + row) +
+                              4096.0 * 16.0 + double(SideVisibility::maskBytesFor(far)));
   });
 }
 
