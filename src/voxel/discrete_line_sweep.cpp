@@ -573,6 +573,10 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
 }
 
 inline void DiscreteLineSweep::gatherLater(const PassView& view, uint32_t e, const Color& light) {
+  // The side's accumulator is fetched now as well, up to a batch before it is added to: the
+  // batch's fetches ahead alone leave part of the misses' wait (1.005-1.017x, one and two
+  // threads, runs side by side).
+  __builtin_prefetch(&view.gathered[e], 1);
   DeferredGathers& later = *view.later;
   later.items[later.count++] = {e, light};
   if (later.count == DeferredGathers::kCapacity) later.addTo(view.gathered);
