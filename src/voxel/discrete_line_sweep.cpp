@@ -11,8 +11,8 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <bit>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -331,7 +331,6 @@ Color sideLight(const DiscreteLineSweep::Source& source, size_t e) {
   std::memcpy(&high, source.sides[e].radiosity + 2, sizeof high);
   return lanes(_mm_cvtph_ps(_mm_insert_epi16(_mm_cvtsi32_si128(int(low)), high, 2)));
 }
-// Side e, whose centroid is c, as a look meets it: its plane and the radiosity it sends.
 // A slot from its normal and radiosity (`packed`'s first 12 bytes) and its offset, put together
 // in one register: kept in memory it is one store, from which a look's 8-byte reads of normal
 // and radiosity are served at once (written field by field, each such read waited for the
@@ -343,6 +342,7 @@ DiscreteLineSweep::Slot slotOf(__m128i packed, float offset) {
   return slot;
 }
 
+// Side e, whose centroid is c, as a look meets it: its plane and the radiosity it sends.
 DiscreteLineSweep::Slot sideSlot(const DiscreteLineSweep::Source& source, size_t e,
                                  const Vec3& c) {
   static_assert(offsetof(DiscreteLineSweep::Slot, radiosity) == 6 &&

@@ -151,8 +151,7 @@ class DiscreteLineSweep {
       threads += scratch.lines.capacity() * sizeof(LineState) +
                  scratch.waiting.sides.capacity() * sizeof(WaitingSide) +
                  DeferredGathers::kCapacity * sizeof(DeferredGathers::Item);
-    return threads +
-           sampleCells_.capacity() * sizeof(SampleCell) + visibility_->foldBytes();
+    return threads + sampleCells_.capacity() * sizeof(SampleCell) + visibility_->foldBytes();
   }
 
  private:
