@@ -62,7 +62,8 @@ uint64_t voxelSolverBytesPerSide(const VoxelSolverSettings& settings);
 /// its line table sized for the widest direction), known before it starts: what it holds
 /// (VoxelSolution::workingBytes) or more, but for the fold planes shared with neighbouring
 /// voxels, found as the sweep is made (0.4% of a solve's memory in room:16 at 2M voxels, 3% at
-/// 5,000).
+/// 5,000), and for the waiting sides' places where more wait at once than the sweep reserves
+/// (8 a line of a band: room:16 needs at most 4.4 at 2M voxels).
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings);
 
 /// Solves the scene on a voxelization of it. Deterministic, and the same bit for bit whatever the
