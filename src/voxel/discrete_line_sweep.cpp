@@ -547,6 +547,8 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
     resolvePending<kTangentCorrection>(view, state, slot);
   const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
   const SideVisibility::CellFolds folds = visibility_->foldsOf(cell);
+  const bool hasRecent = state.recentRef != kNoVoxel;
+  const Slot recent = hasRecent ? recentSlot(state) : Slot{};  // what the sides facing back meet
   for (uint32_t e = begin; e < end; ++e) {
     const float facing = glm::dot(sideNormal(source, e), unit);
     if (facing == 0.0f) continue;
@@ -558,16 +560,16 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
       view.gathered[e] += sideLight(source, own) * w;
     } else if (facing > 0.0f) {
       wait(view, state, e, false);
-    } else if (state.recentRef != kNoVoxel) {
+    } else if (hasRecent) {
       Color light(0.0f);
       const Vec3 c = centroidOf(view, e);
-      Sight sight = look(c, recentSlot(state), unit, source, light);
+      Sight sight = look(c, recent, unit, source, light);
       if (kTangentCorrection && sight == Sight::Through)
         sight = lookOlder(view, c, state, light);
       if (sight == Sight::Source) view.gathered[e] += light * w;
     }
   }
-  if (!continues && state.recentRef != kNoVoxel) state.older = recentSlot(state);
+  if (!continues && hasRecent) state.older = recent;
   becomeRecent(state, kCellRef | cell, dominant, continues);
   state.recent.normal[0] = state.recent.normal[1] = state.recent.normal[2] = 0;
 }
