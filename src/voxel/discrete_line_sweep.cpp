@@ -324,12 +324,16 @@ Color halfColor(const Packed& p) {
 Vec3 sideNormal(const DiscreteLineSweep::Source& source, size_t e) {
   return slotNormal(source.normals[e]);
 }
-Color sideLight(const DiscreteLineSweep::Source& source, size_t e) {
+// The three half floats in the low 16-bit lanes, the others zero.
+__m128i sentHalves(const DiscreteLineSweep::Source& source, size_t e) {
   uint32_t low;
   uint16_t high;
   std::memcpy(&low, source.sides[e].radiosity, sizeof low);
   std::memcpy(&high, source.sides[e].radiosity + 2, sizeof high);
-  return lanes(_mm_cvtph_ps(_mm_insert_epi16(_mm_cvtsi32_si128(int(low)), high, 2)));
+  return _mm_insert_epi16(_mm_cvtsi32_si128(int(low)), high, 2);
+}
+Color sideLight(const DiscreteLineSweep::Source& source, size_t e) {
+  return lanes(_mm_cvtph_ps(sentHalves(source, e)));
 }
 // A slot from its normal and radiosity (`packed`'s first 12 bytes) and its offset, put together
 // in one register: kept in memory it is one store, from which a look's 8-byte reads of normal
@@ -347,14 +351,9 @@ DiscreteLineSweep::Slot sideSlot(const DiscreteLineSweep::Source& source, size_t
                                  const Vec3& c) {
   static_assert(offsetof(DiscreteLineSweep::Slot, radiosity) == 6 &&
                 offsetof(DiscreteLineSweep::Slot, offset) == 12);
-  uint32_t low;
-  uint16_t high;
-  std::memcpy(&low, source.sides[e].radiosity, sizeof low);
-  std::memcpy(&high, source.sides[e].radiosity + 2, sizeof high);
-  __m128i packed = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(&source.normals[e]));
-  packed = _mm_insert_epi16(packed, int(low & 0xffffu), 3);
-  packed = _mm_insert_epi16(packed, int(low >> 16), 4);
-  packed = _mm_insert_epi16(packed, high, 5);
+  // The normal in 16-bit lanes 0-2, the radiosity moved up into lanes 3-5.
+  const __m128i normal = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(&source.normals[e]));
+  const __m128i packed = _mm_blend_epi16(normal, _mm_slli_si128(sentHalves(source, e), 6), 0x38);
   return slotOf(packed, glm::dot(slotNormal(source.normals[e]), c));
 }
 
