@@ -152,6 +152,10 @@ void MethodOptions::addPatchFlags(CLI::App& c) {
                            ->check(CLI::Range(1, 100000000))->group(patch);
   shadingFlag_ = addNamedOption(c, "--shading", shadingName_, kPatchShadingNames, defaults.shading,
                                 "Rendering of the patches")->group(patch);
+  lightSamplesFlag_ = c.add_option("--light-samples", patch_.lightSamples,
+                                   "Points per patch (rounded up to a square) at which point, spot "
+                                   "and IES light is averaged (default 16)")
+                          ->check(CLI::Range(1, 1 << 16))->group(patch);
 }
 
 void MethodOptions::resolvePatch(const Scene& scene) {
@@ -174,6 +178,7 @@ void MethodOptions::resolvePatch(const Scene& scene) {
   takeNamed(solverFlag_, solverName_, s.patchSolver, "solver", patch_.solver, kPatchSolverNames);
   takeUnlessFlagged(maxIterationsFlag_, patch_.maxIterations, s.maxIterations);
   takeNamed(shadingFlag_, shadingName_, s.shading, "shading", patch_.shading, kPatchShadingNames);
+  takeUnlessFlagged(lightSamplesFlag_, patch_.lightSamples, s.lightSamples);
   // --tolerance is shared with the voxel method, whose default (0: run every sweep) differs.
   patch_.tolerance = *toleranceFlag_ ? voxel_.tolerance : s.tolerance.value_or(1e-3);
 }
@@ -256,14 +261,17 @@ PatchRadiosity solvePatches(const Scene& scene, const PatchRadiositySettings& se
                          {"cache_file", p.cacheFile},
                          {"solver", p.solver},
                          {"shots", p.shots},
-                         {"rays_per_s", double(p.rays) / std::max(p.formFactorSeconds, 1e-9)},
+                         {"rays_per_s", double(p.rays - p.lightRays) / std::max(p.formFactorSeconds, 1e-9)},
+                         {"light_rays", p.lightRays},
+                         {"light_rays_per_s", double(p.lightRays) / std::max(p.lightSeconds, 1e-9)},
                          {"memory_bytes", p.memoryBytes},
                          {"seconds", {{"mesh", p.meshSeconds}, {"form_factors", p.formFactorSeconds},
-                                      {"cache_load", p.cacheLoadSeconds}, {"solve", p.solveSeconds}}}};
+                                      {"cache_load", p.cacheLoadSeconds}, {"light", p.lightSeconds},
+                                      {"solve", p.solveSeconds}}}};
   stats.counts.patches = p.patches;
   stats.counts.rays += p.rays;
   stats.timingsSeconds.prepare = p.meshSeconds + p.formFactorSeconds + p.cacheLoadSeconds;
-  stats.timingsSeconds.solve = p.solveSeconds;
+  stats.timingsSeconds.solve = p.lightSeconds + p.solveSeconds;
   stats.iterations = p.iterations;
   stats.residual = p.residuals.empty() ? 0.0 : p.residuals.back();
   stats.residuals = p.residuals;

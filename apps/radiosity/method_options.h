@@ -48,7 +48,7 @@ class MethodOptions {
       *tangentFlag_, *firstShotFlag_, *directSamplesFlag_, *laterRadiusFlag_, *normalizeFlag_,
       *jitterFlag_, *tailFlag_;
   CLI::Option *patchSizeFlag_, *patchesFlag_, *estimatorFlag_, *ffRaysFlag_, *thresholdFlag_,
-      *cacheDirFlag_, *solverFlag_, *maxIterationsFlag_, *shadingFlag_;
+      *cacheDirFlag_, *solverFlag_, *maxIterationsFlag_, *shadingFlag_, *lightSamplesFlag_;
   void addPatchFlags(CLI::App& command);
   void resolvePatch(const Scene& scene);
 };

@@ -76,13 +76,16 @@ struct PatchRadiositySettings {
   int maxIterations = 1000;  ///< sweeps (progressive: shots / patches)
   double tolerance = 1e-3;   ///< relative residual at which the solver stops
   PatchShading shading = PatchShading::Smooth;
+  /// Points per patch (rounded up to a square) at which the direct light of point, spot and IES
+  /// lights is averaged, one shadow ray per light each.
+  int lightSamples = 16;
   uint64_t seed = 1;
 };
 
 struct PatchRadiosityStats {
   size_t patches = 0, nodes = 0, vertices = 0;
   float patchSize = 0.0f;
-  uint64_t rays = 0;    ///< form-factor rays cast
+  uint64_t rays = 0;    ///< rays cast (form factors and lights)
   /// Emitter patches whose form-factor columns were computed exactly (hemisphere estimator; 0:
   /// none, the emitters were too many or the estimator is another).
   size_t exactColumns = 0;
@@ -92,7 +95,9 @@ struct PatchRadiosityStats {
   double rowSumMin = 0.0, rowSumMean = 0.0, rowSumMax = 0.0;    ///< closure of the rows computed
   bool cacheLoaded = false;
   std::string cacheFile;  ///< empty without a cache
+  uint64_t lightRays = 0;  ///< shadow rays toward point, spot and IES lights
   double meshSeconds = 0.0, formFactorSeconds = 0.0, cacheLoadSeconds = 0.0, solveSeconds = 0.0;
+  double lightSeconds = 0.0;  ///< direct light of the analytic lights
   std::string solver;
   int iterations = 0;
   uint64_t shots = 0;

@@ -97,7 +97,7 @@ struct SolverSettings {
   std::optional<bool> jitterLines;
   std::optional<bool> tailEstimate;
   // Patch method (keys patch_size, patches, ff_estimator, ff_rays, ff_threshold, cache_dir,
-  // solver, max_iterations, shading; tolerance is shared with the voxel method).
+  // solver, max_iterations, shading, light_samples; tolerance is shared with the voxel method).
   std::optional<float> patchSize;
   std::optional<size_t> patches;
   std::optional<std::string> ffEstimator;  ///< "hemisphere", "pairwise" or "exact"
@@ -107,6 +107,7 @@ struct SolverSettings {
   std::optional<std::string> patchSolver;  ///< "jacobi", "gauss-seidel" or "progressive"
   std::optional<int> maxIterations;
   std::optional<std::string> shading;      ///< "smooth" or "flat"
+  std::optional<int> lightSamples;
 };
 
 struct Scene {

@@ -14,13 +14,13 @@ PatchSolution solveGaussSeidel(const FormFactorTable& table, const PatchSystem& 
                                const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   PatchSolution out;
-  const double norm = emittedNorm(s);
-  out.radiosity = s.emitted;
+  const double norm = sourceNorm(s);
+  out.radiosity = sources(s);
   out.irradiance.assign(s.size(), Color(0.0f));
   while (norm > 0.0 && out.iterations < control.maxIterations) {
     double change = 0.0;
     for (size_t i = 0; i < s.size(); ++i) {
-      out.irradiance[i] = gather(table, i, out.radiosity);
+      out.irradiance[i] = s.directAt(i) + gather(table, i, out.radiosity);
       const Color b = s.emitted[i] + s.rho[i] * out.irradiance[i];
       change += double(s.area[i]) * absSum(b - out.radiosity[i]);
       out.radiosity[i] = b;

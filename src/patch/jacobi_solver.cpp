@@ -13,11 +13,12 @@ namespace rad {
 
 double relativeResidual(const FormFactorTable& table, const PatchSystem& system,
                         std::span<const Color> radiosity) {
-  const double norm = emittedNorm(system);
+  const double norm = sourceNorm(system);
   double sum = 0.0;
-  for (size_t i = 0; i < system.size(); ++i)
-    sum += double(system.area[i]) *
-           absSum(system.emitted[i] + system.rho[i] * gather(table, i, radiosity) - radiosity[i]);
+  for (size_t i = 0; i < system.size(); ++i) {
+    const Color h = system.directAt(i) + gather(table, i, radiosity);
+    sum += double(system.area[i]) * absSum(system.emitted[i] + system.rho[i] * h - radiosity[i]);
+  }
   return norm > 0.0 ? sum / norm : 0.0;
 }
 
@@ -25,8 +26,8 @@ PatchSolution solveJacobi(const FormFactorTable& table, const PatchSystem& s,
                           const PatchSolverControl& control, const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   PatchSolution out;
-  const double norm = emittedNorm(s);
-  out.radiosity = s.emitted;
+  const double norm = sourceNorm(s);
+  out.radiosity = sources(s);
   out.irradiance.assign(s.size(), Color(0.0f));
   std::vector<Color> next(s.size());
   while (norm > 0.0 && out.iterations < control.maxIterations) {
@@ -34,7 +35,7 @@ PatchSolution solveJacobi(const FormFactorTable& table, const PatchSystem& s,
         tbb::blocked_range<size_t>(0, s.size(), 1024), 0.0,
         [&](const tbb::blocked_range<size_t>& r, double acc) {
           for (size_t i = r.begin(); i < r.end(); ++i) {
-            out.irradiance[i] = gather(table, i, out.radiosity);
+            out.irradiance[i] = s.directAt(i) + gather(table, i, out.radiosity);
             next[i] = s.emitted[i] + s.rho[i] * out.irradiance[i];
             acc += double(s.area[i]) * absSum(next[i] - out.radiosity[i]);
           }

@@ -12,10 +12,12 @@
 #include <glm/gtc/constants.hpp>
 
 #include "geometry/ray_caster.h"
+#include "lighting/direct_lighting.h"
 #include "output/gltf_export.h"
 #include "output/surface_samples.h"
 #include "patch/form_factor_cache.h"
 #include "patch/form_factor_estimators.h"
+#include "patch/patch_light_injection.h"
 #include "patch/patch_mesh.h"
 #include "patch/patch_solvers.h"
 
@@ -50,6 +52,8 @@ void validate(const PatchRadiositySettings& s) {
     fail(fmt::format("form-factor rays {} must be at least 1", s.formFactorRays));
   if (!(s.formFactorThreshold >= 0.0f && s.formFactorThreshold < 1.0f))
     fail(fmt::format("form-factor threshold {} out of range [0, 1)", s.formFactorThreshold));
+  if (s.lightSamples < 1)
+    fail(fmt::format("light samples {} must be at least 1", s.lightSamples));
   if (s.maxIterations < 1)
     fail(fmt::format("max iterations {} must be at least 1", s.maxIterations));
   if (!(s.tolerance >= 0.0)) fail(fmt::format("tolerance {} must not be negative", s.tolerance));
@@ -183,7 +187,13 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
 }
 
 void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback& progress) {
-  const PatchSystem system = systemOf(*scene, *mesh);
+  PatchSystem system = systemOf(*scene, *mesh);
+  const auto lightStart = std::chrono::steady_clock::now();
+  const uint64_t raysBefore = caster.raysCast();
+  system.direct = patchLightIrradiance(*mesh, DirectLighting(*scene, caster),
+                                       settings.lightSamples, progress);
+  stats.lightRays = caster.raysCast() - raysBefore;
+  stats.lightSeconds = secondsSince(lightStart);
   const PatchSolverControl control{settings.tolerance, settings.maxIterations};
   chooseFormFactorSettings();
   const bool lazy = settings.solver == PatchSolverKind::Progressive &&

@@ -9,19 +9,33 @@
 
 namespace rad {
 
-/// sum_i A_i (E_r + E_g + E_b): the residual's denominator.
-inline double emittedNorm(const PatchSystem& s) {
+/// sum_i A_i (S_r + S_g + S_b), S the light put in: the residual's denominator.
+inline double sourceNorm(const PatchSystem& s) {
   double norm = 0.0;
-  for (size_t i = 0; i < s.size(); ++i)
-    norm += double(s.area[i]) * (double(s.emitted[i].r) + s.emitted[i].g + s.emitted[i].b);
+  for (size_t i = 0; i < s.size(); ++i) {
+    const Color source = s.source(i);
+    norm += double(s.area[i]) * (double(source.r) + source.g + source.b);
+  }
   return norm;
+}
+
+/// The radiosities before any bounce, S.
+inline std::vector<Color> sources(const PatchSystem& s) {
+  std::vector<Color> out(s.size());
+  for (size_t i = 0; i < s.size(); ++i) out[i] = s.source(i);
+  return out;
+}
+
+/// The irradiances before any bounce, D.
+inline std::vector<Color> directIrradiance(const PatchSystem& s) {
+  return s.direct.empty() ? std::vector<Color>(s.size(), Color(0.0f)) : s.direct;
 }
 
 inline double absSum(const Color& c) {
   return std::abs(double(c.r)) + std::abs(double(c.g)) + std::abs(double(c.b));
 }
 
-/// H_i = sum_j F_ij B_j.
+/// sum_j F_ij B_j.
 inline Color gather(const FormFactorTable& table, size_t i, std::span<const Color> radiosity) {
   const auto cols = table.columns(i);
   const auto vals = table.values(i);

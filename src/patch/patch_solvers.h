@@ -1,8 +1,10 @@
 #pragma once
-// Solvers of the radiosity equation on patches, B_i = E_i + rho_i sum_j F_ij B_j, per RGB
-// channel. Each stops once the relative residual, sum_i A_i |r_i| / sum_i A_i E_i (summed over
-// the channels; r_i = E_i + rho_i H_i - B_i: the power not yet accounted for, relative to what is
-// emitted) is below the tolerance, or after maxIterations sweeps, and records it per sweep.
+// Solvers of the radiosity equation on patches, B_i = E_i + rho_i (D_i + sum_j F_ij B_j), per
+// RGB channel, where D_i is the direct irradiance from analytic lights (which have no area, so
+// no form factors): their light enters as a first shot, rho_i D_i. Each stops once the relative
+// residual, sum_i A_i |r_i| / sum_i A_i S_i (summed over the channels; S_i = E_i + rho_i D_i the
+// light put in, r_i = E_i + rho_i H_i - B_i: the power not yet accounted for, relative to what is
+// put in) is below the tolerance, or after maxIterations sweeps, and records it per sweep.
 
 #include <radiosity/progress.h>
 #include <radiosity/types.h>
@@ -16,12 +18,17 @@
 
 namespace rad {
 
-/// The patches' terms of the equation: E (emitted radiosity, pi Ke), rho and area.
+/// The patches' terms of the equation: E (emitted radiosity, pi Ke), rho, area and D (direct
+/// irradiance from analytic lights; empty: none).
 struct PatchSystem {
   std::vector<Color> emitted;
   std::vector<Color> rho;
   std::vector<float> area;
+  std::vector<Color> direct;
   size_t size() const { return area.size(); }
+  Color directAt(size_t i) const { return direct.empty() ? Color(0.0f) : direct[i]; }
+  /// S_i = E_i + rho_i D_i: the radiosity the patch has before any bounce.
+  Color source(size_t i) const { return emitted[i] + rho[i] * directAt(i); }
 };
 
 struct PatchSolverControl {
@@ -31,7 +38,7 @@ struct PatchSolverControl {
 
 struct PatchSolution {
   std::vector<Color> emitted;     ///< E
-  std::vector<Color> irradiance;  ///< H, incident power per area
+  std::vector<Color> irradiance;  ///< H = D + F B, incident power per area
   std::vector<Color> radiosity;   ///< B = E + rho H, excident power per area
   std::vector<double> residuals;  ///< relative residual after each sweep
   int iterations = 0;

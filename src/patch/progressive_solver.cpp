@@ -44,10 +44,10 @@ PatchSolution solveProgressive(const FormFactorRowSource& rows, const PatchSyste
   const auto start = std::chrono::steady_clock::now();
   PatchSolution out;
   const size_t n = s.size();
-  const double norm = emittedNorm(s);
-  out.radiosity = s.emitted;
-  out.irradiance.assign(n, Color(0.0f));
-  std::vector<Color> unshot = s.emitted;
+  const double norm = sourceNorm(s);
+  out.radiosity = sources(s);
+  out.irradiance = directIrradiance(s);
+  std::vector<Color> unshot = out.radiosity;
   std::vector<double> power(n);
   std::priority_queue<Shooter> queue;
   double total = 0.0;

@@ -10,7 +10,6 @@
 #include "render/path_integrator.h"
 
 #include <algorithm>
-#include <cmath>
 #include <glm/gtc/constants.hpp>
 
 #include "geometry/sampling.h"
@@ -21,76 +20,16 @@ namespace {
 
 constexpr int kRouletteDepth = 3;
 constexpr float kMaxSurvival = 0.95f;
-// Float positions near magnitude m are good to about 6e-8 m; stay well above that.
-constexpr float kRelativeOffset = 1e-5f;
-
-float maxAbs(const Vec3& v) {
-  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-}
-
-float powerHeuristic(float pdf, float otherPdf) {
-  const float a = pdf * pdf, b = otherPdf * otherPdf;
-  return a > 0.0f ? a / (a + b) : 0.0f;
-}
 
 }  // namespace
 
 PathIntegrator::PathIntegrator(const Scene& scene, const RayCaster& caster, int maxDepth)
-    : scene_(&scene), caster_(&caster), emitters_(scene), maxDepth_(maxDepth) {
-  const Bounds b = scene.bounds();
-  sceneExtent_ = b.empty() ? 1.0f : std::max(b.diagonal(), std::max(maxAbs(b.min), maxAbs(b.max)));
-  if (!(sceneExtent_ > 0.0f)) sceneExtent_ = 1.0f;
-}
-
-float PathIntegrator::offset(const Vec3& p) const {
-  return kRelativeOffset * (maxAbs(p) + sceneExtent_);
-}
-
-bool PathIntegrator::visible(const Vec3& p, const Vec3& n, const Vec3& target) const {
-  Ray r;
-  r.origin = p + offset(p) * n;
-  const Vec3 d = target - r.origin;
-  const float distance = glm::length(d);
-  r.direction = d / distance;
-  r.tFar = distance - offset(target);
-  if (!(r.tFar > 0.0f)) return true;
-  return !caster_->occluded(r);
-}
+    : scene_(&scene), caster_(&caster), direct_(scene, caster), maxDepth_(maxDepth) {}
 
 Color PathIntegrator::directIntegral(const Vec3& p, const Vec3& n, bool misWeighted,
                                      Rng& rng) const {
-  Color sum(0.0f);
-  if (!emitters_.empty()) {
-    const float choose = rng.uniform();
-    const Vec2 position = uniformSquare(rng);
-    const EmitterSample s = emitters_.sample(choose, position);
-    const Vec3 d = s.point - p;
-    const float distance2 = glm::dot(d, d);
-    if (distance2 > 0.0f) {
-      const Vec3 w = d / std::sqrt(distance2);
-      const float cosReceiver = glm::dot(n, w);
-      float cosEmitter = -glm::dot(s.normal, w);
-      if (s.twoSided) cosEmitter = std::abs(cosEmitter);
-      if (cosReceiver > 0.0f && cosEmitter > 0.0f && visible(p, n, s.point)) {
-        const float pdfSolidAngle = s.pdfArea * distance2 / cosEmitter;
-        const float weight =
-            misWeighted ? powerHeuristic(pdfSolidAngle, cosReceiver * glm::one_over_pi<float>())
-                        : 1.0f;
-        sum += s.emission * (weight * cosReceiver / pdfSolidAngle);
-      }
-    }
-  }
-  for (const Light& light : scene_->lights) {
-    const Vec3 d = light.position - p;
-    const float distance2 = glm::dot(d, d);
-    if (!(distance2 > 0.0f)) continue;
-    const Vec3 w = d / std::sqrt(distance2);
-    const float cosReceiver = glm::dot(n, w);
-    if (!(cosReceiver > 0.0f)) continue;
-    const Color intensity = light.intensityToward(-w);
-    if (!(maxComponent(intensity) > 0.0f) || !visible(p, n, light.position)) continue;
-    sum += intensity * (cosReceiver / distance2);
-  }
+  Color sum = direct_.sampleEmitters(p, n, rng, misWeighted);
+  for (const Light& light : scene_->lights) sum += direct_.fromLight(light, p, n);
   return sum;
 }
 
@@ -99,7 +38,7 @@ Ray PathIntegrator::bounce(const Vec3& p, const Vec3& n, float& pdf, Rng& rng) c
   const Vec3 local = sampleCosineHemisphere(u);
   pdf = local.z * glm::one_over_pi<float>();
   Ray r;
-  r.origin = p + offset(p) * n;
+  r.origin = p + direct_.rayOffset(p) * n;
   r.direction = glm::normalize(toWorld(local, n));
   return r;
 }
@@ -117,7 +56,7 @@ Color PathIntegrator::trace(Ray ray, float bouncePdf, int firstDepth, Rng& rng) 
     } else if (m.emits()) {
       const float cosEmitter = std::abs(glm::dot(hit.geometricNormal, ray.direction));
       const float lightPdf =
-          emitters_.pdfArea(hit.triangle) * hit.distance * hit.distance / cosEmitter;
+          direct_.emitterPdfArea(hit.triangle) * hit.distance * hit.distance / cosEmitter;
       radiance += throughput * m.emission * powerHeuristic(bouncePdf, lightPdf);
     }
     const Vec3 n = hit.frontFace ? hit.geometricNormal : -hit.geometricNormal;

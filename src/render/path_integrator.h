@@ -7,7 +7,7 @@
 
 #include "core/rng.h"
 #include "geometry/ray_caster.h"
-#include "render/emitter_sampler.h"
+#include "lighting/direct_lighting.h"
 
 namespace rad {
 
@@ -32,16 +32,12 @@ class PathIntegrator {
   /// Radiance along `ray`. bouncePdf < 0: a camera ray, whose first hit adds its full
   /// emission; otherwise the solid-angle density with which a cosine bounce chose the ray.
   Color trace(Ray ray, float bouncePdf, int firstDepth, Rng& rng) const;
-  bool visible(const Vec3& p, const Vec3& n, const Vec3& target) const;
-  /// Distance to push ray origins off their surface, grown with the coordinates' magnitude.
-  float offset(const Vec3& p) const;
   Ray bounce(const Vec3& p, const Vec3& n, float& pdf, Rng& rng) const;
 
   const Scene* scene_;
   const RayCaster* caster_;
-  EmitterSampler emitters_;
+  DirectLighting direct_;
   int maxDepth_;
-  float sceneExtent_;
 };
 
 }  // namespace rad

@@ -5,7 +5,7 @@
 #include "core/memory_usage.h"
 #include "core/rng.h"
 #include "geometry/ray_caster.h"
-#include "render/path_integrator.h"
+#include "lighting/direct_lighting.h"
 #include "render/progress_ticker.h"
 #include "voxel/direction_set.h"
 
@@ -29,19 +29,25 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Direct irradiance at every entry's centroid from emitters and lights, by shadow rays.
+// Direct irradiance at every entry's centroid: the analytic lights once (exact, one shadow ray
+// each), the emitters' light averaged over `directSamples` area samples.
 std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
                                     const VoxelSolverSettings& settings, uint64_t& rays) {
   const RayCaster caster(scene);
-  const PathIntegrator direct(scene, caster, 1);
+  const DirectLighting direct(scene, caster);
   std::vector<Color> h(grid.entryCount());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.entryCount(), 256), [&](const auto& r) {
     for (size_t e = r.begin(); e != r.end(); ++e) {
-      Rng rng(settings.seed, e);
-      Vec3d sum(0.0);
-      for (int s = 0; s < settings.directSamples; ++s)
-        sum += Vec3d(direct.irradiance(grid.centroidOf(e), grid.unitNormal(e), rng));
-      h[e] = Color(sum / double(settings.directSamples));
+      const Vec3 p = grid.centroidOf(e), n = grid.unitNormal(e);
+      Color fromEmitters(0.0f);
+      if (direct.hasEmitters()) {
+        Rng rng(settings.seed, e);
+        Vec3d sum(0.0);
+        for (int s = 0; s < settings.directSamples; ++s)
+          sum += Vec3d(direct.sampleEmitters(p, n, rng));
+        fromEmitters = Color(sum / double(settings.directSamples));
+      }
+      h[e] = direct.hasLights() ? fromEmitters + direct.fromLights(p, n) : fromEmitters;
     }
   });
   rays = caster.raysCast();

@@ -259,7 +259,7 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
                        "later_sphere_radius", "iterations", "tolerance", "tangent_correction",
                        "first_shot", "direct_samples", "normalize", "jitter_lines",
                        "tail_estimate", "patch_size", "patches", "ff_estimator", "ff_rays",
-                       "ff_threshold", "cache_dir", "solver", "max_iterations", "shading"});
+                       "ff_threshold", "cache_dir", "solver", "max_iterations", "shading", "light_samples"});
   SolverSettings s;
   if (j.contains("method")) {
     s.method = r.string(j["method"], ptr + "/method");
@@ -316,6 +316,7 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
     s.patchSolver = choice("solver", kPatchSolverNames);
   if (j.contains("max_iterations")) s.maxIterations = int(integer("max_iterations", 1, 100000000));
   if (j.contains("shading")) s.shading = choice("shading", kPatchShadingNames);
+  if (j.contains("light_samples")) s.lightSamples = int(integer("light_samples", 1, 1 << 16));
   return s;
 }
 

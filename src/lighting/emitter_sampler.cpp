@@ -1,4 +1,4 @@
-#include "render/emitter_sampler.h"
+#include "lighting/emitter_sampler.h"
 
 namespace rad {
 

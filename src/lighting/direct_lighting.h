@@ -1,0 +1,58 @@
+#pragma once
+// Direct light at surface points: the one place that knows its physics. The path tracer's
+// next-event estimation, the voxel method's first shot, the patch method's light injection and
+// the per-pixel direct light of radiosity pictures all ask it, so the methods agree by
+// construction. Analytic lights (point, spot, IES) are exact and noiseless: one shadow ray each.
+// Emissive triangles are estimated by one area sample per call, chosen by emitted power.
+// Units (docs/ARCHITECTURE.md): irradiance in W per square scene unit, intensity in W/sr.
+
+#include <radiosity/scene.h>
+
+#include "core/rng.h"
+#include "geometry/ray_caster.h"
+#include "lighting/emitter_sampler.h"
+
+namespace rad {
+
+class DirectLighting {
+ public:
+  /// Keeps pointers to `scene` and `caster`, which must outlive it. Safe to use from many
+  /// threads at once.
+  DirectLighting(const Scene& scene, const RayCaster& caster);
+
+  bool hasLights() const { return !scene_->lights.empty(); }
+  bool hasEmitters() const { return !emitters_.empty(); }
+
+  /// Irradiance at `p` on a surface with unit front normal `n` from the scene's analytic lights,
+  /// each seen through one shadow ray: sum of I(-w) cos(theta) / d^2 over the lights `p` sees.
+  Color fromLights(const Vec3& p, const Vec3& n) const;
+  /// The same from one light.
+  Color fromLight(const Light& light, const Vec3& p, const Vec3& n) const;
+  /// One-sample estimate of the irradiance from emissive triangles (draws two numbers from
+  /// `rng`). With `misWeighted`, the sample carries its power-heuristic weight against a
+  /// cosine-weighted bounce, which then adds the emission it hits (see emitterPdfArea).
+  Color sampleEmitters(const Vec3& p, const Vec3& n, Rng& rng, bool misWeighted = false) const;
+  /// Area density with which sampleEmitters picks points of `triangle` (0 for non-emitters).
+  float emitterPdfArea(uint32_t triangle) const { return emitters_.pdfArea(triangle); }
+
+  /// Distance to lift a ray's origin off the surface at `p`, grown with the coordinates'
+  /// magnitude (floats near magnitude m are good to about 6e-8 m).
+  float rayOffset(const Vec3& p) const;
+  /// True if nothing lies between `p` (lifted along `n`) and `target`.
+  bool visible(const Vec3& p, const Vec3& n, const Vec3& target) const;
+
+ private:
+  const Scene* scene_;
+  const RayCaster* caster_;
+  EmitterSampler emitters_;
+  float sceneExtent_;
+};
+
+/// The power heuristic with exponent 2 (Veach and Guibas 1995): the weight of a sample taken
+/// with density `pdf` against another technique's `otherPdf`.
+inline float powerHeuristic(float pdf, float otherPdf) {
+  const float a = pdf * pdf, b = otherPdf * otherPdf;
+  return a > 0.0f ? a / (a + b) : 0.0f;
+}
+
+}  // namespace rad

@@ -1,0 +1,38 @@
+#include "patch/patch_quadrature.h"
+
+#include <array>
+
+#include "geometry/sampling.h"
+
+namespace rad {
+
+std::vector<QuadraturePoint> midpointRule(const PatchMesh& mesh, uint32_t patch, int points) {
+  const int side = strataPerSide(points);
+  std::vector<QuadraturePoint> q;
+  std::array<Vec3, 4> c;
+  if (mesh.corners(patch, c) == 3) {
+    auto at = [&](double a, double b) {
+      return Vec3((1.0 - a - b) * Vec3d(c[0]) + a * Vec3d(c[1]) + b * Vec3d(c[2]));
+    };
+    const double w = 1.0 / (double(side) * side);
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; i + j < side; ++j) {
+        q.push_back({at((i + 1.0 / 3.0) / side, (j + 1.0 / 3.0) / side), w});
+        if (i + j + 1 < side) q.push_back({at((i + 2.0 / 3.0) / side, (j + 2.0 / 3.0) / side), w});
+      }
+    return q;
+  }
+  double total = 0.0;
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
+      float w;
+      const Vec2 u((float(x) + 0.5f) / float(side), (float(y) + 0.5f) / float(side));
+      const Vec3 p = mesh.samplePoint(patch, u, w);
+      q.push_back({p, double(w)});
+      total += double(w);
+    }
+  for (QuadraturePoint& p : q) p.weight /= total;
+  return q;
+}
+
+}  // namespace rad
