@@ -256,6 +256,8 @@ PatchRadiosity solvePatches(const Scene& scene, const PatchRadiositySettings& se
                          {"table_bytes", p.tableBytes},
                          {"dropped_entry_fraction", p.droppedEntryFraction},
                          {"dropped_sum_fraction", p.droppedSumFraction},
+                         {"dropped_worst_row_fraction", p.droppedWorstRowFraction},
+                         {"rows_dropping_over_1_percent", p.rowsDroppingOverOnePercent},
                          {"row_sum", {{"min", p.rowSumMin}, {"mean", p.rowSumMean}, {"max", p.rowSumMax}}},
                          {"cache_loaded", p.cacheLoaded},
                          {"cache_file", p.cacheFile},

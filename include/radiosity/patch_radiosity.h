@@ -91,7 +91,11 @@ struct PatchRadiosityStats {
   size_t exactColumns = 0;
   size_t nonZeros = 0;  ///< entries of the form-factor table (or of the rows computed)
   size_t tableBytes = 0;
-  double droppedEntryFraction = 0.0, droppedSumFraction = 0.0;  ///< by the threshold
+  /// What the threshold dropped: of the entries, of the table's sum, of one row's sum at most,
+  /// and the rows that lost more than 1% of their sum (the kept entries of a row are scaled
+  /// back to its sum, so no light is lost, but it is moved).
+  double droppedEntryFraction = 0.0, droppedSumFraction = 0.0, droppedWorstRowFraction = 0.0;
+  uint64_t rowsDroppingOverOnePercent = 0;
   double rowSumMin = 0.0, rowSumMean = 0.0, rowSumMax = 0.0;    ///< closure of the rows computed
   bool cacheLoaded = false;
   std::string cacheFile;  ///< empty without a cache

@@ -17,8 +17,9 @@ namespace rad {
 namespace {
 
 constexpr char kMagic[8] = {'R', 'A', 'D', 'F', 'F', 'T', 'B', 'L'};
-constexpr uint32_t kVersion = 2;  // 2: the emitters' columns exact (ExactColumns)
-constexpr size_t kHeaderBytes = 8 + 4 + 4 + 16 + 16 + 16;
+// 2: the emitters' columns exact (ExactColumns); 3: thresholded rows keep their sums.
+constexpr uint32_t kVersion = 3;
+constexpr size_t kHeaderBytes = 8 + 4 + 4 + 16 + 16 + 32;
 
 uint64_t mix(uint64_t z) {
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
@@ -94,8 +95,10 @@ std::string checkTable(const std::vector<uint64_t>& offsets, const std::vector<u
     if (offsets[i] > offsets[i + 1]) return "row offsets not increasing";
   for (uint32_t c : columns)
     if (c >= patches) return "column out of range";
+  // Not v <= 1: a thresholded table gathers light redirected to small patches from large ones
+  // (FormFactorTable::applyThreshold), which can exceed 1 where the table does not lose light.
   for (float v : values)
-    if (!(v >= 0.0f && v <= 1.0f)) return "form factor out of [0, 1]";
+    if (!(v >= 0.0f && std::isfinite(v))) return "form factor negative or not finite";
   return "";
 }
 
@@ -118,6 +121,7 @@ FormFactorCacheKey formFactorCacheKey(const Scene& scene, float patchSize,
     h.value(f.firstTriangle);
     h.value(f.triangleCount);
     h.value(uint8_t(scene.materials[f.material].twoSided));
+    h.value(uint8_t(scene.materials[f.material].emits()));  // the threshold keeps emitters
     h.value(uint64_t(f.corners.size()));
     h.bytes(f.corners.data(), f.corners.size() * sizeof(uint32_t));
   }
@@ -166,7 +170,11 @@ FormFactorCacheLoad loadFormFactorTable(const std::filesystem::path& file,
   at += 4;
   const FormFactorCacheKey stored{get<uint64_t>(bytes, at), get<uint64_t>(bytes, at)};
   const uint64_t rows = get<uint64_t>(bytes, at), nnz = get<uint64_t>(bytes, at);
-  const double droppedEntries = get<double>(bytes, at), droppedSum = get<double>(bytes, at);
+  ThresholdLoss loss;
+  loss.entryFraction = get<double>(bytes, at);
+  loss.sumFraction = get<double>(bytes, at);
+  loss.worstRowFraction = get<double>(bytes, at);
+  loss.rowsOverOnePercent = get<uint64_t>(bytes, at);
   if (rows > bytes.size() || nnz > bytes.size()) return reject("corrupt header");
   const uint64_t expected = kHeaderBytes + (rows + 1) * 8 + nnz * 8 + 8;
   if (bytes.size() != expected)
@@ -181,7 +189,7 @@ FormFactorCacheLoad loadFormFactorTable(const std::filesystem::path& file,
   if (const std::string bad = checkTable(offsets, columns, values, patches); !bad.empty())
     return reject(bad);
   result.table = FormFactorTable::fromArrays(std::move(offsets), std::move(columns),
-                                             std::move(values), droppedEntries, droppedSum);
+                                             std::move(values), loss);
   return result;
 }
 
@@ -196,8 +204,10 @@ std::string saveFormFactorTable(const std::filesystem::path& file, const FormFac
   put(out, key.low);
   put(out, uint64_t(table.rows()));
   put(out, uint64_t(table.nonZeros()));
-  put(out, table.droppedEntryFraction());
-  put(out, table.droppedSumFraction());
+  put(out, table.thresholdLoss().entryFraction);
+  put(out, table.thresholdLoss().sumFraction);
+  put(out, table.thresholdLoss().worstRowFraction);
+  put(out, table.thresholdLoss().rowsOverOnePercent);
   putArray(out, table.offsetArray());
   putArray(out, table.columnArray());
   putArray(out, table.valueArray());

@@ -5,32 +5,23 @@
 // gathering then agree on.
 #include "patch/form_factor_table.h"
 
-#include "core/memory_usage.h"
-
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cassert>
-#include <numeric>
+
+#include "core/memory_usage.h"
 
 namespace rad {
 
-FormFactorTable FormFactorTable::fromRows(std::vector<std::vector<FormFactorEntry>> rows,
-                                          float threshold) {
+FormFactorTable FormFactorTable::fromRows(std::vector<std::vector<FormFactorEntry>> rows) {
   FormFactorTable t;
-  std::vector<double> kept(rows.size()), total(rows.size());
-  std::vector<size_t> estimated(rows.size());
   tbb::parallel_for(size_t(0), rows.size(), [&](size_t i) {
     auto& row = rows[i];
     assert(std::adjacent_find(row.begin(), row.end(), [](const auto& a, const auto& b) {
              return a.column >= b.column;
            }) == row.end());
-    estimated[i] = row.size();
-    for (const FormFactorEntry& e : row) total[i] += e.value;
-    std::erase_if(row, [threshold](const FormFactorEntry& e) {
-      return !(e.value >= threshold) || e.value <= 0.0f;
-    });
-    for (const FormFactorEntry& e : row) kept[i] += e.value;
+    std::erase_if(row, [](const FormFactorEntry& e) { return !(e.value > 0.0f); });
   });
   t.offsets_.assign(rows.size() + 1, 0);
   for (size_t i = 0; i < rows.size(); ++i) t.offsets_[i + 1] = t.offsets_[i] + rows[i].size();
@@ -43,24 +34,70 @@ FormFactorTable FormFactorTable::fromRows(std::vector<std::vector<FormFactorEntr
     }
     releaseMemory(rows[i]);
   });
-  const double est = double(std::accumulate(estimated.begin(), estimated.end(), size_t(0)));
-  const double sum = std::accumulate(total.begin(), total.end(), 0.0);
-  t.droppedEntries_ = est > 0.0 ? 1.0 - double(t.values_.size()) / est : 0.0;
-  t.droppedSum_ = sum > 0.0 ? 1.0 - std::accumulate(kept.begin(), kept.end(), 0.0) / sum : 0.0;
   return t;
 }
 
 FormFactorTable FormFactorTable::fromArrays(std::vector<uint64_t> offsets,
                                             std::vector<uint32_t> columns,
-                                            std::vector<float> values, double droppedEntries,
-                                            double droppedSum) {
+                                            std::vector<float> values, const ThresholdLoss& loss) {
   FormFactorTable t;
   t.offsets_ = std::move(offsets);
   t.columns_ = std::move(columns);
   t.values_ = std::move(values);
-  t.droppedEntries_ = droppedEntries;
-  t.droppedSum_ = droppedSum;
+  t.loss_ = loss;
   return t;
+}
+
+RowThresholding thresholdRow(std::vector<FormFactorEntry>& row, float threshold) {
+  RowThresholding sums;
+  float largest = 0.0f;
+  for (const FormFactorEntry& e : row) {
+    sums.total += e.value;
+    largest = std::max(largest, e.value);
+  }
+  const float bar = std::min(threshold, largest);
+  std::erase_if(row,
+                [bar](const FormFactorEntry& e) { return e.value <= 0.0f || !(e.value >= bar); });
+  for (const FormFactorEntry& e : row) sums.kept += e.value;
+  if (threshold > 0.0f && sums.kept > 0.0 && sums.kept < sums.total) {
+    const double scale = sums.total / sums.kept;  // 1 / (1 - the share dropped)
+    for (FormFactorEntry& e : row) e.value = float(e.value * scale);
+  }
+  return sums;
+}
+
+void FormFactorTable::applyThreshold(std::span<const float> area, float threshold,
+                                     std::span<const uint8_t> keepRows) {
+  if (!(threshold > 0.0f)) return;
+  const size_t n = rows();
+  std::vector<std::vector<FormFactorEntry>> sent(n);
+  std::vector<RowThresholding> sums(n);
+  tbb::parallel_for(size_t(0), n, [&](size_t j) {
+    for (size_t k = 0; k < columns(j).size(); ++k) sent[j].push_back({columns(j)[k], values(j)[k]});
+    sums[j] = thresholdRow(sent[j], keepRows.empty() || !keepRows[j] ? threshold : 0.0f);
+  });
+  ThresholdLoss loss;
+  double total = 0.0, kept = 0.0, before = double(nonZeros()), after = 0.0;
+  for (size_t j = 0; j < n; ++j) {
+    total += sums[j].total;
+    kept += sums[j].kept;
+    after += double(sent[j].size());
+    if (!(sums[j].total > 0.0)) continue;
+    const double lost = 1.0 - sums[j].kept / sums[j].total;
+    loss.worstRowFraction = std::max(loss.worstRowFraction, lost);
+    if (lost > 0.01) ++loss.rowsOverOnePercent;
+  }
+  loss.entryFraction = before > 0.0 ? 1.0 - after / before : 0.0;
+  loss.sumFraction = total > 0.0 ? 1.0 - kept / total : 0.0;
+  // Gathering row i lists, in increasing j, what each patch j sends to i.
+  std::vector<std::vector<FormFactorEntry>> gathered(n);
+  for (uint32_t j = 0; j < n; ++j) {
+    for (const FormFactorEntry& e : sent[j])
+      gathered[e.column].push_back({j, float(double(e.value) * area[j] / area[e.column])});
+    releaseMemory(sent[j]);
+  }
+  *this = fromRows(std::move(gathered));
+  loss_ = loss;
 }
 
 double FormFactorTable::rowSum(size_t row) const {
@@ -69,7 +106,7 @@ double FormFactorTable::rowSum(size_t row) const {
   return s;
 }
 
-void FormFactorTable::symmetrize(std::span<const float> area, float threshold) {
+void FormFactorTable::symmetrize(std::span<const float> area) {
   // The transpose by counting sort: its rows list, in increasing order, who sees each patch.
   const size_t n = rows();
   std::vector<uint64_t> tOffsets(n + 1, 0);
@@ -100,10 +137,7 @@ void FormFactorTable::symmetrize(std::span<const float> area, float threshold) {
       row.push_back({c, float(0.5 * flux / area[i])});
     }
   });
-  const double droppedEntries = droppedEntries_, droppedSum = droppedSum_;
-  *this = fromRows(std::move(merged), threshold);
-  droppedEntries_ = 1.0 - (1.0 - droppedEntries) * (1.0 - droppedEntries_);
-  droppedSum_ = 1.0 - (1.0 - droppedSum) * (1.0 - droppedSum_);
+  *this = fromRows(std::move(merged));
 }
 
 size_t FormFactorTable::memoryBytes() const {

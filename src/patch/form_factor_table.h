@@ -1,7 +1,8 @@
 #pragma once
 // The form factors F_ij between patches as a sparse matrix: compressed rows (CSR) of float values,
-// column indices sorted within each row. Entries below a threshold are dropped; the table counts
-// what it dropped so that the loss can be reported.
+// column indices sorted within each row. A threshold drops small entries without losing light
+// (thresholdRow, FormFactorTable::applyThreshold); the table counts what it dropped so that the
+// distortion can be reported.
 
 #include <cstdint>
 #include <span>
@@ -14,17 +15,34 @@ struct FormFactorEntry {
   float value = 0.0f;
 };
 
+/// What a threshold dropped, before the kept entries were rescaled.
+struct ThresholdLoss {
+  double entryFraction = 0.0;       ///< of the nonzero entries
+  double sumFraction = 0.0;         ///< of the rows' total form factor
+  double worstRowFraction = 0.0;    ///< of one row's sum, the largest
+  uint64_t rowsOverOnePercent = 0;  ///< rows that lost more than 1% of their sum
+};
+
+/// The sum of one row's entries before and after a threshold.
+struct RowThresholding {
+  double total = 0.0, kept = 0.0;
+};
+/// Thresholds row i read as where patch i's light goes (F_ij: the share of it that reaches j):
+/// drops the entries below `threshold` but the row's largest, and scales the rest so that the row
+/// keeps its sum, so the light that would have gone through the dropped entries goes to the
+/// patches that i sees most instead of being lost. Entries that are not positive are dropped.
+RowThresholding thresholdRow(std::vector<FormFactorEntry>& row, float threshold);
+
 class FormFactorTable {
  public:
   FormFactorTable() = default;
   /// Takes rows of (column, value) entries, each row sorted by column with every column once (as
-  /// the estimators and symmetrize() make them; asserted), and keeps those >= threshold.
+  /// the estimators and symmetrize() make them; asserted), and keeps the positive ones.
   /// rows.size() is the patch count.
-  static FormFactorTable fromRows(std::vector<std::vector<FormFactorEntry>> rows, float threshold);
+  static FormFactorTable fromRows(std::vector<std::vector<FormFactorEntry>> rows);
   /// Assembles a table from its arrays (offsets has rows + 1 entries); for the disk cache.
   static FormFactorTable fromArrays(std::vector<uint64_t> offsets, std::vector<uint32_t> columns,
-                                    std::vector<float> values, double droppedEntries,
-                                    double droppedSum);
+                                    std::vector<float> values, const ThresholdLoss& loss);
 
   size_t rows() const { return offsets_.empty() ? 0 : offsets_.size() - 1; }
   size_t nonZeros() const { return values_.size(); }
@@ -37,13 +55,20 @@ class FormFactorTable {
   double rowSum(size_t row) const;
 
   /// Enforces reciprocity A_i F_ij = A_j F_ji, both set from the mean of the two estimates of
-  /// A_i F_ij (an absent entry is an estimate of 0), then drops entries below the threshold.
-  void symmetrize(std::span<const float> area, float threshold = 0.0f);
+  /// A_i F_ij (an absent entry is an estimate of 0).
+  void symmetrize(std::span<const float> area);
 
-  /// Fraction of the estimated nonzero entries, and of their total form factor (summed over all
-  /// rows, relative to the rows' total), that the threshold dropped.
-  double droppedEntryFraction() const { return droppedEntries_; }
-  double droppedSumFraction() const { return droppedSum_; }
+  /// Drops small entries of a reciprocal table (A_i F_ij = A_j F_ji) without losing light: each
+  /// row, as the patch's outgoing light, is thresholded by thresholdRow (the rows of the patches
+  /// marked in `keepRows`, the emitters, whose light is the direct light, stay whole), and the
+  /// table becomes the reciprocal transpose of the result, F_ij = F'_ji A_j / A_i: what each
+  /// patch gathers is then what the others send it, so the power leaving every patch is
+  /// preserved exactly. Nothing happens for a threshold of 0.
+  void applyThreshold(std::span<const float> area, float threshold,
+                      std::span<const uint8_t> keepRows = {});
+
+  /// What applyThreshold and fromRows dropped.
+  const ThresholdLoss& thresholdLoss() const { return loss_; }
   size_t memoryBytes() const;
 
   const std::vector<uint64_t>& offsetArray() const { return offsets_; }
@@ -54,7 +79,7 @@ class FormFactorTable {
   std::vector<uint64_t> offsets_;
   std::vector<uint32_t> columns_;
   std::vector<float> values_;
-  double droppedEntries_ = 0.0, droppedSum_ = 0.0;
+  ThresholdLoss loss_;
 };
 
 }  // namespace rad

@@ -7,9 +7,9 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <glm/gtc/constants.hpp>
 #include <optional>
 #include <unordered_map>
-#include <glm/gtc/constants.hpp>
 
 #include "geometry/ray_caster.h"
 #include "lighting/direct_lighting.h"
@@ -31,13 +31,16 @@ struct PatchRadiosity::Impl {
   std::vector<Color> vertexIrradiance;
   PatchRadiosityStats stats;
 
-  FormFactorSettings ff;  ///< the estimator's settings, fixed once per solve
+  FormFactorSettings ff;             ///< the estimator's settings, fixed once per solve
+  std::vector<uint8_t> emitterRows;  ///< per patch: it emits (the threshold keeps its row whole)
   void chooseFormFactorSettings();
   FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);
   FormFactorTable computeTable(const RayCaster& caster, const ProgressCallback& progress);
   void solve(const RayCaster& caster, const ProgressCallback& progress);
   void solveLazily(const RayCaster& caster, const PatchSystem& system,
                    const ProgressCallback& progress);
+  void noteThresholdLoss(const RowThresholding& row);
+  void warnOfThresholdLoss();
   void averageAtVertices();
   std::vector<SurfaceSample> samples() const;
   LitMesh litMesh() const;
@@ -52,8 +55,7 @@ void validate(const PatchRadiositySettings& s) {
     fail(fmt::format("form-factor rays {} must be at least 1", s.formFactorRays));
   if (!(s.formFactorThreshold >= 0.0f && s.formFactorThreshold < 1.0f))
     fail(fmt::format("form-factor threshold {} out of range [0, 1)", s.formFactorThreshold));
-  if (s.lightSamples < 1)
-    fail(fmt::format("light samples {} must be at least 1", s.lightSamples));
+  if (s.lightSamples < 1) fail(fmt::format("light samples {} must be at least 1", s.lightSamples));
   if (s.maxIterations < 1)
     fail(fmt::format("max iterations {} must be at least 1", s.maxIterations));
   if (!(s.tolerance >= 0.0)) fail(fmt::format("tolerance {} must not be negative", s.tolerance));
@@ -91,12 +93,14 @@ constexpr double kExactColumnPairs = 2e6, kExactPairsPerSecond = 1e6;
 
 void PatchRadiosity::Impl::chooseFormFactorSettings() {
   ff = {settings.estimator, settings.formFactorRays, settings.seed, {}};
+  emitterRows.assign(mesh->size(), 0);
+  for (uint32_t p = 0; p < mesh->size(); ++p)
+    emitterRows[p] = scene->materials[mesh->patches()[p].material].emits();
   // The hemisphere estimator takes the emitters' columns exactly (ExactColumns), while they are
   // few: large emitters are found by enough of every patch's rays anyway.
   if (settings.estimator != PatchFormFactorEstimator::Hemisphere) return;
   for (uint32_t p = 0; p < mesh->size(); ++p)
-    if (scene->materials[mesh->patches()[p].material].emits())
-      ff.exactColumns.push_back(p);
+    if (emitterRows[p]) ff.exactColumns.push_back(p);
   const double pairs = double(ff.exactColumns.size()) * double(mesh->size());
   if (pairs > kExactColumnPairs) {
     stats.warnings.push_back(fmt::format(
@@ -112,14 +116,12 @@ void PatchRadiosity::Impl::chooseFormFactorSettings() {
 FormFactorTable PatchRadiosity::Impl::computeTable(const RayCaster& caster,
                                                    const ProgressCallback& progress) {
   FormFactorRows rows = estimateFormFactors(*mesh, caster, ff, progress);
-  // Pairwise estimates are reciprocal by construction; the others average both directions,
-  // then drop what falls below the threshold.
-  if (settings.estimator == PatchFormFactorEstimator::Pairwise)
-    return FormFactorTable::fromRows(std::move(rows), settings.formFactorThreshold);
-  FormFactorTable table = FormFactorTable::fromRows(std::move(rows), 0.0f);
+  // Pairwise estimates are reciprocal by construction; the others average both directions.
+  FormFactorTable table = FormFactorTable::fromRows(std::move(rows));
   std::vector<float> area;
   for (const Patch& p : mesh->patches()) area.push_back(p.area);
-  table.symmetrize(area, settings.formFactorThreshold);
+  if (settings.estimator != PatchFormFactorEstimator::Pairwise) table.symmetrize(area);
+  table.applyThreshold(area, settings.formFactorThreshold, emitterRows);
   return table;
 }
 
@@ -148,6 +150,26 @@ FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
   return table;
 }
 
+void PatchRadiosity::Impl::noteThresholdLoss(const RowThresholding& row) {
+  if (!(row.total > 0.0)) return;
+  const double lost = 1.0 - row.kept / row.total;
+  stats.droppedWorstRowFraction = std::max(stats.droppedWorstRowFraction, lost);
+  if (lost > 0.01) ++stats.rowsDroppingOverOnePercent;
+}
+
+// The kept entries carry the dropped ones' light (thresholdRow), so energy balances; but light
+// then goes to the wrong places where a row lost much of its sum.
+void PatchRadiosity::Impl::warnOfThresholdLoss() {
+  if (stats.rowsDroppingOverOnePercent == 0) return;
+  stats.warnings.push_back(fmt::format(
+      "--ff-threshold {} dropped more than 1% of the form-factor sum of {} of {} patches (up to "
+      "{:.1f}%, {:.1f}% of all): their kept entries were scaled up to keep the light, which moves "
+      "the bounce light toward the patches they see most; a lower threshold keeps it where it "
+      "falls",
+      settings.formFactorThreshold, stats.rowsDroppingOverOnePercent, mesh->size(),
+      100.0 * stats.droppedWorstRowFraction, 100.0 * stats.droppedSumFraction));
+}
+
 void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSystem& system,
                                        const ProgressCallback& progress) {
   std::vector<std::vector<uint32_t>> columns(mesh->size());
@@ -156,17 +178,21 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
   const auto start = std::chrono::steady_clock::now();
   const std::optional<ExactColumns> exact = exactColumns(*mesh, caster, ff);
   stats.formFactorSeconds += secondsSince(start);
+  RowThresholding allRows;
   auto row = [&](uint32_t i) {
     const auto start = std::chrono::steady_clock::now();
-    for (const FormFactorEntry& e : hemisphereRow(*mesh, caster, i, ff.rays, ff.seed,
-                                                  exact ? &*exact : nullptr)) {
-      if (!(e.value >= settings.formFactorThreshold)) continue;
+    std::vector<FormFactorEntry> entries =
+        hemisphereRow(*mesh, caster, i, ff.rays, ff.seed, exact ? &*exact : nullptr);
+    const RowThresholding rowSums =
+        thresholdRow(entries, emitterRows[i] ? 0.0f : settings.formFactorThreshold);
+    allRows.total += rowSums.total;
+    allRows.kept += rowSums.kept;
+    noteThresholdLoss(rowSums);
+    for (const FormFactorEntry& e : entries) {
       columns[i].push_back(e.column);
       values[i].push_back(e.value);
     }
-    double sum = 0.0;
-    for (float v : values[i]) sum += v;
-    sums.push_back(sum);
+    sums.push_back(rowSums.total);
     stats.nonZeros += values[i].size();
     stats.tableBytes += values[i].size() * (sizeof(uint32_t) + sizeof(float));
     stats.formFactorSeconds += secondsSince(start);
@@ -183,6 +209,7 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
       },
       system, {settings.tolerance, settings.maxIterations}, progress);
   recordRowSums(sums, stats);
+  if (allRows.total > 0.0) stats.droppedSumFraction = 1.0 - allRows.kept / allRows.total;
   solution.seconds -= stats.formFactorSeconds;  // the solver's time, without the rows' rays
 }
 
@@ -190,8 +217,8 @@ void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback
   PatchSystem system = systemOf(*scene, *mesh);
   const auto lightStart = std::chrono::steady_clock::now();
   const uint64_t raysBefore = caster.raysCast();
-  system.direct = patchLightIrradiance(*mesh, DirectLighting(*scene, caster),
-                                       settings.lightSamples, progress);
+  system.direct =
+      patchLightIrradiance(*mesh, DirectLighting(*scene, caster), settings.lightSamples, progress);
   stats.lightRays = caster.raysCast() - raysBefore;
   stats.lightSeconds = secondsSince(lightStart);
   const PatchSolverControl control{settings.tolerance, settings.maxIterations};
@@ -203,8 +230,11 @@ void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback
   const FormFactorTable table = formFactors(caster, progress);
   stats.nonZeros = table.nonZeros();
   stats.tableBytes = table.memoryBytes();
-  stats.droppedEntryFraction = table.droppedEntryFraction();
-  stats.droppedSumFraction = table.droppedSumFraction();
+  const ThresholdLoss& loss = table.thresholdLoss();
+  stats.droppedEntryFraction = loss.entryFraction;
+  stats.droppedSumFraction = loss.sumFraction;
+  stats.droppedWorstRowFraction = loss.worstRowFraction;
+  stats.rowsDroppingOverOnePercent = loss.rowsOverOnePercent;
   std::vector<double> sums(table.rows());
   for (size_t i = 0; i < sums.size(); ++i) sums[i] = table.rowSum(i);
   recordRowSums(sums, stats);
@@ -253,6 +283,7 @@ PatchRadiosity::PatchRadiosity(const Scene& scene, const PatchRadiositySettings&
   m.stats.meshSeconds = secondsSince(start);
   const RayCaster caster(scene);
   m.solve(caster, progress);
+  m.warnOfThresholdLoss();
   m.averageAtVertices();
   PatchRadiosityStats& s = m.stats;
   s.solveSeconds = m.solution.seconds;
@@ -301,9 +332,15 @@ std::vector<SurfaceSample> PatchRadiosity::Impl::samples() const {
   std::vector<SurfaceSample> out(mesh->size());
   for (uint32_t p = 0; p < mesh->size(); ++p) {
     const Patch& patch = mesh->patches()[p];
-    out[p] = {patch.object,           patch.area,           patch.centroid,
-              patch.normal,           solution.emitted[p],  scene->materials[patch.material].rho,
-              solution.irradiance[p], solution.radiosity[p], mesh->roots()[mesh->nodeOf(p).root].back};
+    out[p] = {patch.object,
+              patch.area,
+              patch.centroid,
+              patch.normal,
+              solution.emitted[p],
+              scene->materials[patch.material].rho,
+              solution.irradiance[p],
+              solution.radiosity[p],
+              mesh->roots()[mesh->nodeOf(p).root].back};
   }
   return out;
 }

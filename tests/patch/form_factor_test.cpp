@@ -111,7 +111,7 @@ Estimate estimate(const Scene& scene, float patchSize, FormFactorSettings settin
     settings.seed = uint64_t(1000 + r);
     FormFactorRows rows = estimateFormFactors(mesh, caster, settings, {});
     values.push_back(
-        test::objectFormFactor(mesh, FormFactorTable::fromRows(std::move(rows), 0.0f)));
+        test::objectFormFactor(mesh, FormFactorTable::fromRows(std::move(rows))));
   }
   Estimate e;
   for (double v : values) e.mean += v / runs;
@@ -165,7 +165,7 @@ TEST(HemisphereFormFactors, EmitterColumnsExactPerPatch) {
     if (mesh.patches()[p].object == light) settings.exactColumns.push_back(p);
   ASSERT_EQ(settings.exactColumns.size(), 1u);
   const uint32_t lightPatch = settings.exactColumns[0];
-  FormFactorTable table = FormFactorTable::fromRows(estimateFormFactors(mesh, caster, settings, {}), 0.0f);
+  FormFactorTable table = FormFactorTable::fromRows(estimateFormFactors(mesh, caster, settings, {}));
   std::vector<float> area;
   for (const Patch& p : mesh.patches()) area.push_back(p.area);
   table.symmetrize(area);

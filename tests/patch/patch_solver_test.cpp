@@ -88,7 +88,7 @@ void expectSolversAgreeWithDenseSolve(const FormFactorTable& table, const PatchS
 FormFactorTable cubeTable(const Scene& scene, const PatchMesh& mesh, const PatchSystem& system) {
   const RayCaster caster(scene);
   FormFactorTable table =
-      FormFactorTable::fromRows(estimateFormFactors(mesh, caster, {}, {}), 0.0f);
+      FormFactorTable::fromRows(estimateFormFactors(mesh, caster, {}, {}));
   table.symmetrize(system.area);
   return table;
 }
@@ -124,7 +124,7 @@ TEST(FormFactorClosure, ClosedBoxRowsSumToOne) {
     const FormFactorSettings settings{estimator, estimator == FormFactorEstimator::Exact ? 64 : 256,
                                       1};
     const FormFactorRows rows = estimateFormFactors(mesh, caster, settings, {});
-    FormFactorTable table = FormFactorTable::fromRows(rows, 0.0f);
+    FormFactorTable table = FormFactorTable::fromRows(rows);
     for (size_t i = 0; i < table.rows(); ++i)
       EXPECT_NEAR(table.rowSum(i), 1.0, 0.01) << "row " << i;
     // After reciprocity averaging each row moves by noise, their mean stays at 1.
