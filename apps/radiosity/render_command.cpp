@@ -1,9 +1,6 @@
 // `radiosity render SCENE`: computes light transport with the chosen method and writes an image
 // (and, with --stats, the run's numbers).
-#include "command_support.h"
-#include "commands.h"
-#include "method_options.h"
-
+#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/image.h>
 #include <radiosity/patch_radiosity.h>
@@ -12,12 +9,14 @@
 #include <radiosity/voxel_radiosity.h>
 
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
+
+#include "command_support.h"
+#include "commands.h"
+#include "method_options.h"
 
 namespace rad::cli {
 
@@ -33,6 +32,8 @@ struct RenderOptions {
   float exposure = 0.0f;
   bool exrFloat = false;
   int objectPoints = 64;
+  std::string direct = "per-pixel";
+  int emitterSamples = SurfaceRenderSettings{}.emitterSamples;
 };
 
 // Default output name: the scene's stem and the method, e.g. "cornell_pathtrace.png".
@@ -68,10 +69,26 @@ Image renderSolution(const Scene& scene, const Camera& camera, const SurfaceRadi
   SurfaceRenderSettings settings;
   settings.samplesPerPixel = o.method.pathTracer().samplesPerPixel;
   settings.seed = o.method.pathTracer().seed;
-  Image image = renderSurfaceRadiance(scene, camera, solution, settings, console.progress("render"));
+  settings.direct = o.direct == "solution" ? DirectLightMode::Solution : DirectLightMode::PerPixel;
+  settings.emitterSamples = o.emitterSamples;
+  if (settings.direct == DirectLightMode::PerPixel && !solution.hasIndirectIrradiance())
+    console.warn(
+        fmt::format("--direct per-pixel needs the direct light kept apart from the "
+                    "bounces, which this {} solution does not do: the picture shows the "
+                    "solution's own light",
+                    o.method.method()));
+  Image image =
+      renderSurfaceRadiance(scene, camera, solution, settings, console.progress("render"));
   console.finishProgress();
   stats.timingsSeconds.render = renderTime.seconds();
   return image;
+}
+
+// A voxel picture with per-pixel direct light needs the first shot kept apart from the bounces.
+VoxelRadiositySettings voxelSettingsFor(const RenderOptions& o) {
+  VoxelRadiositySettings settings = o.method.voxel();
+  settings.keepDirectLight = o.direct == "per-pixel";
+  return settings;
 }
 
 int runRender(RenderOptions& o, Console& console) {
@@ -95,20 +112,20 @@ int runRender(RenderOptions& o, Console& console) {
   const std::string& method = o.method.method();
   const bool objectMeans = !o.stats.empty();
   const Image image =
-      method == "pathtrace"
-          ? renderWithPathTracer(scene, camera, o, console, stats)
+      method == "pathtrace" ? renderWithPathTracer(scene, camera, o, console, stats)
       : method == "patch"
           ? renderSolution(scene, camera,
                            solvePatches(scene, o.method.patch(), console, stats, objectMeans), o,
                            console, stats)
           : renderSolution(scene, camera,
-                           solveVoxels(scene, o.method.voxel(), console, stats, objectMeans), o,
+                           solveVoxels(scene, voxelSettingsFor(o), console, stats, objectMeans), o,
                            console, stats);
   ImageWriteOptions writeOptions;
   writeOptions.exposureEV = o.exposure;
   writeOptions.exrPixelType = o.exrFloat ? ExrPixelType::Float : ExrPixelType::Half;
   writeImage(o.output, image, writeOptions);
-  if (!o.stats.empty()) writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
+  if (!o.stats.empty())
+    writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
   console.info(fmt::format("rendered {} {}x{} with {} in {:.2f} s -> {}{}", o.scene, camera.width,
                            camera.height, o.method.method(), total.seconds(), o.output,
                            o.stats.empty() ? "" : ", stats -> " + o.stats));
@@ -137,7 +154,16 @@ void addRenderCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--object-points", o->objectPoints,
                   "pathtrace: surface points per object for the stats' per-object means (0: skip)")
       ->check(nonNegativeNumber());
-  sub->callback([o, &console, &action] { action = [o, &console] { return runRender(*o, console); }; });
+  sub->add_option("--direct", o->direct,
+                  "patch, voxel: direct light by shadow rays at each pixel (per-pixel, default: "
+                  "sharp shadows and beam edges) or from the solution (solution)")
+      ->check(CLI::IsMember({"per-pixel", "solution"}));
+  sub->add_option("--emitter-samples", o->emitterSamples,
+                  "patch, voxel, per-pixel direct light: area samples of the emitting surfaces per "
+                  "camera ray (default 8)")
+      ->check(CLI::Range(1, 1 << 16));
+  sub->callback(
+      [o, &console, &action] { action = [o, &console] { return runRender(*o, console); }; });
 }
 
 }  // namespace rad::cli

@@ -124,6 +124,10 @@ class PatchRadiosity : public SurfaceRadiance {
   /// Ke + rho H / pi at the hit: H interpolated from the vertex averages (smooth) or the
   /// patch's own (flat); 0 from the back of a one-sided face.
   Color radiance(const SurfaceHit& hit) const override;
+  bool hasIndirectIrradiance() const override { return true; }
+  /// H less the lights' D and what the emitting patches send directly, interpolated as
+  /// radiance() interpolates H.
+  Color indirectIrradiance(const SurfaceHit& hit) const override;
   /// Area-weighted means over the front-side patches of each scene object.
   std::vector<ObjectRadiometry> objectRadiometry() const;
   const PatchRadiosityStats& stats() const;

@@ -24,14 +24,32 @@ class SurfaceRadiance {
   /// Radiance (W / (m^2 sr), scene units) leaving the surface at `hit` toward the viewer;
   /// 0 from the back of a one-sided face. Safe to call from many threads at once.
   virtual Color radiance(const SurfaceHit& hit) const = 0;
+  /// True where indirectIrradiance() answers: the method kept its direct light apart.
+  virtual bool hasIndirectIrradiance() const { return false; }
+  /// The irradiance at `hit` of light that has bounced at least once: the solution's H less
+  /// the direct light of lights and emitting surfaces, interpolated as radiance() interpolates
+  /// H (0 where hasIndirectIrradiance() is false). A renderer adds the direct light per pixel.
+  virtual Color indirectIrradiance(const SurfaceHit& /*hit*/) const { return Color(0.0f); }
+};
+
+/// Where a radiosity picture's direct light comes from.
+enum class DirectLightMode {
+  PerPixel,  ///< shadow rays at every camera ray's hit: hard shadows and beam edges stay sharp
+  Solution,  ///< the solution's own H, interpolated over its patches or voxels
 };
 
 struct SurfaceRenderSettings {
   int samplesPerPixel = 4;  ///< jittered camera rays per pixel (antialiasing)
   uint64_t seed = 1;
+  DirectLightMode direct = DirectLightMode::PerPixel;
+  /// Per-pixel direct light: area samples of the emitting surfaces at each camera ray's hit
+  /// (point, spot and IES lights take one shadow ray each).
+  int emitterSamples = 8;
 };
 
-/// Renders what `camera` sees of `scene`, each visible point shaded by `radiance`.
+/// Renders what `camera` sees of `scene`, each visible point shaded by `radiance`: with
+/// DirectLightMode::PerPixel (where `radiance` has indirect irradiance) as Ke + rho (D + H_ind)
+/// / pi, D the direct light by shadow rays at the hit; else as radiance() says.
 /// Throws rad::Cancelled if `progress` returns false.
 Image renderSurfaceRadiance(const Scene& scene, const Camera& camera, const SurfaceRadiance& radiance,
                             const SurfaceRenderSettings& settings, const ProgressCallback& progress = {});

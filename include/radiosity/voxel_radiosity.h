@@ -34,6 +34,9 @@ struct VoxelRadiositySettings {
   int directSamples = 64;          ///< shadow-ray samples per voxel side for the first shot
   bool normalize = true;           ///< per-voxel normalization of the direction factors
   bool jitterLines = true;         ///< shift each direction's lines anew every iteration
+  /// Keep the first shot's direct light apart from the bounces (12 more bytes a side through
+  /// the solve), so that pictures can take the direct light per pixel (indirectIrradiance).
+  bool keepDirectLight = false;
   uint64_t seed = 1;
 };
 
@@ -71,6 +74,9 @@ class VoxelRadiosity : public SurfaceRadiance {
 
   /// Ke + rho H / pi at the hit, with H interpolated from the voxel sides facing the hit's way.
   Color radiance(const SurfaceHit& hit) const override;
+  /// With keepDirectLight and the first shot: the bounces' irradiance, interpolated as H is.
+  bool hasIndirectIrradiance() const override;
+  Color indirectIrradiance(const SurfaceHit& hit) const override;
   /// Area-weighted means over the voxel sides of each scene object.
   std::vector<ObjectRadiometry> objectRadiometry() const;
   const VoxelRadiosityStats& stats() const;

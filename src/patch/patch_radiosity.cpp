@@ -29,6 +29,7 @@ struct PatchRadiosity::Impl {
   std::unique_ptr<PatchMesh> mesh;
   PatchSolution solution;
   std::vector<Color> vertexIrradiance;
+  std::vector<Color> indirect, vertexIndirect;  ///< H less the direct light (patch, vertex)
   PatchRadiosityStats stats;
 
   FormFactorSettings ff;             ///< the estimator's settings, fixed once per solve
@@ -41,7 +42,12 @@ struct PatchRadiosity::Impl {
                    const ProgressCallback& progress);
   void noteThresholdLoss(const RowThresholding& row);
   void warnOfThresholdLoss();
-  void averageAtVertices();
+  void separateIndirect(const FormFactorRowSource& rows, const PatchSystem& system);
+  std::vector<Color> averageAtVertices(const std::vector<Color>& perPatch) const;
+  /// A per-patch quantity at a hit: interpolated from the vertex averages (smooth) or the
+  /// patch's own (flat); nullopt on the back of a one-sided face.
+  std::optional<Color> interpolate(const SurfaceHit& hit, const std::vector<Color>& perPatch,
+                                   const std::vector<Color>& perVertex) const;
   std::vector<SurfaceSample> samples() const;
   LitMesh litMesh() const;
 };
@@ -199,15 +205,16 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
     return FormFactorRowView{columns[i], values[i]};
   };
   std::vector<uint8_t> done(mesh->size(), 0);
-  solution = solveProgressive(
-      [&](uint32_t i) {
-        if (!done[i]) {
-          done[i] = 1;
-          return row(i);
-        }
-        return FormFactorRowView{columns[i], values[i]};
-      },
-      system, {settings.tolerance, settings.maxIterations}, progress);
+  const FormFactorRowSource rowOf = [&](uint32_t i) {
+    if (!done[i]) {
+      done[i] = 1;
+      return row(i);
+    }
+    return FormFactorRowView{columns[i], values[i]};
+  };
+  solution =
+      solveProgressive(rowOf, system, {settings.tolerance, settings.maxIterations}, progress);
+  separateIndirect(rowOf, system);
   recordRowSums(sums, stats);
   if (allRows.total > 0.0) stats.droppedSumFraction = 1.0 - allRows.kept / allRows.total;
   solution.seconds -= stats.formFactorSeconds;  // the solver's time, without the rows' rays
@@ -253,21 +260,47 @@ void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback
           system, control, progress);
       break;
   }
+  separateIndirect(
+      [&](uint32_t i) {
+        return FormFactorRowView{table.columns(i), table.values(i)};
+      },
+      system);
 }
 
-void PatchRadiosity::Impl::averageAtVertices() {
-  vertexIrradiance.assign(mesh->vertices().size(), Color(0.0f));
+// What bounced at least once: H less D and less what the emitters send directly, sum over
+// emitting j of E_j F_ji A_j / A_i (row j read as where j's light goes, as shooting reads it).
+void PatchRadiosity::Impl::separateIndirect(const FormFactorRowSource& rows,
+                                            const PatchSystem& system) {
+  std::vector<Vec3d> h(system.size());
+  for (size_t i = 0; i < h.size(); ++i)
+    h[i] = Vec3d(solution.irradiance[i]) - Vec3d(system.directAt(i));
+  for (uint32_t j = 0; j < system.size(); ++j) {
+    if (maxComponent(system.emitted[j]) <= 0.0f) continue;
+    const FormFactorRowView row = rows(j);
+    for (size_t k = 0; k < row.columns.size(); ++k) {
+      const uint32_t i = row.columns[k];
+      h[i] -= Vec3d(system.emitted[j]) * (double(row.values[k]) * system.area[j] / system.area[i]);
+    }
+  }
+  indirect.resize(h.size());
+  for (size_t i = 0; i < h.size(); ++i) indirect[i] = Color(glm::max(h[i], Vec3d(0.0)));
+}
+
+std::vector<Color> PatchRadiosity::Impl::averageAtVertices(
+    const std::vector<Color>& perPatch) const {
+  std::vector<Color> atVertex(mesh->vertices().size(), Color(0.0f));
   std::vector<float> weight(mesh->vertices().size(), 0.0f);
   for (uint32_t p = 0; p < mesh->size(); ++p) {
     const PatchNode& node = mesh->nodeOf(p);
     const float a = mesh->patches()[p].area;
     for (int k = 0; k < node.cornerCount(); ++k) {
-      vertexIrradiance[node.corners[k]] += a * solution.irradiance[p];
+      atVertex[node.corners[k]] += a * perPatch[p];
       weight[node.corners[k]] += a;
     }
   }
   for (size_t v = 0; v < weight.size(); ++v)
-    if (weight[v] > 0.0f) vertexIrradiance[v] /= weight[v];
+    if (weight[v] > 0.0f) atVertex[v] /= weight[v];
+  return atVertex;
 }
 
 PatchRadiosity::PatchRadiosity(const Scene& scene, const PatchRadiositySettings& settings,
@@ -284,7 +317,8 @@ PatchRadiosity::PatchRadiosity(const Scene& scene, const PatchRadiositySettings&
   const RayCaster caster(scene);
   m.solve(caster, progress);
   m.warnOfThresholdLoss();
-  m.averageAtVertices();
+  m.vertexIrradiance = m.averageAtVertices(m.solution.irradiance);
+  m.vertexIndirect = m.averageAtVertices(m.indirect);
   PatchRadiosityStats& s = m.stats;
   s.solveSeconds = m.solution.seconds;
   s.patches = m.mesh->size();
@@ -304,20 +338,32 @@ PatchRadiosity::~PatchRadiosity() = default;
 PatchRadiosity::PatchRadiosity(PatchRadiosity&&) noexcept = default;
 PatchRadiosity& PatchRadiosity::operator=(PatchRadiosity&&) noexcept = default;
 
+std::optional<Color> PatchRadiosity::Impl::interpolate(const SurfaceHit& hit,
+                                                       const std::vector<Color>& perPatch,
+                                                       const std::vector<Color>& perVertex) const {
+  const PatchMesh::Location loc = mesh->locate(hit.triangle, hit.frontFace, hit.point);
+  if (loc.patch == kNoPatch) return std::nullopt;
+  if (settings.shading == PatchShading::Flat) return perPatch[loc.patch];
+  const PatchNode& node = mesh->nodeOf(loc.patch);
+  Color h(0.0f);
+  for (int k = 0; k < node.cornerCount(); ++k) h += loc.weights[k] * perVertex[node.corners[k]];
+  return h;
+}
+
 Color PatchRadiosity::radiance(const SurfaceHit& hit) const {
   const Material& m = impl_->scene->materialOf(hit.triangle);
   if (!hit.frontFace && !m.twoSided) return Color(0.0f);
-  const PatchMesh::Location loc = impl_->mesh->locate(hit.triangle, hit.frontFace, hit.point);
-  if (loc.patch == kNoPatch) return Color(0.0f);
-  Color h = impl_->solution.irradiance[loc.patch];
-  if (impl_->settings.shading == PatchShading::Smooth) {
-    const PatchNode& node = impl_->mesh->nodeOf(loc.patch);
-    h = Color(0.0f);
-    for (int k = 0; k < node.cornerCount(); ++k)
-      h += loc.weights[k] * impl_->vertexIrradiance[node.corners[k]];
-  }
+  const std::optional<Color> h =
+      impl_->interpolate(hit, impl_->solution.irradiance, impl_->vertexIrradiance);
+  if (!h) return Color(0.0f);
   // The hit's own material: colour edges and emitters stay sharp.
-  return m.emission + m.rho * h / glm::pi<float>();
+  return m.emission + m.rho * *h / glm::pi<float>();
+}
+
+Color PatchRadiosity::indirectIrradiance(const SurfaceHit& hit) const {
+  const Material& m = impl_->scene->materialOf(hit.triangle);
+  if (!hit.frontFace && !m.twoSided) return Color(0.0f);
+  return impl_->interpolate(hit, impl_->indirect, impl_->vertexIndirect).value_or(Color(0.0f));
 }
 
 std::vector<ObjectRadiometry> PatchRadiosity::objectRadiometry() const {

@@ -1,23 +1,66 @@
 // renderSurfaceRadiance: camera rays through Embree, each hit shaded by a SurfaceRadiance.
 #include <radiosity/error.h>
 #include <radiosity/surface_radiance.h>
-
-#include "core/rng.h"
-#include "geometry/sampling.h"
-#include "render/camera_rays.h"
-#include "render/progress_ticker.h"
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <glm/gtc/constants.hpp>
+
+#include "core/rng.h"
+#include "geometry/sampling.h"
+#include "lighting/direct_lighting.h"
+#include "render/camera_rays.h"
+#include "render/progress_ticker.h"
+
 namespace rad {
 
-Image renderSurfaceRadiance(const Scene& scene, const Camera& camera, const SurfaceRadiance& radiance,
-                            const SurfaceRenderSettings& settings, const ProgressCallback& progress) {
+namespace {
+
+// Ke + rho (D + H_ind) / pi at a hit: the solution's indirect light, the direct light computed
+// here with shadow rays (DirectLighting, the physics the path tracer uses).
+class PerPixelDirectShading {
+ public:
+  PerPixelDirectShading(const Scene& scene, const RayCaster& caster,
+                        const SurfaceRadiance& radiance, int emitterSamples)
+      : scene_(scene),
+        direct_(scene, caster),
+        radiance_(radiance),
+        emitterSamples_(emitterSamples) {}
+
+  Color operator()(const SurfaceHit& hit, Rng& rng) const {
+    const Material& m = scene_.materialOf(hit.triangle);
+    if (!hit.frontFace && !m.twoSided) return Color(0.0f);
+    const Vec3 n = hit.frontFace ? hit.normal : -hit.normal;
+    Color h = radiance_.indirectIrradiance(hit) + direct_.fromLights(hit.point, n);
+    if (direct_.hasEmitters()) {
+      Color emitted(0.0f);
+      for (int s = 0; s < emitterSamples_; ++s)
+        emitted += direct_.sampleEmitters(hit.point, n, rng);
+      h += emitted / float(emitterSamples_);
+    }
+    return m.emission + m.rho * h * glm::one_over_pi<float>();
+  }
+
+ private:
+  const Scene& scene_;
+  DirectLighting direct_;
+  const SurfaceRadiance& radiance_;
+  int emitterSamples_;
+};
+
+}  // namespace
+
+Image renderSurfaceRadiance(const Scene& scene, const Camera& camera,
+                            const SurfaceRadiance& radiance, const SurfaceRenderSettings& settings,
+                            const ProgressCallback& progress) {
   if (settings.samplesPerPixel < 1)
     throw InputError("render", "samples per pixel must be at least 1");
+  if (settings.emitterSamples < 1) throw InputError("render", "emitter samples must be at least 1");
   const PinholeCamera pinhole(camera);
   const RayCaster caster(scene);
+  const bool perPixel =
+      settings.direct == DirectLightMode::PerPixel && radiance.hasIndirectIrradiance();
+  const PerPixelDirectShading shade(scene, caster, radiance, settings.emitterSamples);
   Image image(camera.width, camera.height);
   ProgressTicker ticker(progress, size_t(camera.height));
   tbb::parallel_for(tbb::blocked_range<int>(0, camera.height), [&](const auto& rows) {
@@ -30,8 +73,9 @@ Image renderSurfaceRadiance(const Scene& scene, const Camera& camera, const Surf
           const Ray ray = pinhole.ray(x, y, pixelSample(s, settings.samplesPerPixel, rng));
           const Hit hit = caster.intersect(ray);
           if (!hit.valid()) continue;
-          sum += radiance.radiance({ray.origin + hit.distance * ray.direction, hit.geometricNormal,
-                                    hit.triangle, hit.frontFace});
+          const SurfaceHit at{ray.origin + hit.distance * ray.direction, hit.geometricNormal,
+                              hit.triangle, hit.frontFace};
+          sum += perPixel ? shade(at, rng) : radiance.radiance(at);
         }
         image.at(x, y) = sum / float(settings.samplesPerPixel);
       }

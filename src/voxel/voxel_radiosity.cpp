@@ -1,17 +1,17 @@
 // The public face of the voxel method: voxelize, solve, then answer radiance queries.
+#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/voxel_radiosity.h>
 
+#include <chrono>
+#include <glm/gtc/constants.hpp>
+
+#include "core/memory_usage.h"
 #include "output/baked_mesh.h"
 #include "output/surface_samples.h"
 #include "voxel/voxel_irradiance_field.h"
 #include "voxel/voxel_solver.h"
 #include "voxel/voxelizer.h"
-
-#include <fmt/format.h>
-#include <glm/gtc/constants.hpp>
-
-#include <chrono>
 
 namespace rad {
 
@@ -19,6 +19,7 @@ struct VoxelRadiosity::Impl {
   const Scene* scene;
   VoxelGrid grid;
   VoxelSolution solution;
+  std::vector<Color> indirect;  ///< H less the first shot (keepDirectLight); else empty
   VoxelRadiosityStats stats;
 
   VoxelIrradianceField field() const { return VoxelIrradianceField(grid, solution.irradiance); }
@@ -39,7 +40,8 @@ void validate(const VoxelRadiositySettings& s) {
     fail(fmt::format("later sphere radius {} out of range [0, 200]", s.laterSphereRadius));
   if (s.iterations < 1) fail(fmt::format("iterations {} must be at least 1", s.iterations));
   if (s.tolerance < 0.0) fail(fmt::format("tolerance {} must not be negative", s.tolerance));
-  if (s.directSamples < 1) fail(fmt::format("direct samples {} must be at least 1", s.directSamples));
+  if (s.directSamples < 1)
+    fail(fmt::format("direct samples {} must be at least 1", s.directSamples));
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -67,15 +69,25 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
   solver.directSamples = settings.directSamples;
   solver.normalize = settings.normalize;
   solver.jitterLines = settings.jitterLines;
+  solver.keepDirect = settings.keepDirectLight && settings.directFirstShot;
   solver.sweep.tangentCorrection = settings.tangentCorrection;
   solver.seed = settings.seed;
   impl_->solution = solveVoxelRadiosity(scene, impl_->grid, solver, progress);
+  if (solver.keepDirect) {
+    std::vector<Color>& h = impl_->indirect;
+    h = impl_->solution.irradiance;
+    for (size_t e = 0; e < h.size(); ++e)
+      h[e] = glm::max(h[e] - impl_->solution.direct[e], Color(0.0f));
+    releaseMemory(impl_->solution.direct);
+  }
 
   VoxelRadiosityStats& s = impl_->stats;
   const VoxelSolution& solution = impl_->solution;
   if (!settings.directFirstShot && !scene.lights.empty())
-    s.warnings.push_back(fmt::format("{} point/spot/IES light(s) ignored: only the first shot "
-                                     "(--first-shot) lights voxels from lights", scene.lights.size()));
+    s.warnings.push_back(
+        fmt::format("{} point/spot/IES light(s) ignored: only the first shot "
+                    "(--first-shot) lights voxels from lights",
+                    scene.lights.size()));
   s.voxels = impl_->grid.cellCount();
   s.sides = impl_->grid.entryCount();
   s.directions = solution.directions;
@@ -104,12 +116,25 @@ Color VoxelRadiosity::radiance(const SurfaceHit& hit) const {
   return m.emission + m.rho * impl_->field().at(hit.point, n) / glm::pi<float>();
 }
 
+bool VoxelRadiosity::hasIndirectIrradiance() const {
+  return !impl_->indirect.empty();
+}
+
+Color VoxelRadiosity::indirectIrradiance(const SurfaceHit& hit) const {
+  const Material& m = impl_->scene->materialOf(hit.triangle);
+  if (impl_->indirect.empty() || (!hit.frontFace && !m.twoSided)) return Color(0.0f);
+  const Vec3 n = hit.frontFace ? hit.normal : -hit.normal;
+  return VoxelIrradianceField(impl_->grid, impl_->indirect).at(hit.point, n);
+}
+
 std::vector<ObjectRadiometry> VoxelRadiosity::objectRadiometry() const {
   return meanPerObject(*impl_->scene, impl_->grid.entryCount(),
                        [&](size_t e) { return impl_->sample(e); });
 }
 
-const VoxelRadiosityStats& VoxelRadiosity::stats() const { return impl_->stats; }
+const VoxelRadiosityStats& VoxelRadiosity::stats() const {
+  return impl_->stats;
+}
 
 SurfaceSample VoxelRadiosity::Impl::sample(size_t e) const {
   const VoxelSurface& surface = grid.surfaces[grid.surface[e]];

@@ -306,7 +306,8 @@ uint64_t voxelSolverBytesPerSide(const VoxelSolverSettings& settings) {
   return sizeof(Color) +                               // the bounce being gathered
          sizeof(Float24Color) +                        // irradiance so far
          sizeof(DiscreteLineSweep::SentLight) +        // light sent
-         (settings.normalize ? sizeof(uint16_t) : 0);  // normalization weights
+         (settings.normalize ? sizeof(uint16_t) : 0) +  // normalization weights
+         (settings.keepDirect ? sizeof(Color) : 0);     // the first shot, kept apart
 }
 
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
@@ -332,6 +333,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     const auto start = std::chrono::steady_clock::now();
     direct = directIrradiance(scene, grid, settings, solution.shadowRays);
     solution.directSeconds = secondsSince(start);
+    if (settings.keepDirect) solution.direct = direct;
   }
   SideLight light(grid, settings, directions, std::move(direct));
   auto sweep = std::make_unique<DiscreteLineSweep>(grid, settings.sweep);

@@ -32,6 +32,7 @@ struct VoxelSolverSettings {
   int directSamples = 64;      ///< shadow-ray samples per voxel side for the first shot
   bool normalize = true;       ///< divide each side's gathered light by its sum of cos * w
   bool jitterLines = true;     ///< shift each direction's lines anew every iteration
+  bool keepDirect = false;     ///< return the first shot's direct irradiance too
   SweepSettings sweep;
   uint64_t seed = 1;
 };
@@ -39,6 +40,7 @@ struct VoxelSolverSettings {
 struct VoxelSolution {
   std::vector<Color> radiosity;   ///< B per entry
   std::vector<Color> irradiance;  ///< H per entry
+  std::vector<Color> direct;      ///< the first shot's H per entry (with keepDirect; else empty)
   /// Per iteration: the power of the light it added to B (its bounce, reflected) over B's
   /// (area- and luminance-weighted): B's relative change.
   std::vector<double> residuals;

@@ -431,8 +431,8 @@ TEST(Cli, FlatShadingIsConstantPerPatch) {
     const std::string pfm = (dir / (shading + ".pfm")).string();
     const CliResult r = run({"render", "cornell", "--method", "patch", "--patches", "300",
                              "--ff-rays", "16", "--cache-dir", (dir / "cache").string(),
-                             "--shading", shading, "--spp", "1", "--width", "64", "--height", "64",
-                             "-o", pfm, "--stats", stats, "--quiet"});
+                             "--shading", shading, "--direct", "solution", "--spp", "1", "--width",
+                             "64", "--height", "64", "-o", pfm, "--stats", stats, "--quiet"});
     EXPECT_EQ(r.status, 0) << r.err;
     return rad::readImage(pfm);
   };
@@ -442,6 +442,23 @@ TEST(Cli, FlatShadingIsConstantPerPatch) {
   EXPECT_LE(distinctPixels(flat), patches + 1);
   // 64 x 64 = 4096 pixels, about 300 patches: smooth must exceed the flat bound by far.
   EXPECT_GT(distinctPixels(smooth), 2 * (patches + 1));
+}
+
+// Per-pixel direct light is the default for radiosity pictures; a voxel solution without its first
+// shot keeps no direct light apart, which the command says instead of adding it twice.
+TEST(Cli, PerPixelDirectLightNeedsItKeptApart) {
+  const fs::path dir = freshDir("per_pixel_direct");
+  const std::string out = (dir / "v.pfm").string();
+  const CliResult r = run({"render", "cornell", "--method", "voxel", "--voxels", "3000",
+                           "--sphere-radius", "4", "--iterations", "2", "--no-first-shot",
+                           "--width", "16", "--height", "16", "-o", out});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("--direct per-pixel"), std::string::npos) << r.err;
+  const CliResult quiet = run({"render", "cornell", "--method", "voxel", "--voxels", "3000",
+                               "--sphere-radius", "4", "--iterations", "2", "--no-first-shot",
+                               "--direct", "solution", "--width", "16", "--height", "16", "-o", out});
+  EXPECT_EQ(quiet.err.find("--direct per-pixel"), std::string::npos) << quiet.err;
+  EXPECT_EQ(run({"render", "cornell", "--direct", "sometimes", "-o", out}).status, 2);
 }
 
 // The scene's "solver" keys choose the same settings as the flags; a bad value names its key.
