@@ -156,6 +156,14 @@ void MethodOptions::addPatchFlags(CLI::App& c) {
                                    "Points per patch (rounded up to a square) at which point, spot "
                                    "and IES light is averaged (default 16)")
                           ->check(CLI::Range(1, 1 << 16))->group(patch);
+  refineLevelsFlag_ = c.add_option("--refine-levels", patch_.refineLevels,
+                                   "Adaptive subdivision for point, spot and IES lights: levels "
+                                   "below the base patch size at most (default 2; 0: none)")
+                          ->check(CLI::Range(0, 8))->group(patch);
+  refineThresholdFlag_ = c.add_option("--refine-threshold", patch_.refineThreshold,
+                                      "Split neighbouring patches whose direct light differs by "
+                                      "more than this, relative (default 0.5)")
+                             ->check(positiveNumber())->group(patch);
 }
 
 void MethodOptions::resolvePatch(const Scene& scene) {
@@ -179,6 +187,8 @@ void MethodOptions::resolvePatch(const Scene& scene) {
   takeUnlessFlagged(maxIterationsFlag_, patch_.maxIterations, s.maxIterations);
   takeNamed(shadingFlag_, shadingName_, s.shading, "shading", patch_.shading, kPatchShadingNames);
   takeUnlessFlagged(lightSamplesFlag_, patch_.lightSamples, s.lightSamples);
+  takeUnlessFlagged(refineLevelsFlag_, patch_.refineLevels, s.refineLevels);
+  takeUnlessFlagged(refineThresholdFlag_, patch_.refineThreshold, s.refineThreshold);
   // --tolerance is shared with the voxel method, whose default (0: run every sweep) differs.
   patch_.tolerance = *toleranceFlag_ ? voxel_.tolerance : s.tolerance.value_or(1e-3);
 }
@@ -265,6 +275,9 @@ PatchRadiosity solvePatches(const Scene& scene, const PatchRadiositySettings& se
                          {"shots", p.shots},
                          {"rays_per_s", double(p.rays - p.lightRays) / std::max(p.formFactorSeconds, 1e-9)},
                          {"light_rays", p.lightRays},
+                         {"base_patches", p.basePatches},
+                         {"refined_splits", p.refinedSplits},
+                         {"refine_rounds", p.refineRounds},
                          {"light_rays_per_s", double(p.lightRays) / std::max(p.lightSeconds, 1e-9)},
                          {"memory_bytes", p.memoryBytes},
                          {"seconds", {{"mesh", p.meshSeconds}, {"form_factors", p.formFactorSeconds},

@@ -48,7 +48,8 @@ class MethodOptions {
       *tangentFlag_, *firstShotFlag_, *directSamplesFlag_, *laterRadiusFlag_, *normalizeFlag_,
       *jitterFlag_, *tailFlag_;
   CLI::Option *patchSizeFlag_, *patchesFlag_, *estimatorFlag_, *ffRaysFlag_, *thresholdFlag_,
-      *cacheDirFlag_, *solverFlag_, *maxIterationsFlag_, *shadingFlag_, *lightSamplesFlag_;
+      *cacheDirFlag_, *solverFlag_, *maxIterationsFlag_, *shadingFlag_, *lightSamplesFlag_,
+      *refineLevelsFlag_, *refineThresholdFlag_;
   void addPatchFlags(CLI::App& command);
   void resolvePatch(const Scene& scene);
 };

@@ -79,11 +79,19 @@ struct PatchRadiositySettings {
   /// Points per patch (rounded up to a square) at which the direct light of point, spot and IES
   /// lights is averaged, one shadow ray per light each.
   int lightSamples = 16;
+  /// Adaptive subdivision for point, spot and IES lights: patches crossed by a beam or shadow
+  /// edge, or whose direct light differs from a neighbour's by more than refineThreshold
+  /// (relative), are split, down to refineLevels levels below the base patch size (0: none).
+  int refineLevels = 2;
+  float refineThreshold = 0.5f;
   uint64_t seed = 1;
 };
 
 struct PatchRadiosityStats {
   size_t patches = 0, nodes = 0, vertices = 0;
+  size_t basePatches = 0;    ///< patches before adaptive subdivision
+  size_t refinedSplits = 0;  ///< patches split by adaptive subdivision
+  int refineRounds = 0;
   float patchSize = 0.0f;
   uint64_t rays = 0;    ///< rays cast (form factors and lights)
   /// Emitter patches whose form-factor columns were computed exactly (hemisphere estimator; 0:

@@ -97,7 +97,8 @@ struct SolverSettings {
   std::optional<bool> jitterLines;
   std::optional<bool> tailEstimate;
   // Patch method (keys patch_size, patches, ff_estimator, ff_rays, ff_threshold, cache_dir,
-  // solver, max_iterations, shading, light_samples; tolerance is shared with the voxel method).
+  // solver, max_iterations, shading, light_samples, refine_levels, refine_threshold; tolerance
+  // is shared with the voxel method).
   std::optional<float> patchSize;
   std::optional<size_t> patches;
   std::optional<std::string> ffEstimator;  ///< "hemisphere", "pairwise" or "exact"
@@ -108,6 +109,8 @@ struct SolverSettings {
   std::optional<int> maxIterations;
   std::optional<std::string> shading;      ///< "smooth" or "flat"
   std::optional<int> lightSamples;
+  std::optional<int> refineLevels;
+  std::optional<float> refineThreshold;
 };
 
 struct Scene {

@@ -20,6 +20,7 @@ class DirectLighting {
   /// threads at once.
   DirectLighting(const Scene& scene, const RayCaster& caster);
 
+  const Scene& scene() const { return *scene_; }
   bool hasLights() const { return !scene_->lights.empty(); }
   bool hasEmitters() const { return !emitters_.empty(); }
 

@@ -116,7 +116,8 @@ std::optional<ExactColumns> exactColumns(const PatchMesh& mesh, const RayCaster&
   for (uint32_t i = 0; i < mesh.size(); ++i)
     for (const FormFactorEntry& e : exact.toExact[i])
       if (!exact.isExact[i] && patches[e.column].area > 0.0f)
-        exact.exactRows[e.column].push_back({i, e.value * patches[i].area / patches[e.column].area});
+        exact.exactRows[e.column].push_back(
+            {i, e.value * patches[i].area / patches[e.column].area});
   return exact;
 }
 

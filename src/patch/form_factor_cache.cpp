@@ -108,7 +108,7 @@ std::string FormFactorCacheKey::hex() const {
   return fmt::format("{:016x}{:016x}", high, low);
 }
 
-FormFactorCacheKey formFactorCacheKey(const Scene& scene, float patchSize,
+FormFactorCacheKey formFactorCacheKey(const Scene& scene, const PatchMesh& mesh,
                                       const FormFactorSettings& settings, float threshold) {
   Hasher h;
   h.value(kVersion);
@@ -125,7 +125,9 @@ FormFactorCacheKey formFactorCacheKey(const Scene& scene, float patchSize,
     h.value(uint64_t(f.corners.size()));
     h.bytes(f.corners.data(), f.corners.size() * sizeof(uint32_t));
   }
-  h.value(patchSize);
+  h.value(mesh.patchSize());
+  h.value(uint64_t(mesh.size()));
+  for (const Patch& p : mesh.patches()) h.value(p.node);
   h.value(int(settings.estimator));
   h.value(uint64_t(settings.exactColumns.size()));
   h.bytes(settings.exactColumns.data(), settings.exactColumns.size() * sizeof(uint32_t));
@@ -188,8 +190,8 @@ FormFactorCacheLoad loadFormFactorTable(const std::filesystem::path& file,
   auto values = getArray<float>(bytes, at, nnz);
   if (const std::string bad = checkTable(offsets, columns, values, patches); !bad.empty())
     return reject(bad);
-  result.table = FormFactorTable::fromArrays(std::move(offsets), std::move(columns),
-                                             std::move(values), loss);
+  result.table =
+      FormFactorTable::fromArrays(std::move(offsets), std::move(columns), std::move(values), loss);
   return result;
 }
 

@@ -24,9 +24,11 @@ struct FormFactorCacheKey {
 };
 
 /// A hash of what the table depends on: the scene's positions, triangles, faces and sidedness,
-/// the patch size, the estimator settings (the estimator decides whether rows are symmetrized)
-/// and the threshold (not the materials' colours, so that repainting a scene reuses its table).
-FormFactorCacheKey formFactorCacheKey(const Scene& scene, float patchSize,
+/// which faces emit, the mesh (its patch size and which quadtree nodes are its patches: adaptive
+/// subdivision makes them depend on the lights), the estimator settings (the estimator decides
+/// whether rows are symmetrized) and the threshold (not the materials' colours, so that
+/// repainting a scene reuses its table).
+FormFactorCacheKey formFactorCacheKey(const Scene& scene, const PatchMesh& mesh,
                                       const FormFactorSettings& settings, float threshold);
 
 /// $XDG_CACHE_HOME/radiosity, else $HOME/.cache/radiosity, else "" (no cache).

@@ -1,29 +1,32 @@
 #include "patch/patch_light_injection.h"
 
-#include <tbb/parallel_for.h>
+#include <array>
 
 #include "patch/patch_quadrature.h"
-#include "render/progress_ticker.h"
 
 namespace rad {
 
-std::vector<Color> patchLightIrradiance(const PatchMesh& mesh, const DirectLighting& direct,
-                                        int points, const ProgressCallback& progress) {
-  if (!direct.hasLights()) return {};
-  std::vector<Color> irradiance(mesh.size());
-  ProgressTicker ticker(progress, mesh.size());
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(mesh.size()), 64), [&](const auto& r) {
-    for (uint32_t p = r.begin(); p != r.end() && !ticker.cancelled(); ++p) {
-      const Vec3& n = mesh.patches()[p].normal;
-      Vec3d sum(0.0);
-      for (const QuadraturePoint& q : midpointRule(mesh, p, points))
-        sum += q.weight * Vec3d(direct.fromLights(q.position, n));
-      irradiance[p] = Color(sum);
-      ticker.tick();
+PatchLight lightOnPatch(const PatchMesh& mesh, uint32_t patch, const DirectLighting& direct,
+                        int points) {
+  const Patch& p = mesh.patches()[patch];
+  std::vector<QuadraturePoint> at = midpointRule(mesh, patch, points);
+  const size_t quadrature = at.size();
+  std::array<Vec3, 4> corners;
+  const int n = mesh.corners(patch, corners);
+  for (int k = 0; k < n; ++k) at.push_back({corners[k] + 0.02f * (p.centroid - corners[k]), 0.0});
+  PatchLight out;
+  Vec3d sum(0.0);
+  for (const Light& light : direct.scene().lights) {
+    bool lit = false, dark = false;
+    for (size_t i = 0; i < at.size(); ++i) {
+      const Color e = direct.fromLight(light, at[i].position, p.normal);
+      (maxComponent(e) > 0.0f ? lit : dark) = true;
+      if (i < quadrature) sum += at[i].weight * Vec3d(e);
     }
-  });
-  ticker.throwIfCancelled();
-  return irradiance;
+    out.edgeInside = out.edgeInside || (lit && dark);
+  }
+  out.direct = Color(sum);
+  return out;
 }
 
 }  // namespace rad

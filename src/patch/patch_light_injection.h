@@ -3,21 +3,20 @@
 // they take no part in form factors; their direct irradiance on each patch enters the system as
 // D (PatchSystem), a first shot that the solvers then bounce.
 
-#include <radiosity/progress.h>
-
-#include <vector>
-
 #include "lighting/direct_lighting.h"
 #include "patch/patch_mesh.h"
 
 namespace rad {
 
-/// Direct irradiance from the scene's analytic lights on every patch: the area mean over the
-/// midpoint rule's points (`points` per patch, rounded up to a square), each seen from every
-/// light through one shadow ray, so that a beam or shadow edge crossing a patch gives it the
-/// share of light that falls on it (never the centroid's all or nothing). Empty when the scene
-/// has no lights. Throws rad::Cancelled if `progress` returns false.
-std::vector<Color> patchLightIrradiance(const PatchMesh& mesh, const DirectLighting& direct,
-                                        int points, const ProgressCallback& progress = {});
+/// What a patch receives from the scene's analytic lights.
+struct PatchLight {
+  Color direct{0.0f};       ///< D: the area mean over the midpoint rule's points
+  bool edgeInside = false;  ///< some light reaches some of its points and not others
+};
+/// D over the midpoint rule's points (`points`, rounded up to a square), and the edge test over
+/// them and the patch's corners (pulled 2% toward its centre, so that an edge along the patch's
+/// border is seen too). Thread-safe.
+PatchLight lightOnPatch(const PatchMesh& mesh, uint32_t patch, const DirectLighting& direct,
+                        int points);
 
 }  // namespace rad

@@ -119,7 +119,6 @@ PatchMesh::PatchMesh(const Scene& scene, const PatchMeshSettings& settings) : sc
       addRoot(f, true, corners);
     }
   }
-  weld_.clear();
 }
 
 void PatchMesh::addRoot(uint32_t face, bool back, std::span<const uint32_t> corners) {
@@ -130,7 +129,7 @@ void PatchMesh::addRoot(uint32_t face, bool back, std::span<const uint32_t> corn
   node.root = uint32_t(roots_.size());
   for (size_t k = 0; k < corners.size(); ++k)
     node.corners[k] = weldedVertex(scene_->positions[corners[k]], normal);
-  roots_.push_back({face, uint32_t(nodes_.size()), back});
+  roots_.push_back({face, uint32_t(nodes_.size()), back, 0});
   nodes_.push_back(node);
   // A quad root serves both triangles of its face; a triangle root the one it was made from.
   for (uint32_t t = f.firstTriangle; t < f.firstTriangle + f.triangleCount; ++t) {
@@ -145,7 +144,67 @@ void PatchMesh::addRoot(uint32_t face, bool back, std::span<const uint32_t> corn
   for (size_t k = 0; k < corners.size(); ++k)
     edge = std::max(edge, glm::distance(scene_->positions[corners[k]],
                                         scene_->positions[corners[(k + 1) % corners.size()]]));
-  subdivide(roots_.back().node, depthFor(edge, patchSize_), normal);
+  const int depth = depthFor(edge, patchSize_);
+  roots_.back().baseDepth = uint8_t(depth);
+  subdivide(roots_.back().node, depth, normal);
+}
+
+void PatchMesh::refine(std::span<const uint32_t> patches) {
+  bool split = false;
+  for (uint32_t p : patches) {
+    const uint32_t node = patches_[p].node;
+    if (nodes_[node].depth >= kMaxDepth || !nodes_[node].leaf()) continue;
+    subdivide(node, 1, patches_[p].normal);
+    split = true;
+  }
+  if (!split) return;
+  refined_ = true;
+  numberPatches();
+}
+
+// The leaves in depth-first order from each root: the order the constructor gives them.
+void PatchMesh::numberPatches() {
+  patches_.clear();
+  std::vector<uint32_t> stack;
+  for (const PatchRoot& root : roots_) {
+    stack.push_back(root.node);
+    while (!stack.empty()) {
+      const uint32_t n = stack.back();
+      stack.pop_back();
+      if (nodes_[n].leaf()) {
+        finishPatch(n);
+        continue;
+      }
+      nodes_[n].patch = kNoPatch;
+      for (uint32_t k = 4; k-- > 0;) stack.push_back(nodes_[n].firstChild + k);
+    }
+  }
+}
+
+std::vector<HangingVertex> PatchMesh::hangingVertices() const {
+  std::vector<HangingVertex> out;
+  if (!refined_) return out;
+  std::vector<uint32_t> byDepth(patches_.size());
+  for (uint32_t p = 0; p < byDepth.size(); ++p) byDepth[p] = p;
+  std::stable_sort(byDepth.begin(), byDepth.end(),
+                   [&](uint32_t a, uint32_t b) { return nodeOf(a).depth < nodeOf(b).depth; });
+  // A refined neighbour puts its corners at the dyadic points of this leaf's edge.
+  auto edge = [&](auto&& self, uint32_t a, uint32_t b, const Vec3& normal, int levels) -> void {
+    if (levels == 0) return;
+    const uint32_t m = findVertex(0.5f * (vertices_[a] + vertices_[b]), normal);
+    if (m == kNoNode) return;
+    out.push_back({m, a, b});
+    self(self, a, m, normal, levels - 1);
+    self(self, m, b, normal, levels - 1);
+  };
+  for (uint32_t p : byDepth) {
+    const PatchNode& node = nodeOf(p);
+    const int levels = kMaxDepth - node.depth;
+    for (int k = 0; k < node.cornerCount(); ++k)
+      edge(edge, node.corners[k], node.corners[(k + 1) % node.cornerCount()], patches_[p].normal,
+           levels);
+  }
+  return out;
 }
 
 void PatchMesh::subdivide(uint32_t index, int depth, const Vec3& normal) {
@@ -206,10 +265,23 @@ void PatchMesh::finishPatch(uint32_t index) {
   patches_.push_back(p);
 }
 
+uint64_t PatchMesh::weldKey(const Vec3& p, float cell) {
+  auto at = [&](int k) { return uint64_t(std::llround(double(p[k]) / double(cell))); };
+  return (at(0) * 73856093u) ^ (at(1) * 19349663u) ^ (at(2) * 83492791u);
+}
+
+uint32_t PatchMesh::findVertex(const Vec3& p, const Vec3& normal) const {
+  const auto it = weld_.find(weldKey(p, weldCell_));
+  if (it == weld_.end()) return kNoNode;
+  for (uint32_t v : it->second)
+    if (glm::distance(vertices_[v], p) <= weldCell_ &&
+        glm::dot(vertexNormals_[v], normal) > kCreaseCos)
+      return v;
+  return kNoNode;
+}
+
 uint32_t PatchMesh::weldedVertex(const Vec3& p, const Vec3& normal) {
-  auto cell = [&](int k) { return uint64_t(std::llround(double(p[k]) / double(weldCell_))); };
-  const uint64_t key = (cell(0) * 73856093u) ^ (cell(1) * 19349663u) ^ (cell(2) * 83492791u);
-  std::vector<uint32_t>& bucket = weld_[key];
+  std::vector<uint32_t>& bucket = weld_[weldKey(p, weldCell_)];
   for (uint32_t v : bucket)
     if (glm::distance(vertices_[v], p) <= weldCell_ &&
         glm::dot(vertexNormals_[v], normal) > kCreaseCos)

@@ -1,10 +1,12 @@
 #pragma once
 // The patches of the patch method: every planar face of the scene subdivided by a quadtree
 // (quads into 4 quads by their bilinear map, triangles into 4 by their edge midpoints) until each
-// patch's longest edge is at most the patch size. Every node keeps its parent, children and a
-// unique id (its index) so that adaptive refinement can split leaves later. Corners are welded
-// across patches (same position, normals within the crease angle) so that values averaged at
-// vertices shade smoothly. Two-sided faces get a second, mirrored set of patches for their back.
+// patch's longest edge is at most the patch size (the base level). Every node keeps its parent,
+// children and a unique id (its index); refine() splits chosen leaves further (adaptive
+// subdivision), which leaves hanging vertices where a fine patch meets a coarse one
+// (hangingVertices). Corners are welded across patches (same position, normals within the crease
+// angle) so that values averaged at vertices shade smoothly. Two-sided faces get a second,
+// mirrored set of patches for their back.
 
 #include <radiosity/scene.h>
 
@@ -36,7 +38,14 @@ struct PatchNode {
 struct PatchRoot {
   uint32_t face = 0;
   uint32_t node = 0;
-  bool back = false;  ///< the mirrored back side of a two-sided face
+  bool back = false;      ///< the mirrored back side of a two-sided face
+  uint8_t baseDepth = 0;  ///< depth of the base level's leaves (before refinement)
+};
+
+/// A vertex in the middle of a leaf's edge (a, b) that is not that leaf's corner: a finer
+/// neighbour's corner. Values there must be the edge's mean for shading without cracks.
+struct HangingVertex {
+  uint32_t vertex = 0, a = 0, b = 0;
 };
 
 /// A leaf of the quadtree: the unit the radiosity equation is solved on.
@@ -89,6 +98,16 @@ class PatchMesh {
   /// area mean of f.
   Vec3 samplePoint(uint32_t patch, Vec2 u, float& weight) const;
 
+  /// Splits each listed patch one level into 4 (patches deeper than kMaxDepth stay). Patch
+  /// indices change (the leaves in depth-first order, as the constructor numbers them); node
+  /// ids do not.
+  void refine(std::span<const uint32_t> patches);
+  /// True if refine() has split any patch.
+  bool refined() const { return refined_; }
+  /// Every hanging vertex, coarser edges first, so that assigning each the mean of its edge's
+  /// ends in this order is right where those ends hang themselves.
+  std::vector<HangingVertex> hangingVertices() const;
+
   /// Distance by which sample points are lifted off their surface before a ray leaves them.
   float rayOffset() const { return weldCell_ * 20.0f; }
 
@@ -99,7 +118,11 @@ class PatchMesh {
   void addRoot(uint32_t face, bool back, std::span<const uint32_t> corners);
   void subdivide(uint32_t node, int depth, const Vec3& normal);
   uint32_t weldedVertex(const Vec3& p, const Vec3& normal);
+  /// The welded vertex at p for `normal`, or kNoNode.
+  uint32_t findVertex(const Vec3& p, const Vec3& normal) const;
+  static uint64_t weldKey(const Vec3& p, float cell);
   void finishPatch(uint32_t node);
+  void numberPatches();
 
   const Scene* scene_;
   float patchSize_ = 0.0f;
@@ -109,7 +132,8 @@ class PatchMesh {
   std::vector<PatchRoot> roots_;
   std::vector<Patch> patches_;
   std::vector<uint32_t> triangleRoot_;  ///< per scene triangle and side: 2 t + back
-  std::unordered_map<uint64_t, std::vector<uint32_t>> weld_;  ///< cleared once built
+  std::unordered_map<uint64_t, std::vector<uint32_t>> weld_;  ///< kept for refine()
+  bool refined_ = false;
 };
 
 }  // namespace rad

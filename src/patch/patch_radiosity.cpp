@@ -17,7 +17,7 @@
 #include "output/surface_samples.h"
 #include "patch/form_factor_cache.h"
 #include "patch/form_factor_estimators.h"
-#include "patch/patch_light_injection.h"
+#include "patch/light_refinement.h"
 #include "patch/patch_mesh.h"
 #include "patch/patch_solvers.h"
 
@@ -30,7 +30,9 @@ struct PatchRadiosity::Impl {
   PatchSolution solution;
   std::vector<Color> vertexIrradiance;
   std::vector<Color> indirect, vertexIndirect;  ///< H less the direct light (patch, vertex)
+  std::vector<HangingVertex> hanging;           ///< of the refined mesh
   PatchRadiosityStats stats;
+  std::vector<Color> lightDirect;  ///< D per patch (empty: no lights)
 
   FormFactorSettings ff;             ///< the estimator's settings, fixed once per solve
   std::vector<uint8_t> emitterRows;  ///< per patch: it emits (the threshold keeps its row whole)
@@ -40,6 +42,7 @@ struct PatchRadiosity::Impl {
   void solve(const RayCaster& caster, const ProgressCallback& progress);
   void solveLazily(const RayCaster& caster, const PatchSystem& system,
                    const ProgressCallback& progress);
+  void lightPatches(const RayCaster& caster, const ProgressCallback& progress);
   void noteThresholdLoss(const RowThresholding& row);
   void warnOfThresholdLoss();
   void separateIndirect(const FormFactorRowSource& rows, const PatchSystem& system);
@@ -62,6 +65,10 @@ void validate(const PatchRadiositySettings& s) {
   if (!(s.formFactorThreshold >= 0.0f && s.formFactorThreshold < 1.0f))
     fail(fmt::format("form-factor threshold {} out of range [0, 1)", s.formFactorThreshold));
   if (s.lightSamples < 1) fail(fmt::format("light samples {} must be at least 1", s.lightSamples));
+  if (s.refineLevels < 0 || s.refineLevels > 8)
+    fail(fmt::format("refine levels {} out of range [0, 8]", s.refineLevels));
+  if (!(s.refineThreshold > 0.0f) || !std::isfinite(s.refineThreshold))
+    fail(fmt::format("refine threshold {} must be positive", s.refineThreshold));
   if (s.maxIterations < 1)
     fail(fmt::format("max iterations {} must be at least 1", s.maxIterations));
   if (!(s.tolerance >= 0.0)) fail(fmt::format("tolerance {} must not be negative", s.tolerance));
@@ -135,7 +142,7 @@ FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
                                                   const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   const FormFactorCacheKey key =
-      formFactorCacheKey(*scene, mesh->patchSize(), ff, settings.formFactorThreshold);
+      formFactorCacheKey(*scene, *mesh, ff, settings.formFactorThreshold);
   std::filesystem::path file;
   if (!settings.cacheDir.empty()) {
     file = formFactorCacheFile(settings.cacheDir, key);
@@ -154,6 +161,21 @@ FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
     if (std::string w = saveFormFactorTable(file, key, table); !w.empty())
       stats.warnings.push_back(w);
   return table;
+}
+
+// The analytic lights' direct light on the patches, refining the mesh where it changes fast.
+void PatchRadiosity::Impl::lightPatches(const RayCaster& caster, const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const uint64_t raysBefore = caster.raysCast();
+  LightRefinement refined = refineForLights(
+      *mesh, DirectLighting(*scene, caster),
+      {settings.refineLevels, settings.refineThreshold, settings.lightSamples}, progress);
+  lightDirect = std::move(refined.direct);
+  stats.basePatches = refined.basePatches;
+  stats.refinedSplits = refined.split;
+  stats.refineRounds = refined.rounds;
+  stats.lightRays = caster.raysCast() - raysBefore;
+  stats.lightSeconds = secondsSince(start);
 }
 
 void PatchRadiosity::Impl::noteThresholdLoss(const RowThresholding& row) {
@@ -222,12 +244,7 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
 
 void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback& progress) {
   PatchSystem system = systemOf(*scene, *mesh);
-  const auto lightStart = std::chrono::steady_clock::now();
-  const uint64_t raysBefore = caster.raysCast();
-  system.direct =
-      patchLightIrradiance(*mesh, DirectLighting(*scene, caster), settings.lightSamples, progress);
-  stats.lightRays = caster.raysCast() - raysBefore;
-  stats.lightSeconds = secondsSince(lightStart);
+  system.direct = lightDirect;
   const PatchSolverControl control{settings.tolerance, settings.maxIterations};
   chooseFormFactorSettings();
   const bool lazy = settings.solver == PatchSolverKind::Progressive &&
@@ -300,6 +317,10 @@ std::vector<Color> PatchRadiosity::Impl::averageAtVertices(
   }
   for (size_t v = 0; v < weight.size(); ++v)
     if (weight[v] > 0.0f) atVertex[v] /= weight[v];
+  // Where a fine patch meets a coarse one, the coarse patch interpolates its edge between its
+  // corners: the fine side's vertex on that edge takes the same value, or the shading cracks.
+  for (const HangingVertex& h : hanging)
+    atVertex[h.vertex] = 0.5f * (atVertex[h.a] + atVertex[h.b]);
   return atVertex;
 }
 
@@ -315,8 +336,10 @@ PatchRadiosity::PatchRadiosity(const Scene& scene, const PatchRadiositySettings&
       scene, PatchMeshSettings{settings.patchSize, settings.targetPatches});
   m.stats.meshSeconds = secondsSince(start);
   const RayCaster caster(scene);
+  m.lightPatches(caster, progress);
   m.solve(caster, progress);
   m.warnOfThresholdLoss();
+  m.hanging = m.mesh->hangingVertices();
   m.vertexIrradiance = m.averageAtVertices(m.solution.irradiance);
   m.vertexIndirect = m.averageAtVertices(m.indirect);
   PatchRadiosityStats& s = m.stats;

@@ -46,8 +46,8 @@ inline Color gather(const FormFactorTable& table, size_t i, std::span<const Colo
 
 /// Ends a sweep: records its relative residual and reports progress (throws Cancelled when the
 /// callback asks to stop). True when the tolerance is reached.
-inline bool endSweep(PatchSolution& out, double change, double norm, const PatchSolverControl& control,
-                     const ProgressCallback& progress) {
+inline bool endSweep(PatchSolution& out, double change, double norm,
+                     const PatchSolverControl& control, const ProgressCallback& progress) {
   ++out.iterations;
   out.residuals.push_back(change / norm);
   if (progress && !progress(double(out.iterations) / control.maxIterations)) throw Cancelled();
@@ -55,6 +55,8 @@ inline bool endSweep(PatchSolution& out, double change, double norm, const Patch
 }
 
 /// Copies E into the solution.
-inline void finishSolution(const PatchSystem& s, PatchSolution& out) { out.emitted = s.emitted; }
+inline void finishSolution(const PatchSystem& s, PatchSolution& out) {
+  out.emitted = s.emitted;
+}
 
 }  // namespace rad

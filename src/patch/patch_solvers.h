@@ -42,7 +42,7 @@ struct PatchSolution {
   std::vector<Color> radiosity;   ///< B = E + rho H, excident power per area
   std::vector<double> residuals;  ///< relative residual after each sweep
   int iterations = 0;
-  uint64_t shots = 0;   ///< progressive refinement: patches shot
+  uint64_t shots = 0;  ///< progressive refinement: patches shot
   double seconds = 0.0;
 };
 

@@ -259,7 +259,8 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
                        "later_sphere_radius", "iterations", "tolerance", "tangent_correction",
                        "first_shot", "direct_samples", "normalize", "jitter_lines",
                        "tail_estimate", "patch_size", "patches", "ff_estimator", "ff_rays",
-                       "ff_threshold", "cache_dir", "solver", "max_iterations", "shading", "light_samples"});
+                       "ff_threshold", "cache_dir", "solver", "max_iterations", "shading", "light_samples", "refine_levels",
+                       "refine_threshold"});
   SolverSettings s;
   if (j.contains("method")) {
     s.method = r.string(j["method"], ptr + "/method");
@@ -317,6 +318,8 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
   if (j.contains("max_iterations")) s.maxIterations = int(integer("max_iterations", 1, 100000000));
   if (j.contains("shading")) s.shading = choice("shading", kPatchShadingNames);
   if (j.contains("light_samples")) s.lightSamples = int(integer("light_samples", 1, 1 << 16));
+  if (j.contains("refine_levels")) s.refineLevels = int(integer("refine_levels", 0, 8));
+  if (j.contains("refine_threshold")) s.refineThreshold = float(positive("refine_threshold"));
   return s;
 }
 
