@@ -6,11 +6,13 @@
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
 #include <radiosity/scene.h>
+#include <radiosity/solver_settings.h>
 #include <radiosity/voxel_radiosity.h>
 
 #include "console.h"
 #include "output/run_stats.h"
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,35 +25,27 @@ namespace rad::cli {
 
 class MethodOptions {
  public:
-  /// `methods` lists the methods the command accepts, the first being the default.
+  /// `methods` lists the methods the command accepts, the first being the default. Adds a flag
+  /// for every declared setting (solver_settings.h).
   MethodOptions(CLI::App& command, std::vector<std::string> methods);
 
-  /// Fills the settings from the scene where no flag was given; throws InputError for a
-  /// method the command does not offer.
+  /// Resolves the settings: the flags given, then the scene's "solver" values, then the
+  /// methods' defaults. Throws InputError for a method the command does not offer.
   void resolve(const Scene& scene);
 
-  const std::string& method() const { return method_; }
-  const PathTracerSettings& pathTracer() const { return pathTracer_; }
-  const VoxelRadiositySettings& voxel() const { return voxel_; }
-  const PatchRadiositySettings& patch() const { return patch_; }
+  const std::string& method() const { return settings_.method; }
+  const MethodSettings& settings() const { return settings_; }
+  const PathTracerSettings& pathTracer() const { return settings_.pathTracer; }
+  const VoxelRadiositySettings& voxel() const { return settings_.voxel; }
+  const PatchRadiositySettings& patch() const { return settings_.patch; }
 
  private:
   std::vector<std::string> methods_;
-  std::string method_;
-  PathTracerSettings pathTracer_;
-  VoxelRadiositySettings voxel_;
-  PatchRadiositySettings patch_;
-  /// The names given to the enum-valued flags; empty: not given.
-  std::string estimatorName_, solverName_, shadingName_;
-  CLI::Option *methodFlag_, *sppFlag_, *maxDepthFlag_, *seedFlag_;
-  CLI::Option *voxelSizeFlag_, *voxelsFlag_, *radiusFlag_, *iterationsFlag_, *toleranceFlag_,
-      *tangentFlag_, *firstShotFlag_, *directSamplesFlag_, *laterRadiusFlag_, *normalizeFlag_,
-      *jitterFlag_, *tailFlag_;
-  CLI::Option *patchSizeFlag_, *patchesFlag_, *estimatorFlag_, *ffRaysFlag_, *thresholdFlag_,
-      *cacheDirFlag_, *solverFlag_, *maxIterationsFlag_, *shadingFlag_, *lightSamplesFlag_,
-      *refineLevelsFlag_, *refineThresholdFlag_;
-  void addPatchFlags(CLI::App& command);
-  void resolvePatch(const Scene& scene);
+  MethodSettings settings_;
+  /// What each flag was given, by setting name (std::map: CLI11 keeps pointers to them).
+  std::map<std::string, std::string> text_;
+  std::map<std::string, bool> switches_;
+  std::map<std::string, CLI::Option*> options_;
 };
 
 /// Solves `scene` by the voxel method with a progress bar, prints the method's warnings and puts

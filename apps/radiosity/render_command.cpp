@@ -124,8 +124,10 @@ int runRender(RenderOptions& o, Console& console) {
   writeOptions.exposureEV = o.exposure;
   writeOptions.exrPixelType = o.exrFloat ? ExrPixelType::Float : ExrPixelType::Half;
   writeImage(o.output, image, writeOptions);
-  if (!o.stats.empty())
+  if (!o.stats.empty()) {
+    stats.settings = settingsOf(o.method.settings());
     writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
+  }
   console.info(fmt::format("rendered {} {}x{} with {} in {:.2f} s -> {}{}", o.scene, camera.width,
                            camera.height, o.method.method(), total.seconds(), o.output,
                            o.stats.empty() ? "" : ", stats -> " + o.stats));

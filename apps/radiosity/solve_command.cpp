@@ -1,22 +1,21 @@
 // `radiosity solve SCENE --method voxel|patch`: computes the radiosity solution and exports it
 // (per-element CSV, PLY point cloud, or for the patch method the lit mesh as binary glTF) with
 // its numbers in the stats file.
-#include "command_support.h"
-#include "commands.h"
-#include "method_options.h"
-
+#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/voxel_radiosity.h>
 
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <type_traits>
+
+#include "command_support.h"
+#include "commands.h"
+#include "method_options.h"
 
 namespace rad::cli {
 
@@ -30,7 +29,8 @@ struct SolveOptions {
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
   return ext;
 }
 
@@ -48,11 +48,12 @@ std::string describeRun(const PatchRadiosityStats& p, double seconds) {
 }
 
 std::string describeRun(const VoxelRadiosityStats& v, double seconds) {
-  return fmt::format("{} voxels ({} sides), {} directions, {} iterations, residual {:.2g}, {:.2f} s "
-                     "({:.1f} M visits/s)",
-                     v.voxels, v.sides, v.directions, v.residuals.size(),
-                     v.residuals.empty() ? 0.0 : v.residuals.back(), seconds,
-                     double(v.visits) / std::max(v.sweepSeconds, 1e-9) * 1e-6);
+  return fmt::format(
+      "{} voxels ({} sides), {} directions, {} iterations, residual {:.2g}, {:.2f} s "
+      "({:.1f} M visits/s)",
+      v.voxels, v.sides, v.directions, v.residuals.size(),
+      v.residuals.empty() ? 0.0 : v.residuals.back(), seconds,
+      double(v.visits) / std::max(v.sweepSeconds, 1e-9) * 1e-6);
 }
 
 // Exports the solution, writes the stats and prints the summary line.
@@ -62,7 +63,10 @@ int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solut
   if (ext == ".csv") solution.exportCsv(o.exportPath);
   if (ext == ".ply") solution.exportPly(o.exportPath);
   if (ext == ".glb") solution.exportGlb(o.exportPath);
-  if (!o.stats.empty()) writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
+  if (!o.stats.empty()) {
+    stats.settings = settingsOf(o.method.settings());
+    writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
+  }
   console.info(fmt::format("solved {} with {}: {}{}{}", o.scene, o.method.method(),
                            describeRun(solution.stats(), total.seconds()),
                            o.exportPath.empty() ? "" : " -> " + o.exportPath,
@@ -99,7 +103,8 @@ void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
                   "or .glb (the lit mesh, vertex colours = radiance: the patches, or with --method "
                   "voxel the scene's triangles cut to the voxel size)");
   addStatsOption(*sub, o->stats);
-  sub->callback([o, &console, &action] { action = [o, &console] { return runSolve(*o, console); }; });
+  sub->callback(
+      [o, &console, &action] { action = [o, &console] { return runSolve(*o, console); }; });
 }
 
 }  // namespace rad::cli

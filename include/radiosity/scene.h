@@ -7,9 +7,11 @@
 #include <radiosity/types.h>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace rad {
@@ -74,43 +76,14 @@ struct Camera {
   int height = 512;
 };
 
-/// The scene's "solver" object. Each is optional: a command-line flag wins over it, and a
-/// method's default applies where neither is given.
+/// A value of the scene's "solver" object or of a flag, checked against its declaration
+/// (solver_settings.h).
+using SettingValue = std::variant<bool, int64_t, double, std::string>;
+
+/// The scene's "solver" object: its values by key (solver_settings.h declares the keys). A
+/// command-line flag wins over it, and a method's default applies where neither is given.
 struct SolverSettings {
-  std::optional<std::string> method;  ///< "patch", "voxel" or "pathtrace"
-  std::optional<int> spp;             ///< path tracer samples per pixel
-  std::optional<int> maxDepth;        ///< path tracer bounce limit (Russian roulette ends paths)
-  std::optional<uint64_t> seed;
-  // Voxel method (keys voxel_size, voxels, sphere_radius, later_sphere_radius, iterations,
-  // tolerance, tangent_correction, first_shot, direct_samples, normalize, jitter_lines,
-  // tail_estimate).
-  std::optional<float> voxelSize;
-  std::optional<size_t> voxels;
-  std::optional<int> sphereRadius;
-  std::optional<int> iterations;
-  std::optional<double> tolerance;
-  std::optional<bool> tangentCorrection;
-  std::optional<bool> firstShot;
-  std::optional<int> directSamples;
-  std::optional<int> laterSphereRadius;
-  std::optional<bool> normalize;
-  std::optional<bool> jitterLines;
-  std::optional<bool> tailEstimate;
-  // Patch method (keys patch_size, patches, ff_estimator, ff_rays, ff_threshold, cache_dir,
-  // solver, max_iterations, shading, light_samples, refine_levels, refine_threshold; tolerance
-  // is shared with the voxel method).
-  std::optional<float> patchSize;
-  std::optional<size_t> patches;
-  std::optional<std::string> ffEstimator;  ///< "hemisphere", "pairwise" or "exact"
-  std::optional<int> ffRays;
-  std::optional<double> ffThreshold;
-  std::optional<std::string> cacheDir;
-  std::optional<std::string> patchSolver;  ///< "jacobi", "gauss-seidel" or "progressive"
-  std::optional<int> maxIterations;
-  std::optional<std::string> shading;      ///< "smooth" or "flat"
-  std::optional<int> lightSamples;
-  std::optional<int> refineLevels;
-  std::optional<float> refineThreshold;
+  std::map<std::string, SettingValue, std::less<>> values;
 };
 
 struct Scene {

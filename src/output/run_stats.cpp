@@ -1,15 +1,17 @@
 #include "output/run_stats.h"
 
-#include "core/atomic_file.h"
-
 #include <glm/gtc/constants.hpp>
 #include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
 
 namespace rad {
 
 namespace {
 
-nlohmann::json rgb(const Color& c) { return nlohmann::json::array({c.r, c.g, c.b}); }
+nlohmann::json rgb(const Color& c) {
+  return nlohmann::json::array({c.r, c.g, c.b});
+}
 
 }  // namespace
 
@@ -55,6 +57,12 @@ nlohmann::json toJson(const RunStats& s) {
       {"memory_peak_bytes", s.memoryPeakBytes},
   };
   if (!s.methodDetails.empty()) j[s.method] = s.methodDetails;
+  if (!s.settings.empty()) {
+    nlohmann::json settings = nlohmann::json::object();
+    for (const auto& [name, value] : s.settings)
+      std::visit([&](const auto& v) { settings[name] = v; }, value);
+    j["settings"] = settings;
+  }
   return j;
 }
 

@@ -32,6 +32,8 @@ struct RunStats {
   uint64_t memoryPeakBytes = 0;
   /// Numbers particular to the method, written under the method's name ("voxel": {...}).
   nlohmann::json methodDetails;
+  /// The settings the method ran with, by name (solver_settings.h), under "settings".
+  std::vector<std::pair<std::string, SettingValue>> settings;
 };
 
 /// Power absorbed by the objects, sum of (1 - rho) H A = H A - (B - E) A with E the objects'

@@ -4,7 +4,9 @@
 #include "core/address_space_limit.h"
 
 #include <radiosity/image.h>
+#include <radiosity/solver_settings.h>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -211,11 +213,11 @@ TEST(Cli, NumbersOutOfRangeSayWhatWasExpected) {
   // range up to the largest double (309 digits).
   const CliResult size = run({"solve", "cornell", "--method", "voxel", "--voxel-size", "0"});
   EXPECT_EQ(size.status, 2);
-  EXPECT_NE(size.err.find("--voxel-size: 0 is not greater than 0"), std::string::npos) << size.err;
+  EXPECT_NE(size.err.find("--voxel-size: 0 out of range (0, inf)"), std::string::npos) << size.err;
   EXPECT_LT(size.err.size(), 200u) << size.err;
   const CliResult tolerance = run({"solve", "cornell", "--tolerance", "-0.5"});
   EXPECT_EQ(tolerance.status, 2);
-  EXPECT_NE(tolerance.err.find("--tolerance: -0.5 is below 0"), std::string::npos)
+  EXPECT_NE(tolerance.err.find("--tolerance: -0.5 out of range [0, inf)"), std::string::npos)
       << tolerance.err;
   const CliResult patch = run({"solve", "cornell", "--patch-size", "x"});
   EXPECT_EQ(patch.status, 2);
@@ -538,3 +540,42 @@ TEST(Cli, SolveRejectsUnknownExportFormat) {
 }
 
 }  // namespace
+
+// Every setting is declared once (solver_settings.h): a value just outside its range gets the
+// same message as a flag and as a scene key, and a value at the edge of its range is taken by
+// both (before, tolerance 0 passed as a flag and failed as a key, and spp and max_depth had
+// different ranges in the two).
+TEST(Cli, FlagsAndSceneKeysShareEachSettingsRange) {
+  const fs::path dir = freshDir("settings_once");
+  writeFile(dir / "room.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  int checked = 0;
+  for (const rad::SettingDeclaration& d : rad::solverSettingDeclarations()) {
+    if (d.type != rad::SettingType::Integer && d.type != rad::SettingType::Number) continue;
+    const double below = d.minOpen ? d.min : d.min - 1.0;
+    const std::string text = fmt::format("{}", d.type == rad::SettingType::Integer ? int64_t(below) : below);
+    const std::string why = d.problem(d.type == rad::SettingType::Integer
+                                          ? rad::SettingValue(int64_t(below))
+                                          : rad::SettingValue(below));
+    ASSERT_FALSE(why.empty()) << d.name;
+    const fs::path scene = writeFile(dir / "s.json", R"({"geometry": [{"file": "room.obj"}],
+      "materials": {"default": {"rho": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
+      "solver": {")" + d.name + "\": " + text + "}}");
+    const CliResult key = run({"info", scene.string()});
+    EXPECT_EQ(key.status, 2) << d.name;
+    EXPECT_NE(key.err.find("/solver/" + d.name + ": " + why), std::string::npos) << key.err;
+    const CliResult render = run({"render", "cornell", d.flag(), text, "-o", (dir / "x.png").string()});
+    EXPECT_EQ(render.status, 2) << d.name;
+    EXPECT_NE(render.err.find(d.flag() + ": " + why), std::string::npos) << render.err;
+    ++checked;
+  }
+  EXPECT_GE(checked, 15);
+  // The edge of a range is valid both ways.
+  const fs::path scene = writeFile(dir / "edge.json", R"({"geometry": [{"file": "room.obj"}],
+      "materials": {"default": {"rho": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
+      "solver": {"tolerance": 0, "method": "patch", "refine_levels": 0}})");
+  EXPECT_EQ(run({"info", scene.string()}).status, 0);
+  EXPECT_EQ(run({"solve", scene.string(), "--tolerance", "0", "--max-iterations", "3",
+                 "--cache-dir", "none", "--quiet"})
+                .status,
+            0);
+}

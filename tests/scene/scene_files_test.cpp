@@ -150,10 +150,10 @@ TEST(SceneFiles, JsonSceneComposesFilesLightsCameraSolver) {
   ASSERT_TRUE(s.camera);
   EXPECT_EQ(s.camera->width, 320);
   EXPECT_EQ(s.camera->fovDeg, 50.0f);
-  EXPECT_EQ(s.solver.method, "voxel");
-  EXPECT_EQ(s.solver.spp, 16);
-  EXPECT_EQ(s.solver.maxDepth, 5);
-  EXPECT_EQ(s.solver.seed, 42u);
+  EXPECT_EQ(s.solver.values.at("method"), SettingValue(std::string("voxel")));
+  EXPECT_EQ(s.solver.values.at("spp"), SettingValue(int64_t(16)));
+  EXPECT_EQ(s.solver.values.at("max_depth"), SettingValue(int64_t(5)));
+  EXPECT_EQ(s.solver.values.at("seed"), SettingValue(int64_t(42)));
 }
 
 TEST(SceneFiles, ConcavePolygonTriangulationCoversItsArea) {

@@ -4,23 +4,23 @@
 
 #include "scene/io/scene_json.h"
 
-#include "scene/io/gltf_loader.h"
-#include "scene/io/obj_loader.h"
-#include "scene/io/text_file.h"
-
+#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/ies_profile.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/scene_builder.h>
-
-#include <fmt/format.h>
-#include <glm/gtx/transform.hpp>
-#include <nlohmann/json.hpp>
+#include <radiosity/solver_settings.h>
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtx/transform.hpp>
 #include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <set>
+
+#include "scene/io/gltf_loader.h"
+#include "scene/io/obj_loader.h"
+#include "scene/io/text_file.h"
 
 namespace rad {
 
@@ -49,8 +49,8 @@ class JsonReader {
     requireObject(j, ptr);
     for (const auto& [key, value] : j.items()) {
       if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; }))
-        fail(ptr + "/" + key, fmt::format("unknown key (expected one of: {})",
-                                          fmt::join(allowed, ", ")));
+        fail(ptr + "/" + key,
+             fmt::format("unknown key (expected one of: {})", fmt::join(allowed, ", ")));
     }
   }
 
@@ -62,7 +62,8 @@ class JsonReader {
   }
 
   int64_t integer(const Json& j, const std::string& ptr, int64_t lo, int64_t hi) const {
-    if (!j.is_number_integer() && !(j.is_number() && j.get<double>() == std::floor(j.get<double>())))
+    if (!j.is_number_integer() &&
+        !(j.is_number() && j.get<double>() == std::floor(j.get<double>())))
       fail(ptr, fmt::format("expected an integer in [{}, {}], got {}", lo, hi, j.dump()));
     const double v = j.get<double>();
     if (v < double(lo) || v > double(hi))
@@ -109,7 +110,8 @@ std::string lowerExtension(const std::string& file) {
   const size_t slash = file.find_last_of("/\\");
   if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
   std::string ext = file.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -124,8 +126,8 @@ glm::mat4 readTransform(const JsonReader& r, const Json& j, const std::string& p
   }
   if (j.contains("scale")) {
     const Json& s = j["scale"];
-    const Vec3 scale = s.is_number() ? Vec3(float(r.number(s, ptr + "/scale")))
-                                     : r.vec3(s, ptr + "/scale");
+    const Vec3 scale =
+        s.is_number() ? Vec3(float(r.number(s, ptr + "/scale"))) : r.vec3(s, ptr + "/scale");
     if (scale.x == 0.0f || scale.y == 0.0f || scale.z == 0.0f)
       r.fail(ptr + "/scale", "scale components must be non-zero");
     m = m * glm::scale(scale);
@@ -134,7 +136,8 @@ glm::mat4 readTransform(const JsonReader& r, const Json& j, const std::string& p
 }
 
 void readGeometry(const JsonReader& r, const Json& list, SceneBuilder& builder) {
-  if (!list.is_array()) r.fail("/geometry", fmt::format("expected an array, got {}", list.type_name()));
+  if (!list.is_array())
+    r.fail("/geometry", fmt::format("expected an array, got {}", list.type_name()));
   const std::string dir = parentDirectory(r.path());
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string ptr = fmt::format("/geometry/{}", i);
@@ -142,13 +145,18 @@ void readGeometry(const JsonReader& r, const Json& list, SceneBuilder& builder) 
     r.checkKeys(g, ptr, {"file", "transform"});
     if (!g.contains("file")) r.fail(ptr, "missing key \"file\"");
     const std::string file = resolvePath(dir, r.string(g["file"], ptr + "/file"));
-    const glm::mat4 m = g.contains("transform") ? readTransform(r, g["transform"], ptr + "/transform")
-                                                : glm::mat4(1.0f);
+    const glm::mat4 m = g.contains("transform")
+                            ? readTransform(r, g["transform"], ptr + "/transform")
+                            : glm::mat4(1.0f);
     const std::string ext = lowerExtension(file);
-    if (ext == ".obj") loadObj(builder, file, m);
-    else if (ext == ".gltf" || ext == ".glb") loadGltf(builder, file, m);
-    else r.fail(ptr + "/file", fmt::format("unsupported geometry extension '{}' (expected .obj, "
-                                           ".gltf or .glb)", ext));
+    if (ext == ".obj")
+      loadObj(builder, file, m);
+    else if (ext == ".gltf" || ext == ".glb")
+      loadGltf(builder, file, m);
+    else
+      r.fail(ptr + "/file", fmt::format("unsupported geometry extension '{}' (expected .obj, "
+                                        ".gltf or .glb)",
+                                        ext));
   }
 }
 
@@ -191,42 +199,52 @@ Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
     r.checkKeys(j, ptr, {"type", "position", "intensity"});
     light.type = LightType::Point;
   } else if (type == "spot") {
-    r.checkKeys(j, ptr, {"type", "position", "direction", "intensity", "inner_angle_deg",
-                         "outer_angle_deg", "spin_deg_per_s"});
+    r.checkKeys(j, ptr,
+                {"type", "position", "direction", "intensity", "inner_angle_deg", "outer_angle_deg",
+                 "spin_deg_per_s"});
     light.type = LightType::Spot;
   } else if (type == "ies") {
-    r.checkKeys(j, ptr, {"type", "file", "position", "direction", "scale", "color", "spin_deg_per_s"});
+    r.checkKeys(j, ptr,
+                {"type", "file", "position", "direction", "scale", "color", "spin_deg_per_s"});
     light.type = LightType::Ies;
   } else {
-    r.fail(ptr + "/type", fmt::format("unknown light type '{}' (expected point, spot or ies)", type));
+    r.fail(ptr + "/type",
+           fmt::format("unknown light type '{}' (expected point, spot or ies)", type));
   }
   auto required = [&](const char* key) -> const Json& {
     if (!j.contains(key)) r.fail(ptr, fmt::format("missing key \"{}\" for a {} light", key, type));
     return j[key];
   };
   light.position = r.vec3(required("position"), ptr + "/position");
-  if (j.contains("direction")) light.direction = readDirection(r, j["direction"], ptr + "/direction");
-  if (j.contains("spin_deg_per_s")) light.spinDegPerS = r.vec3(j["spin_deg_per_s"], ptr + "/spin_deg_per_s");
+  if (j.contains("direction"))
+    light.direction = readDirection(r, j["direction"], ptr + "/direction");
+  if (j.contains("spin_deg_per_s"))
+    light.spinDegPerS = r.vec3(j["spin_deg_per_s"], ptr + "/spin_deg_per_s");
   if (light.type != LightType::Ies)
-    light.intensity = r.color(required("intensity"), ptr + "/intensity", "intensity", 0.0, INFINITY);
+    light.intensity =
+        r.color(required("intensity"), ptr + "/intensity", "intensity", 0.0, INFINITY);
   if (light.type == LightType::Spot) {
     light.innerAngleDeg = float(r.number(required("inner_angle_deg"), ptr + "/inner_angle_deg"));
     light.outerAngleDeg = float(r.number(required("outer_angle_deg"), ptr + "/outer_angle_deg"));
     if (!(light.innerAngleDeg > 0.0f && light.innerAngleDeg <= light.outerAngleDeg &&
           light.outerAngleDeg < 180.0f))
-      r.fail(ptr, fmt::format("spot angles inner {} / outer {} must satisfy 0 < inner <= outer < 180",
-                              light.innerAngleDeg, light.outerAngleDeg));
+      r.fail(ptr,
+             fmt::format("spot angles inner {} / outer {} must satisfy 0 < inner <= outer < 180",
+                         light.innerAngleDeg, light.outerAngleDeg));
   }
   if (light.type == LightType::Ies) {
-    light.iesFile = resolvePath(parentDirectory(r.path()), r.string(required("file"), ptr + "/file"));
+    light.iesFile =
+        resolvePath(parentDirectory(r.path()), r.string(required("file"), ptr + "/file"));
     light.ies = std::make_shared<const IesProfile>(loadIesProfile(light.iesFile));
     double scale = kDefaultIesScale;
     if (j.contains("scale")) {
       scale = r.number(j["scale"], ptr + "/scale");
-      if (!(scale > 0.0)) r.fail(ptr + "/scale", fmt::format("scale {} must be > 0 (W/sr per cd)", scale));
+      if (!(scale > 0.0))
+        r.fail(ptr + "/scale", fmt::format("scale {} must be > 0 (W/sr per cd)", scale));
     }
-    const Color color = j.contains("color") ? r.color(j["color"], ptr + "/color", "color", 0.0, INFINITY)
-                                            : Color(1.0f);
+    const Color color = j.contains("color")
+                            ? r.color(j["color"], ptr + "/color", "color", 0.0, INFINITY)
+                            : Color(1.0f);
     light.intensity = color * float(scale);
   }
   return light;
@@ -253,73 +271,40 @@ Camera readCamera(const JsonReader& r, const Json& j) {
   return c;
 }
 
+// A value of the "solver" object as its declaration reads it: integers for Integer settings
+// (16.0 too), doubles for Number ones. A value of the wrong kind is kept as it is, for the
+// declaration to refuse with its message.
+SettingValue settingValue(const JsonReader& r, const Json& j, const SettingDeclaration& d,
+                          const std::string& ptr) {
+  if (j.is_boolean()) return j.get<bool>();
+  if (j.is_string()) return j.get<std::string>();
+  if (!j.is_number()) r.fail(ptr, fmt::format("expected a value, got {}", j.type_name()));
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) r.fail(ptr, "expected a finite number");
+  const bool integral = j.is_number_integer() || v == std::floor(v);
+  if (d.type == SettingType::Integer && integral && std::abs(v) < 9.2e18)
+    return j.is_number_unsigned() ? int64_t(std::min<uint64_t>(j.get<uint64_t>(), INT64_MAX))
+                                  : int64_t(v);
+  return v;
+}
+
 SolverSettings readSolver(const JsonReader& r, const Json& j) {
   const std::string ptr = "/solver";
-  r.checkKeys(j, ptr, {"method", "spp", "max_depth", "seed", "voxel_size", "voxels", "sphere_radius",
-                       "later_sphere_radius", "iterations", "tolerance", "tangent_correction",
-                       "first_shot", "direct_samples", "normalize", "jitter_lines",
-                       "tail_estimate", "patch_size", "patches", "ff_estimator", "ff_rays",
-                       "ff_threshold", "cache_dir", "solver", "max_iterations", "shading", "light_samples", "refine_levels",
-                       "refine_threshold"});
+  r.requireObject(j, ptr);
   SolverSettings s;
-  if (j.contains("method")) {
-    s.method = r.string(j["method"], ptr + "/method");
-    if (*s.method != "patch" && *s.method != "voxel" && *s.method != "pathtrace")
-      r.fail(ptr + "/method", fmt::format("unknown method '{}' (expected patch, voxel or pathtrace)",
-                                          *s.method));
+  for (const auto& [key, value] : j.items()) {
+    const SettingDeclaration* d = findSolverSetting(key);
+    if (!d) {
+      std::vector<std::string> names;
+      for (const SettingDeclaration& known : solverSettingDeclarations())
+        names.push_back(known.name);
+      r.fail(ptr + "/" + key,
+             fmt::format("unknown key (expected one of: {})", fmt::join(names, ", ")));
+    }
+    const SettingValue v = settingValue(r, value, *d, ptr + "/" + key);
+    if (const std::string why = d->problem(v); !why.empty()) r.fail(ptr + "/" + key, why);
+    s.values[key] = v;
   }
-  auto integer = [&](const char* key, int64_t lo, int64_t hi) {
-    return r.integer(j[key], ptr + "/" + key, lo, hi);
-  };
-  auto positive = [&](const char* key) {
-    const double v = r.number(j[key], ptr + "/" + key);
-    if (!(v > 0.0) || !std::isfinite(v)) r.fail(ptr + "/" + key, fmt::format("{} must be positive", v));
-    return v;
-  };
-  if (j.contains("spp")) s.spp = int(integer("spp", 1, 1 << 24));
-  if (j.contains("max_depth")) s.maxDepth = int(integer("max_depth", 1, 1 << 16));
-  if (j.contains("seed")) s.seed = uint64_t(integer("seed", 0, INT64_MAX));
-  if (j.contains("voxel_size")) s.voxelSize = float(positive("voxel_size"));
-  if (j.contains("voxels")) s.voxels = size_t(integer("voxels", 1, int64_t(1) << 32));
-  if (j.contains("sphere_radius")) s.sphereRadius = int(integer("sphere_radius", 1, 200));
-  if (j.contains("iterations")) s.iterations = int(integer("iterations", 1, 100000));
-  if (j.contains("tolerance")) s.tolerance = positive("tolerance");
-  if (j.contains("tangent_correction"))
-    s.tangentCorrection = r.boolean(j["tangent_correction"], ptr + "/tangent_correction");
-  if (j.contains("first_shot")) s.firstShot = r.boolean(j["first_shot"], ptr + "/first_shot");
-  if (j.contains("direct_samples")) s.directSamples = int(integer("direct_samples", 1, 1 << 20));
-  if (j.contains("later_sphere_radius"))
-    s.laterSphereRadius = int(integer("later_sphere_radius", 1, 200));
-  auto flag = [&](const char* key) { return r.boolean(j[key], ptr + "/" + key); };
-  if (j.contains("normalize")) s.normalize = flag("normalize");
-  if (j.contains("jitter_lines")) s.jitterLines = flag("jitter_lines");
-  if (j.contains("tail_estimate")) s.tailEstimate = flag("tail_estimate");
-  auto choice = [&](const char* key, const auto& allowed) {
-    const std::string v = r.string(j[key], ptr + "/" + key);
-    if (!choiceNamed(allowed, v))
-      r.fail(ptr + "/" + key, fmt::format("unknown value '{}' (expected {})", v,
-                                          fmt::join(choiceNames(allowed), ", ")));
-    return v;
-  };
-  if (j.contains("patch_size")) s.patchSize = float(positive("patch_size"));
-  if (j.contains("patches")) s.patches = size_t(integer("patches", 1, int64_t(1) << 32));
-  if (j.contains("ff_estimator"))
-    s.ffEstimator = choice("ff_estimator", kFormFactorEstimatorNames);
-  if (j.contains("ff_rays")) s.ffRays = int(integer("ff_rays", 1, 1 << 24));
-  if (j.contains("ff_threshold")) {
-    const double v = r.number(j["ff_threshold"], ptr + "/ff_threshold");
-    if (!(v >= 0.0 && v < 1.0))
-      r.fail(ptr + "/ff_threshold", fmt::format("{} out of range [0, 1)", v));
-    s.ffThreshold = v;
-  }
-  if (j.contains("cache_dir")) s.cacheDir = r.string(j["cache_dir"], ptr + "/cache_dir");
-  if (j.contains("solver"))
-    s.patchSolver = choice("solver", kPatchSolverNames);
-  if (j.contains("max_iterations")) s.maxIterations = int(integer("max_iterations", 1, 100000000));
-  if (j.contains("shading")) s.shading = choice("shading", kPatchShadingNames);
-  if (j.contains("light_samples")) s.lightSamples = int(integer("light_samples", 1, 1 << 16));
-  if (j.contains("refine_levels")) s.refineLevels = int(integer("refine_levels", 0, 8));
-  if (j.contains("refine_threshold")) s.refineThreshold = float(positive("refine_threshold"));
   return s;
 }
 
@@ -333,7 +318,8 @@ Json parseJson(const std::string& text, const std::string& path) {
     const size_t lineStart = text.rfind('\n', end == 0 ? 0 : end - 1);
     const size_t column = lineStart == std::string::npos || end == 0 ? end + 1 : end - lineStart;
     std::string what = e.what();
-    if (const size_t colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
+    if (const size_t colon = what.find(": "); colon != std::string::npos)
+      what = what.substr(colon + 2);
     throw InputError(fmt::format("{}:{}:{}", path, line, column), "invalid JSON: " + what);
   }
 }
@@ -352,7 +338,8 @@ Scene loadSceneJson(const std::string& path) {
   if (root.contains("materials")) readMaterials(r, root["materials"], scene);
   if (root.contains("lights")) {
     const Json& lights = root["lights"];
-    if (!lights.is_array()) r.fail("/lights", fmt::format("expected an array, got {}", lights.type_name()));
+    if (!lights.is_array())
+      r.fail("/lights", fmt::format("expected an array, got {}", lights.type_name()));
     for (size_t i = 0; i < lights.size(); ++i)
       scene.lights.push_back(readLight(r, lights[i], fmt::format("/lights/{}", i)));
   }
