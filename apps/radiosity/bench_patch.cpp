@@ -3,19 +3,22 @@
 // Jacobi solve the same table: the Gauss-Seidel run computes it and leaves it in a scratch
 // form-factor cache that the Jacobi run loads, so its rays are cast once (progressive refinement
 // casts the rows it asks for itself, without a cache).
-#include "bench_workloads.h"
-
+#include <fmt/format.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/scene_loader.h>
-
-#include <fmt/format.h>
-
+#include <tbb/parallel_for.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <system_error>
+
+#include "bench_workloads.h"
+#include "geometry/ray_caster.h"
+#include "lighting/direct_lighting.h"
+#include "patch/patch_light_injection.h"
 
 namespace rad::cli {
 
@@ -83,7 +86,7 @@ nlohmann::json measure(const Workload& w, Console& console) {
               {"rays_per_patch", w.rays},
               {"mesh_s", p.meshSeconds},
               {"form_factors_s", p.formFactorSeconds},
-              {"rays_per_s", double(p.rays) / std::max(p.formFactorSeconds, 1e-9)},
+              {"rays_per_s", double(p.rays - p.lightRays) / std::max(p.formFactorSeconds, 1e-9)},
               {"table_entries", p.nonZeros},
               {"table_bytes", p.tableBytes},
               {"row_sum_mean", p.rowSumMean}};
@@ -101,6 +104,60 @@ nlohmann::json measure(const Workload& w, Console& console) {
   return result;
 }
 
+// One pass of the lights' direct light over every patch (what relighting pays per frame): the
+// median of 21 passes, in milliseconds.
+double directLightPassMs(const Scene& scene, const PatchMesh& mesh, int points) {
+  const RayCaster caster(scene);
+  const DirectLighting direct(scene, caster);
+  std::vector<Color> d(mesh.size());
+  std::vector<double> ms;
+  for (int pass = 0; pass < 21; ++pass) {
+    const auto start = std::chrono::steady_clock::now();
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(mesh.size()), 64),
+                      [&](const auto& r) {
+                        for (uint32_t p = r.begin(); p != r.end(); ++p)
+                          d[p] = lightOnPatch(mesh, p, direct, points).direct;
+                      });
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                     .count());
+  }
+  std::nth_element(ms.begin(), ms.begin() + 10, ms.end());
+  return ms[10];
+}
+
+// cornell-spot: the lights' direct light, adaptive subdivision and the solve on the refined mesh.
+nlohmann::json measureLights(Console& console) {
+  const Scene scene = loadScene("cornell-spot");
+  console.detail("bench patch: cornell-spot, adaptive subdivision");
+  PatchRadiositySettings s;
+  s.cacheDir.clear();
+  const PatchRadiosity solution(scene, s);
+  const PatchRadiosityStats& p = solution.stats();
+  const PatchMesh mesh(scene, {0.0f, 10000});
+  const double passMs = directLightPassMs(scene, mesh, 4);
+  const double total = p.meshSeconds + p.lightSeconds + p.formFactorSeconds + p.solveSeconds;
+  nlohmann::json result = {
+      {"scene", "cornell-spot"},
+      {"base_patches", p.basePatches},
+      {"patches", p.patches},
+      {"refined_splits", p.refinedSplits},
+      {"refine_rounds", p.refineRounds},
+      {"light_rays", p.lightRays},
+      {"light_s", p.lightSeconds},
+      {"light_rays_per_s", double(p.lightRays) / std::max(p.lightSeconds, 1e-9)},
+      {"table_entries", p.nonZeros},
+      {"form_factors_s", p.formFactorSeconds},
+      {"total_s", total},
+      {"direct_pass_patches", mesh.size()},
+      {"direct_pass_ms", passMs}};
+  result["summary"] = fmt::format(
+      "cornell-spot: {} -> {} patches by adaptive subdivision ({} rounds), light rays {:.1f} M/s, "
+      "{} table entries, {:.2f} s in all; direct light of {} patches x 4 points {:.2f} ms",
+      p.basePatches, p.patches, p.refineRounds, result["light_rays_per_s"].get<double>() * 1e-6,
+      p.nonZeros, total, mesh.size(), passMs);
+  return result;
+}
+
 }  // namespace
 
 nlohmann::json benchPatch(Console& console) {
@@ -111,6 +168,8 @@ nlohmann::json benchPatch(Console& console) {
     runs.push_back(measure(w, console));
     summary += (summary.empty() ? "" : "; ") + runs.back()["summary"].get<std::string>();
   }
+  runs.push_back(measureLights(console));
+  summary += "; " + runs.back()["summary"].get<std::string>();
   return {{"workloads", runs}, {"summary", summary}};
 }
 
