@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 
 #include "core/memory_usage.h"
@@ -107,37 +108,63 @@ double FormFactorTable::rowSum(size_t row) const {
 }
 
 void FormFactorTable::symmetrize(std::span<const float> area) {
-  // The transpose by counting sort: its rows list, in increasing order, who sees each patch.
+  // The transpose: row i lists (k, A_k F_ki) for everyone k who sees i, in increasing k. Filled
+  // on every thread (a row's entries land in any order), then each row sorted: the same table
+  // whatever the threads did.
   const size_t n = rows();
   std::vector<uint64_t> tOffsets(n + 1, 0);
-  for (uint32_t c : columns_) ++tOffsets[c + 1];
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, columns_.size(), 1 << 16), [&](const auto& r) {
+    for (size_t e = r.begin(); e != r.end(); ++e)
+      std::atomic_ref<uint64_t>(tOffsets[columns_[e] + 1]).fetch_add(1, std::memory_order_relaxed);
+  });
   for (size_t i = 0; i < n; ++i) tOffsets[i + 1] += tOffsets[i];
-  std::vector<uint32_t> tColumns(columns_.size());
-  std::vector<float> tValues(values_.size());  // A_k F_ki
+  std::vector<FormFactorEntry> transposed(columns_.size());
   std::vector<uint64_t> fill(tOffsets.begin(), tOffsets.end() - 1);
-  for (size_t k = 0; k < n; ++k)
+  tbb::parallel_for(size_t(0), n, [&](size_t k) {
     for (uint64_t e = offsets_[k]; e < offsets_[k + 1]; ++e) {
-      const uint64_t at = fill[columns_[e]]++;
-      tColumns[at] = uint32_t(k);
-      tValues[at] = area[k] * values_[e];
+      const uint64_t at =
+          std::atomic_ref<uint64_t>(fill[columns_[e]]).fetch_add(1, std::memory_order_relaxed);
+      transposed[at] = {uint32_t(k), area[k] * values_[e]};
     }
-  // Row i of the result: the union of row i and transposed row i, G_ij = (A_i F_ij + A_j F_ji) / 2
-  // over A_i; an entry estimated from one side only is averaged with that side's zero.
-  std::vector<std::vector<FormFactorEntry>> merged(n);
+  });
+  releaseMemory(fill);
   tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    std::sort(
+        transposed.begin() + long(tOffsets[i]), transposed.begin() + long(tOffsets[i + 1]),
+        [](const FormFactorEntry& a, const FormFactorEntry& b) { return a.column < b.column; });
+  });
+  // Row i of the result: the union of row i and transposed row i, G_ij = (A_i F_ij + A_j F_ji) / 2
+  // over A_i; an entry estimated from one side only is averaged with that side's zero. Walked
+  // twice: to count each row's positive entries, then to write them in place.
+  auto mergeRow = [&](size_t i, auto&& emit) {
     uint64_t a = offsets_[i], b = tOffsets[i];
-    auto& row = merged[i];
     while (a < offsets_[i + 1] || b < tOffsets[i + 1]) {
       const uint32_t ca = a < offsets_[i + 1] ? columns_[a] : ~0u;
-      const uint32_t cb = b < tOffsets[i + 1] ? tColumns[b] : ~0u;
+      const uint32_t cb = b < tOffsets[i + 1] ? transposed[b].column : ~0u;
       const uint32_t c = std::min(ca, cb);
       double flux = 0.0;
       if (ca == c) flux += double(area[i]) * values_[a++];
-      if (cb == c) flux += tValues[b++];
-      row.push_back({c, float(0.5 * flux / area[i])});
+      if (cb == c) flux += transposed[b++].value;
+      const float value = float(0.5 * flux / area[i]);
+      if (value > 0.0f) emit(c, value);
     }
+  };
+  std::vector<uint64_t> offsets(n + 1, 0);
+  tbb::parallel_for(size_t(0), n,
+                    [&](size_t i) { mergeRow(i, [&](uint32_t, float) { ++offsets[i + 1]; }); });
+  for (size_t i = 0; i < n; ++i) offsets[i + 1] += offsets[i];
+  std::vector<uint32_t> columns(offsets.back());
+  std::vector<float> values(offsets.back());
+  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    uint64_t at = offsets[i];
+    mergeRow(i, [&](uint32_t c, float v) {
+      columns[at] = c;
+      values[at++] = v;
+    });
   });
-  *this = fromRows(std::move(merged));
+  offsets_ = std::move(offsets);
+  columns_ = std::move(columns);
+  values_ = std::move(values);
 }
 
 size_t FormFactorTable::memoryBytes() const {
