@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/rng.h"
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 
 namespace rad {
 namespace {

@@ -16,7 +16,7 @@
 #include <system_error>
 
 #include "bench_workloads.h"
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 #include "lighting/direct_lighting.h"
 #include "patch/patch_light_injection.h"
 

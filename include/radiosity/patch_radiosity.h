@@ -9,12 +9,14 @@
 
 #include <radiosity/object_radiometry.h>
 #include <radiosity/progress.h>
+#include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
 #include <radiosity/surface_radiance.h>
 
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -93,7 +95,7 @@ struct PatchRadiosityStats {
   size_t refinedSplits = 0;  ///< patches split by adaptive subdivision
   int refineRounds = 0;
   float patchSize = 0.0f;
-  uint64_t rays = 0;    ///< rays cast (form factors and lights)
+  uint64_t rays = 0;  ///< rays cast (form factors and lights)
   /// Emitter patches whose form-factor columns were computed exactly (hemisphere estimator; 0:
   /// none, the emitters were too many or the estimator is another).
   size_t exactColumns = 0;
@@ -104,12 +106,13 @@ struct PatchRadiosityStats {
   /// back to its sum, so no light is lost, but it is moved).
   double droppedEntryFraction = 0.0, droppedSumFraction = 0.0, droppedWorstRowFraction = 0.0;
   uint64_t rowsDroppingOverOnePercent = 0;
-  double rowSumMin = 0.0, rowSumMean = 0.0, rowSumMax = 0.0;    ///< closure of the rows computed
+  double rowSumMin = 0.0, rowSumMean = 0.0, rowSumMax = 0.0;  ///< closure of the rows computed
   bool cacheLoaded = false;
-  std::string cacheFile;  ///< empty without a cache
+  std::string cacheFile;   ///< empty without a cache
   uint64_t lightRays = 0;  ///< shadow rays toward point, spot and IES lights
   double meshSeconds = 0.0, formFactorSeconds = 0.0, cacheLoadSeconds = 0.0, solveSeconds = 0.0;
   double lightSeconds = 0.0;  ///< direct light of the analytic lights
+  bool tableReused = false;   ///< the form factors were kept from an earlier solve of the model
   std::string solver;
   int iterations = 0;
   uint64_t shots = 0;
@@ -118,11 +121,43 @@ struct PatchRadiosityStats {
   std::vector<std::string> warnings;  ///< e.g. a cache file that could not be used
 };
 
+class PatchRadiosity;
+
+/// The half of the patch method done once per geometry: the base mesh, and the form-factor
+/// tables of the patch sets solved so far (adaptive subdivision makes the patches depend on the
+/// lights; the last two tables are kept, so that a light moved back reuses its table).
+/// solve() is the half done per light state.
+class PatchModel {
+ public:
+  /// Meshes `scene` at the base level. `caster` is built over the same scene and shared with
+  /// every stage of a run; scene and caster must outlive the model and its solutions. Throws
+  /// InputError for bad settings.
+  PatchModel(const Scene& scene, const RayCaster& caster, const PatchRadiositySettings& settings);
+  /// The same with a ray caster of its own.
+  PatchModel(const Scene& scene, const PatchRadiositySettings& settings);
+  ~PatchModel();
+  PatchModel(PatchModel&&) noexcept;
+  PatchModel& operator=(PatchModel&&) noexcept;
+
+  /// The solution with `lights` in place of the scene's own (emitting surfaces as the scene
+  /// has them): their direct light on the patches and the subdivision it asks for, the form
+  /// factors of the resulting patches (kept from an earlier solve, read from the disk cache or
+  /// computed), and the bounces. Thread-safe. Throws rad::Cancelled if `progress` returns false;
+  /// a bad cache file is a warning.
+  PatchRadiosity solve(std::span<const Light> lights, const ProgressCallback& progress = {}) const;
+
+  struct State;
+
+ private:
+  std::shared_ptr<State> state_;
+};
+
 /// The solved scene; a SurfaceRadiance that interpolates irradiance smoothly across patches.
 class PatchRadiosity : public SurfaceRadiance {
  public:
-  /// Meshes and solves `scene` (which must outlive the result). Throws InputError for bad
-  /// settings and rad::Cancelled if `progress` returns false. A bad cache file is a warning.
+  /// Meshes and solves `scene` under its own lights (PatchModel and solve in one); the scene
+  /// must outlive the result. Throws InputError for bad settings and rad::Cancelled if
+  /// `progress` returns false. A bad cache file is a warning.
   PatchRadiosity(const Scene& scene, const PatchRadiositySettings& settings,
                  const ProgressCallback& progress = {});
   ~PatchRadiosity() override;
@@ -133,6 +168,8 @@ class PatchRadiosity : public SurfaceRadiance {
   /// patch's own (flat); 0 from the back of a one-sided face.
   Color radiance(const SurfaceHit& hit) const override;
   bool hasIndirectIrradiance() const override { return true; }
+  /// The lights it was solved with.
+  std::span<const Light> directLights() const override;
   /// H less the lights' D and what the emitting patches send directly, interpolated as
   /// radiance() interpolates H.
   Color indirectIrradiance(const SurfaceHit& hit) const override;
@@ -150,6 +187,9 @@ class PatchRadiosity : public SurfaceRadiance {
   void exportGlb(const std::string& path) const;
 
  private:
+  friend class PatchModel;
+  PatchRadiosity(std::shared_ptr<const PatchModel::State> model, std::span<const Light> lights,
+                 const ProgressCallback& progress);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -7,6 +7,7 @@
 #include <radiosity/scene.h>
 
 #include <cstdint>
+#include <span>
 
 namespace rad {
 
@@ -30,6 +31,9 @@ class SurfaceRadiance {
   /// the direct light of lights and emitting surfaces, interpolated as radiance() interpolates
   /// H (0 where hasIndirectIrradiance() is false). A renderer adds the direct light per pixel.
   virtual Color indirectIrradiance(const SurfaceHit& /*hit*/) const { return Color(0.0f); }
+  /// The point, spot and IES lights whose direct light indirectIrradiance() leaves out (those
+  /// the solution was solved with), for the renderer to add per pixel.
+  virtual std::span<const Light> directLights() const { return {}; }
 };
 
 /// Where a radiosity picture's direct light comes from.

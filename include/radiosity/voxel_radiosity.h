@@ -77,6 +77,8 @@ class VoxelRadiosity : public SurfaceRadiance {
   /// With keepDirectLight and the first shot: the bounces' irradiance, interpolated as H is.
   bool hasIndirectIrradiance() const override;
   Color indirectIrradiance(const SurfaceHit& hit) const override;
+  /// The scene's lights.
+  std::span<const Light> directLights() const override;
   /// Area-weighted means over the voxel sides of each scene object.
   std::vector<ObjectRadiometry> objectRadiometry() const;
   const VoxelRadiosityStats& stats() const;

@@ -1,6 +1,6 @@
 // Ray queries on Embree 3 (Wald et al., "Embree: A Kernel Framework for Efficient CPU Ray
 // Tracing", SIGGRAPH 2014). One triangle geometry, high-quality BVH, robust (watertight) mode.
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>

@@ -24,7 +24,11 @@ float maxAbs(const Vec3& v) {
 }  // namespace
 
 DirectLighting::DirectLighting(const Scene& scene, const RayCaster& caster)
-    : scene_(&scene), caster_(&caster), emitters_(scene) {
+    : DirectLighting(scene, caster, scene.lights) {}
+
+DirectLighting::DirectLighting(const Scene& scene, const RayCaster& caster,
+                               std::span<const Light> lights)
+    : caster_(&caster), lights_(lights), emitters_(scene) {
   const Bounds b = scene.bounds();
   sceneExtent_ = b.empty() ? 1.0f : std::max(b.diagonal(), std::max(maxAbs(b.min), maxAbs(b.max)));
   if (!(sceneExtent_ > 0.0f)) sceneExtent_ = 1.0f;
@@ -59,7 +63,7 @@ Color DirectLighting::fromLight(const Light& light, const Vec3& p, const Vec3& n
 
 Color DirectLighting::fromLights(const Vec3& p, const Vec3& n) const {
   Color sum(0.0f);
-  for (const Light& light : scene_->lights) sum += fromLight(light, p, n);
+  for (const Light& light : lights_) sum += fromLight(light, p, n);
   return sum;
 }
 

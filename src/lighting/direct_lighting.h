@@ -6,22 +6,26 @@
 // Emissive triangles are estimated by one area sample per call, chosen by emitted power.
 // Units (docs/ARCHITECTURE.md): irradiance in W per square scene unit, intensity in W/sr.
 
+#include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
 
+#include <span>
+
 #include "core/rng.h"
-#include "geometry/ray_caster.h"
 #include "lighting/emitter_sampler.h"
 
 namespace rad {
 
 class DirectLighting {
  public:
-  /// Keeps pointers to `scene` and `caster`, which must outlive it. Safe to use from many
-  /// threads at once.
+  /// Keeps pointers to `scene`, `caster` and `lights` (the scene's own by default), which must
+  /// outlive it. Safe to use from many threads at once.
   DirectLighting(const Scene& scene, const RayCaster& caster);
+  DirectLighting(const Scene& scene, const RayCaster& caster, std::span<const Light> lights);
 
-  const Scene& scene() const { return *scene_; }
-  bool hasLights() const { return !scene_->lights.empty(); }
+  /// The analytic lights it evaluates.
+  std::span<const Light> lights() const { return lights_; }
+  bool hasLights() const { return !lights_.empty(); }
   bool hasEmitters() const { return !emitters_.empty(); }
 
   /// Irradiance at `p` on a surface with unit front normal `n` from the scene's analytic lights,
@@ -43,8 +47,8 @@ class DirectLighting {
   bool visible(const Vec3& p, const Vec3& n, const Vec3& target) const;
 
  private:
-  const Scene* scene_;
   const RayCaster* caster_;
+  std::span<const Light> lights_;
   EmitterSampler emitters_;
   float sceneExtent_;
 };

@@ -16,7 +16,7 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 #include "patch/form_factor_table.h"
 #include "patch/patch_mesh.h"
 

@@ -16,7 +16,7 @@ PatchLight lightOnPatch(const PatchMesh& mesh, uint32_t patch, const DirectLight
   for (int k = 0; k < n; ++k) at.push_back({corners[k] + 0.02f * (p.centroid - corners[k]), 0.0});
   PatchLight out;
   Vec3d sum(0.0);
-  for (const Light& light : direct.scene().lights) {
+  for (const Light& light : direct.lights()) {
     bool lit = false, dark = false;
     for (size_t i = 0; i < at.size(); ++i) {
       const Color e = direct.fromLight(light, at[i].position, p.normal);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
+#include <radiosity/ray_caster.h>
 
 #include <array>
 #include <chrono>
@@ -11,7 +12,6 @@
 #include <optional>
 #include <unordered_map>
 
-#include "geometry/ray_caster.h"
 #include "lighting/direct_lighting.h"
 #include "output/gltf_export.h"
 #include "output/surface_samples.h"
@@ -19,14 +19,17 @@
 #include "patch/form_factor_estimators.h"
 #include "patch/light_refinement.h"
 #include "patch/patch_mesh.h"
+#include "patch/patch_model_state.h"
 #include "patch/patch_solvers.h"
 
 namespace rad {
 
 struct PatchRadiosity::Impl {
+  std::shared_ptr<const PatchModel::State> model;
   const Scene* scene = nullptr;
   PatchRadiositySettings settings;
-  std::unique_ptr<PatchMesh> mesh;
+  std::vector<Light> lights;        ///< those it is solved with
+  std::unique_ptr<PatchMesh> mesh;  ///< the model's base mesh, refined for the lights
   PatchSolution solution;
   std::vector<Color> vertexIrradiance;
   std::vector<Color> indirect, vertexIndirect;  ///< H less the direct light (patch, vertex)
@@ -37,7 +40,8 @@ struct PatchRadiosity::Impl {
   FormFactorSettings ff;             ///< the estimator's settings, fixed once per solve
   std::vector<uint8_t> emitterRows;  ///< per patch: it emits (the threshold keeps its row whole)
   void chooseFormFactorSettings();
-  FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);
+  std::shared_ptr<const FormFactorTable> formFactors(const RayCaster& caster,
+                                                     const ProgressCallback& progress);
   FormFactorTable computeTable(const RayCaster& caster, const ProgressCallback& progress);
   void solve(const RayCaster& caster, const ProgressCallback& progress);
   void solveLazily(const RayCaster& caster, const PatchSystem& system,
@@ -56,23 +60,6 @@ struct PatchRadiosity::Impl {
 };
 
 namespace {
-
-void validate(const PatchRadiositySettings& s) {
-  auto fail = [](const std::string& what) { throw InputError("patch settings", what); };
-  // The patch size and count are checked where the mesh is built (PatchMesh).
-  if (s.formFactorRays < 1)
-    fail(fmt::format("form-factor rays {} must be at least 1", s.formFactorRays));
-  if (!(s.formFactorThreshold >= 0.0f && s.formFactorThreshold < 1.0f))
-    fail(fmt::format("form-factor threshold {} out of range [0, 1)", s.formFactorThreshold));
-  if (s.lightSamples < 1) fail(fmt::format("light samples {} must be at least 1", s.lightSamples));
-  if (s.refineLevels < 0 || s.refineLevels > 8)
-    fail(fmt::format("refine levels {} out of range [0, 8]", s.refineLevels));
-  if (!(s.refineThreshold > 0.0f) || !std::isfinite(s.refineThreshold))
-    fail(fmt::format("refine threshold {} must be positive", s.refineThreshold));
-  if (s.maxIterations < 1)
-    fail(fmt::format("max iterations {} must be at least 1", s.maxIterations));
-  if (!(s.tolerance >= 0.0)) fail(fmt::format("tolerance {} must not be negative", s.tolerance));
-}
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -138,11 +125,17 @@ FormFactorTable PatchRadiosity::Impl::computeTable(const RayCaster& caster,
   return table;
 }
 
-FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
-                                                  const ProgressCallback& progress) {
+// The table for this mesh: kept by the model from an earlier solve, else from the disk cache,
+// else computed (and kept, and cached).
+std::shared_ptr<const FormFactorTable> PatchRadiosity::Impl::formFactors(
+    const RayCaster& caster, const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   const FormFactorCacheKey key =
       formFactorCacheKey(*scene, *mesh, ff, settings.formFactorThreshold);
+  if (std::shared_ptr<const FormFactorTable> kept = model->keptTable(key)) {
+    stats.tableReused = true;
+    return kept;
+  }
   std::filesystem::path file;
   if (!settings.cacheDir.empty()) {
     file = formFactorCacheFile(settings.cacheDir, key);
@@ -152,14 +145,17 @@ FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
     if (load.table) {
       stats.cacheLoaded = true;
       stats.cacheLoadSeconds = secondsSince(start);
-      return std::move(*load.table);
+      auto table = std::make_shared<const FormFactorTable>(std::move(*load.table));
+      model->keep(key, table);
+      return table;
     }
   }
-  FormFactorTable table = computeTable(caster, progress);
+  auto table = std::make_shared<const FormFactorTable>(computeTable(caster, progress));
   stats.formFactorSeconds = secondsSince(start);
   if (!file.empty())
-    if (std::string w = saveFormFactorTable(file, key, table); !w.empty())
+    if (std::string w = saveFormFactorTable(file, key, *table); !w.empty())
       stats.warnings.push_back(w);
+  model->keep(key, table);
   return table;
 }
 
@@ -168,7 +164,7 @@ void PatchRadiosity::Impl::lightPatches(const RayCaster& caster, const ProgressC
   const auto start = std::chrono::steady_clock::now();
   const uint64_t raysBefore = caster.raysCast();
   LightRefinement refined = refineForLights(
-      *mesh, DirectLighting(*scene, caster),
+      *mesh, DirectLighting(*scene, caster, lights),
       {settings.refineLevels, settings.refineThreshold, settings.lightSamples}, progress);
   lightDirect = std::move(refined.direct);
   stats.basePatches = refined.basePatches;
@@ -251,7 +247,8 @@ void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback
                     settings.estimator == PatchFormFactorEstimator::Hemisphere &&
                     settings.cacheDir.empty();
   if (lazy) return solveLazily(caster, system, progress);
-  const FormFactorTable table = formFactors(caster, progress);
+  const std::shared_ptr<const FormFactorTable> kept = formFactors(caster, progress);
+  const FormFactorTable& table = *kept;
   stats.nonZeros = table.nonZeros();
   stats.tableBytes = table.memoryBytes();
   const ThresholdLoss& loss = table.thresholdLoss();
@@ -326,16 +323,20 @@ std::vector<Color> PatchRadiosity::Impl::averageAtVertices(
 
 PatchRadiosity::PatchRadiosity(const Scene& scene, const PatchRadiositySettings& settings,
                                const ProgressCallback& progress)
+    : PatchRadiosity(PatchModel(scene, settings).solve(scene.lights, progress)) {}
+
+PatchRadiosity::PatchRadiosity(std::shared_ptr<const PatchModel::State> model,
+                               std::span<const Light> lights, const ProgressCallback& progress)
     : impl_(std::make_unique<Impl>()) {
-  validate(settings);
   Impl& m = *impl_;
-  m.scene = &scene;
-  m.settings = settings;
-  auto start = std::chrono::steady_clock::now();
-  m.mesh = std::make_unique<PatchMesh>(
-      scene, PatchMeshSettings{settings.patchSize, settings.targetPatches});
-  m.stats.meshSeconds = secondsSince(start);
-  const RayCaster caster(scene);
+  m.model = std::move(model);
+  m.scene = m.model->scene;
+  m.settings = m.model->settings;
+  m.lights.assign(lights.begin(), lights.end());
+  m.mesh = std::make_unique<PatchMesh>(*m.model->baseMesh);
+  m.stats.meshSeconds = m.model->meshSeconds;
+  const RayCaster& caster = *m.model->caster;
+  const uint64_t raysBefore = caster.raysCast();
   m.lightPatches(caster, progress);
   m.solve(caster, progress);
   m.warnOfThresholdLoss();
@@ -348,13 +349,17 @@ PatchRadiosity::PatchRadiosity(const Scene& scene, const PatchRadiositySettings&
   s.nodes = m.mesh->nodes().size();
   s.vertices = m.mesh->vertices().size();
   s.patchSize = m.mesh->patchSize();
-  s.rays = caster.raysCast();
-  s.solver = choiceName(kPatchSolverNames, settings.solver);
+  s.rays = caster.raysCast() - raysBefore;
+  s.solver = choiceName(kPatchSolverNames, m.settings.solver);
   s.iterations = m.solution.iterations;
   s.shots = m.solution.shots;
   s.residuals = m.solution.residuals;
   s.memoryBytes =
       m.mesh->memoryBytes() + s.tableBytes + m.solution.radiosity.size() * 4 * sizeof(Color);
+}
+
+std::span<const Light> PatchRadiosity::directLights() const {
+  return impl_->lights;
 }
 
 PatchRadiosity::~PatchRadiosity() = default;

@@ -3,7 +3,7 @@
 
 #include <radiosity/scene.h>
 
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 
 namespace rad {
 

@@ -29,7 +29,7 @@ PathIntegrator::PathIntegrator(const Scene& scene, const RayCaster& caster, int 
 Color PathIntegrator::directIntegral(const Vec3& p, const Vec3& n, bool misWeighted,
                                      Rng& rng) const {
   Color sum = direct_.sampleEmitters(p, n, rng, misWeighted);
-  for (const Light& light : scene_->lights) sum += direct_.fromLight(light, p, n);
+  for (const Light& light : direct_.lights()) sum += direct_.fromLight(light, p, n);
   return sum;
 }
 

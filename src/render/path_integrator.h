@@ -6,7 +6,7 @@
 #include <radiosity/scene.h>
 
 #include "core/rng.h"
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 #include "lighting/direct_lighting.h"
 
 namespace rad {

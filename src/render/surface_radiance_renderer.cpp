@@ -23,7 +23,7 @@ class PerPixelDirectShading {
   PerPixelDirectShading(const Scene& scene, const RayCaster& caster,
                         const SurfaceRadiance& radiance, int emitterSamples)
       : scene_(scene),
-        direct_(scene, caster),
+        direct_(scene, caster, radiance.directLights()),
         radiance_(radiance),
         emitterSamples_(emitterSamples) {}
 

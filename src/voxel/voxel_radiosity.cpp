@@ -116,6 +116,8 @@ Color VoxelRadiosity::radiance(const SurfaceHit& hit) const {
   return m.emission + m.rho * impl_->field().at(hit.point, n) / glm::pi<float>();
 }
 
+std::span<const Light> VoxelRadiosity::directLights() const { return impl_->scene->lights; }
+
 bool VoxelRadiosity::hasIndirectIrradiance() const {
   return !impl_->indirect.empty();
 }

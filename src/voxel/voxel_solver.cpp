@@ -4,7 +4,7 @@
 
 #include "core/memory_usage.h"
 #include "core/rng.h"
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 #include "lighting/direct_lighting.h"
 #include "render/progress_ticker.h"
 #include "voxel/direction_set.h"

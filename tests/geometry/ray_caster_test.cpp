@@ -1,5 +1,5 @@
 // RayCaster against hand-placed triangles whose hits are worked out by hand.
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 
 #include <gtest/gtest.h>
 #include <radiosity/scene_builder.h>

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/rng.h"
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 #include "light_test_scenes.h"
 
 namespace rad {

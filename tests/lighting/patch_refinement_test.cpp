@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 #include "light_test_scenes.h"
 #include "lighting/direct_lighting.h"
 #include "patch/light_refinement.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <functional>
 
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 #include "patch/form_factor_estimators.h"
 #include "patch/point_polygon_form_factor.h"
 #include "patch_test_scenes.h"

@@ -5,7 +5,7 @@
 
 #include <Eigen/Dense>
 
-#include "geometry/ray_caster.h"
+#include <radiosity/ray_caster.h>
 #include "patch/form_factor_estimators.h"
 #include "patch/patch_solvers.h"
 #include "patch_test_scenes.h"

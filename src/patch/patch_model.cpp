@@ -1,0 +1,92 @@
+// PatchModel: the patch method's half done once per geometry (the base mesh), and the tables it
+// keeps between solves.
+#include <fmt/format.h>
+#include <radiosity/error.h>
+#include <radiosity/patch_radiosity.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "patch/patch_model_state.h"
+
+namespace rad {
+
+namespace {
+
+void validatePatchSettings(const PatchRadiositySettings& s) {
+  auto fail = [](const std::string& what) { throw InputError("patch settings", what); };
+  // The patch size and count are checked where the mesh is built (PatchMesh).
+  if (s.formFactorRays < 1)
+    fail(fmt::format("form-factor rays {} must be at least 1", s.formFactorRays));
+  if (!(s.formFactorThreshold >= 0.0f && s.formFactorThreshold < 1.0f))
+    fail(fmt::format("form-factor threshold {} out of range [0, 1)", s.formFactorThreshold));
+  if (s.lightSamples < 1) fail(fmt::format("light samples {} must be at least 1", s.lightSamples));
+  if (s.refineLevels < 0 || s.refineLevels > 8)
+    fail(fmt::format("refine levels {} out of range [0, 8]", s.refineLevels));
+  if (!(s.refineThreshold > 0.0f) || !std::isfinite(s.refineThreshold))
+    fail(fmt::format("refine threshold {} must be positive", s.refineThreshold));
+  if (s.maxIterations < 1)
+    fail(fmt::format("max iterations {} must be at least 1", s.maxIterations));
+  if (!(s.tolerance >= 0.0)) fail(fmt::format("tolerance {} must not be negative", s.tolerance));
+}
+
+}  // namespace
+
+std::shared_ptr<const FormFactorTable> PatchModel::State::keptTable(
+    const FormFactorCacheKey& key) const {
+  std::lock_guard lock(mutex_);
+  for (const auto& [k, table] : kept_)
+    if (k == key) return table;
+  return nullptr;
+}
+
+void PatchModel::State::keep(const FormFactorCacheKey& key,
+                             std::shared_ptr<const FormFactorTable> table) const {
+  std::lock_guard lock(mutex_);
+  for (const auto& [k, t] : kept_)
+    if (k == key) return;
+  kept_.emplace_back(key, std::move(table));
+  if (kept_.size() > kKeptTables) kept_.pop_front();
+}
+
+namespace {
+
+// The base mesh before any ray caster: a mesh too large to hold fails first, as "out of memory".
+std::shared_ptr<PatchModel::State> meshedState(const Scene& scene,
+                                               const PatchRadiositySettings& settings) {
+  validatePatchSettings(settings);
+  auto state = std::make_shared<PatchModel::State>();
+  state->scene = &scene;
+  state->settings = settings;
+  const auto start = std::chrono::steady_clock::now();
+  state->baseMesh = std::make_unique<PatchMesh>(
+      scene, PatchMeshSettings{settings.patchSize, settings.targetPatches});
+  state->meshSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return state;
+}
+
+}  // namespace
+
+PatchModel::PatchModel(const Scene& scene, const RayCaster& caster,
+                       const PatchRadiositySettings& settings)
+    : state_(meshedState(scene, settings)) {
+  state_->caster = &caster;
+}
+
+PatchModel::PatchModel(const Scene& scene, const PatchRadiositySettings& settings)
+    : state_(meshedState(scene, settings)) {
+  state_->ownCaster = std::make_unique<RayCaster>(scene);
+  state_->caster = state_->ownCaster.get();
+}
+
+PatchModel::~PatchModel() = default;
+PatchModel::PatchModel(PatchModel&&) noexcept = default;
+PatchModel& PatchModel::operator=(PatchModel&&) noexcept = default;
+
+PatchRadiosity PatchModel::solve(std::span<const Light> lights,
+                                 const ProgressCallback& progress) const {
+  return PatchRadiosity(state_, lights, progress);
+}
+
+}  // namespace rad

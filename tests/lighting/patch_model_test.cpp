@@ -1,0 +1,88 @@
+// The patch method's seam: a model prepared once per geometry, solved per light state.
+#include <gtest/gtest.h>
+#include <radiosity/patch_radiosity.h>
+#include <radiosity/ray_caster.h>
+#include <radiosity/scene_loader.h>
+#include <radiosity/surface_radiance.h>
+
+#include <optional>
+
+namespace rad {
+
+namespace {
+
+PatchRadiositySettings noDiskCache() {
+  PatchRadiositySettings s;
+  s.cacheDir.clear();
+  return s;
+}
+
+void expectSameObjects(const PatchRadiosity& a, const PatchRadiosity& b) {
+  const std::vector<ObjectRadiometry> x = a.objectRadiometry(), y = b.objectRadiometry();
+  ASSERT_EQ(x.size(), y.size());
+  for (size_t o = 0; o < x.size(); ++o) {
+    EXPECT_EQ(x[o].meanIrradiance, y[o].meanIrradiance) << x[o].name;
+    EXPECT_EQ(x[o].meanRadiosity, y[o].meanRadiosity) << x[o].name;
+  }
+}
+
+// Solving a model under moved lights is solving the scene with those lights: the same numbers
+// bit for bit, the base mesh and the ray caster made once.
+TEST(PatchModel, SolveWithOtherLightsEqualsTheSceneWithThem) {
+  const Scene scene = loadScene("cornell-spot");
+  Scene moved = scene;
+  moved.lights[0].position.x -= 120.0f;
+  moved.lights[0].direction = glm::normalize(Vec3(0.3f, -1.0f, 0.1f));
+  const RayCaster caster(scene);
+  const PatchModel model(scene, caster, noDiskCache());
+  const PatchRadiosity here = model.solve(moved.lights);
+  const PatchRadiosity fromScratch(moved, noDiskCache());
+  expectSameObjects(here, fromScratch);
+  EXPECT_EQ(here.stats().patches, fromScratch.stats().patches);
+  ASSERT_EQ(here.directLights().size(), 1u);
+  EXPECT_EQ(here.directLights()[0].position, moved.lights[0].position);
+}
+
+// Move a light, solve, move it back, solve: the third solve finds the first one's patches and
+// reuses their table (no form factors computed), and gives the first answer again.
+TEST(PatchModel, LightMovedBackReusesItsTable) {
+  const Scene scene = loadScene("cornell-spot");
+  std::vector<Light> away = scene.lights;
+  away[0].position.z += 150.0f;
+  const PatchModel model(scene, noDiskCache());
+  const PatchRadiosity first = model.solve(scene.lights);
+  const PatchRadiosity second = model.solve(away);
+  const PatchRadiosity third = model.solve(scene.lights);
+  EXPECT_FALSE(first.stats().tableReused);
+  EXPECT_NE(second.stats().patches, first.stats().patches);  // the beam moved: other patches
+  EXPECT_FALSE(second.stats().tableReused);
+  EXPECT_TRUE(third.stats().tableReused);
+  EXPECT_EQ(third.stats().formFactorSeconds, 0.0);
+  EXPECT_LT(third.stats().rays, first.stats().rays / 10);  // only the lights' shadow rays
+  expectSameObjects(third, first);
+}
+
+// A solution outlives the model it came from, and its picture takes the direct light of the
+// lights it was solved with, not the scene's.
+TEST(PatchModel, SolutionKeepsItsModelAndItsLights) {
+  const Scene scene = loadScene("cornell-spot");
+  Scene moved = scene;
+  moved.lights[0].position.x += 100.0f;
+  std::optional<PatchRadiosity> solution;
+  {
+    const PatchModel model(scene, noDiskCache());
+    solution.emplace(model.solve(moved.lights));
+  }
+  const PatchRadiosity reference(moved, noDiskCache());
+  Camera camera = scene.cameraOrDefault();
+  camera.width = camera.height = 24;
+  SurfaceRenderSettings render;
+  render.samplesPerPixel = 1;
+  const Image a = renderSurfaceRadiance(scene, camera, *solution, render);
+  const Image b = renderSurfaceRadiance(moved, camera, reference, render);
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) EXPECT_EQ(a.at(x, y), b.at(x, y)) << x << ", " << y;
+}
+
+}  // namespace
+}  // namespace rad
