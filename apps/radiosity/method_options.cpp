@@ -18,10 +18,10 @@ namespace {
 
 // Solves with a progress bar, then prints the method's warnings (settings that lose light, a
 // cache file that could not be used).
-template <class Solution, class Settings>
-Solution solveShowingProgress(const Scene& scene, const Settings& settings,
-                              const std::string& label, Console& console) {
-  Solution solution(scene, settings, console.progress(label));
+template <class Model, class Settings>
+auto solveShowingProgress(const Scene& scene, const RayCaster& caster, const Settings& settings,
+                          const std::string& label, Console& console) {
+  auto solution = Model(scene, caster, settings).solve(scene.lights, console.progress(label));
   console.finishProgress();
   for (const std::string& w : solution.stats().warnings) console.warn(w);
   return solution;
@@ -86,10 +86,11 @@ void MethodOptions::resolve(const Scene& scene) {
                                  settings_.method, fmt::join(methods_, ", ")));
 }
 
-VoxelRadiosity solveVoxels(const Scene& scene, const VoxelRadiositySettings& settings,
-                           Console& console, RunStats& stats, bool objectMeans) {
+VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
+                           const VoxelRadiositySettings& settings, Console& console,
+                           RunStats& stats, bool objectMeans) {
   VoxelRadiosity solution =
-      solveShowingProgress<VoxelRadiosity>(scene, settings, "voxel solve", console);
+      solveShowingProgress<VoxelModel>(scene, caster, settings, "voxel solve", console);
   const VoxelRadiosityStats& v = solution.stats();
   stats.methodDetails = {
       {"voxel_size", v.voxelSize},
@@ -121,10 +122,11 @@ VoxelRadiosity solveVoxels(const Scene& scene, const VoxelRadiositySettings& set
   return solution;
 }
 
-PatchRadiosity solvePatches(const Scene& scene, const PatchRadiositySettings& settings,
-                            Console& console, RunStats& stats, bool objectMeans) {
+PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
+                            const PatchRadiositySettings& settings, Console& console,
+                            RunStats& stats, bool objectMeans) {
   PatchRadiosity solution =
-      solveShowingProgress<PatchRadiosity>(scene, settings, "patch solve", console);
+      solveShowingProgress<PatchModel>(scene, caster, settings, "patch solve", console);
   const PatchRadiosityStats& p = solution.stats();
   stats.methodDetails = {
       {"patch_size", p.patchSize},

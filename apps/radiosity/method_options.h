@@ -9,12 +9,12 @@
 #include <radiosity/solver_settings.h>
 #include <radiosity/voxel_radiosity.h>
 
-#include "console.h"
-#include "output/run_stats.h"
-
 #include <map>
 #include <string>
 #include <vector>
+
+#include "console.h"
+#include "output/run_stats.h"
 
 namespace CLI {
 class App;
@@ -48,13 +48,16 @@ class MethodOptions {
   std::map<std::string, CLI::Option*> options_;
 };
 
-/// Solves `scene` by the voxel method with a progress bar, prints the method's warnings and puts
+/// Solves `scene` (through `caster`, the run's one ray caster) by the voxel method with a
+/// progress bar, prints the method's warnings and puts
 /// its numbers in `stats`; the per-object means (stats.objects, a pass over every voxel side) only
 /// if `objectMeans`, since only the stats file reports them. Throws what the solver throws.
-VoxelRadiosity solveVoxels(const Scene& scene, const VoxelRadiositySettings& settings,
-                           Console& console, RunStats& stats, bool objectMeans);
+VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
+                           const VoxelRadiositySettings& settings, Console& console,
+                           RunStats& stats, bool objectMeans);
 /// The same for the patch method.
-PatchRadiosity solvePatches(const Scene& scene, const PatchRadiositySettings& settings,
-                            Console& console, RunStats& stats, bool objectMeans);
+PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
+                            const PatchRadiositySettings& settings, Console& console,
+                            RunStats& stats, bool objectMeans);
 
 }  // namespace rad::cli

@@ -43,18 +43,18 @@ std::string defaultOutput(const std::string& scene, const std::string& method) {
   return stem + "_" + method + ".png";
 }
 
-Image renderWithPathTracer(const Scene& scene, const Camera& camera, const RenderOptions& o,
-                           Console& console, RunStats& stats) {
+Image renderWithPathTracer(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                           const RenderOptions& o, Console& console, RunStats& stats) {
   Stopwatch renderTime;
   PathTracedImage result =
-      renderPathTraced(scene, camera, o.method.pathTracer(), console.progress("render"));
+      renderPathTraced(scene, caster, camera, o.method.pathTracer(), console.progress("render"));
   console.finishProgress();
   stats.timingsSeconds.render = renderTime.seconds();
   stats.counts.rays = result.stats.rays;
   if (!o.stats.empty() && o.objectPoints > 0) {
     Stopwatch solveTime;
     PathTracerStats objectStats;
-    stats.objects = estimateObjectRadiometry(scene, o.objectPoints, o.method.pathTracer(),
+    stats.objects = estimateObjectRadiometry(scene, caster, o.objectPoints, o.method.pathTracer(),
                                              &objectStats, console.progress("surfaces"));
     console.finishProgress();
     stats.counts.rays += objectStats.rays;
@@ -63,8 +63,9 @@ Image renderWithPathTracer(const Scene& scene, const Camera& camera, const Rende
   return std::move(result.image);
 }
 
-Image renderSolution(const Scene& scene, const Camera& camera, const SurfaceRadiance& solution,
-                     const RenderOptions& o, Console& console, RunStats& stats) {
+Image renderSolution(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                     const SurfaceRadiance& solution, const RenderOptions& o, Console& console,
+                     RunStats& stats) {
   Stopwatch renderTime;
   SurfaceRenderSettings settings;
   settings.samplesPerPixel = o.method.pathTracer().samplesPerPixel;
@@ -78,7 +79,7 @@ Image renderSolution(const Scene& scene, const Camera& camera, const SurfaceRadi
                     "solution's own light",
                     o.method.method()));
   Image image =
-      renderSurfaceRadiance(scene, camera, solution, settings, console.progress("render"));
+      renderSurfaceRadiance(scene, caster, camera, solution, settings, console.progress("render"));
   console.finishProgress();
   stats.timingsSeconds.render = renderTime.seconds();
   return image;
@@ -109,17 +110,20 @@ int runRender(RenderOptions& o, Console& console) {
   if (o.width > 0 && o.height == 0) camera.height = side(double(o.width) / aspect);
   if (o.height > 0 && o.width == 0) camera.width = side(double(o.height) * aspect);
   InterruptGuard interruptible;
+  const RayCaster caster(scene);  // the run's one BVH
   const std::string& method = o.method.method();
   const bool objectMeans = !o.stats.empty();
   const Image image =
-      method == "pathtrace" ? renderWithPathTracer(scene, camera, o, console, stats)
+      method == "pathtrace" ? renderWithPathTracer(scene, caster, camera, o, console, stats)
       : method == "patch"
-          ? renderSolution(scene, camera,
-                           solvePatches(scene, o.method.patch(), console, stats, objectMeans), o,
-                           console, stats)
-          : renderSolution(scene, camera,
-                           solveVoxels(scene, voxelSettingsFor(o), console, stats, objectMeans), o,
-                           console, stats);
+          ? renderSolution(
+                scene, caster, camera,
+                solvePatches(scene, caster, o.method.patch(), console, stats, objectMeans), o,
+                console, stats)
+          : renderSolution(
+                scene, caster, camera,
+                solveVoxels(scene, caster, voxelSettingsFor(o), console, stats, objectMeans), o,
+                console, stats);
   ImageWriteOptions writeOptions;
   writeOptions.exposureEV = o.exposure;
   writeOptions.exrPixelType = o.exrFloat ? ExrPixelType::Float : ExrPixelType::Half;

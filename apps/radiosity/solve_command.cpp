@@ -85,11 +85,14 @@ int runSolve(SolveOptions& o, Console& console) {
   o.method.resolve(scene);
   InterruptGuard interruptible;
   const bool objectMeans = !o.stats.empty();
+  const RayCaster caster(scene);  // the run's one BVH
   if (o.method.method() == "patch")
-    return finishSolve(o, scene, solvePatches(scene, o.method.patch(), console, stats, objectMeans),
+    return finishSolve(o, scene,
+                       solvePatches(scene, caster, o.method.patch(), console, stats, objectMeans),
                        ext, total, stats, console);
-  return finishSolve(o, scene, solveVoxels(scene, o.method.voxel(), console, stats, objectMeans),
-                     ext, total, stats, console);
+  return finishSolve(o, scene,
+                     solveVoxels(scene, caster, o.method.voxel(), console, stats, objectMeans), ext,
+                     total, stats, console);
 }
 
 }  // namespace

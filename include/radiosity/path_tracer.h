@@ -7,6 +7,7 @@
 #include <radiosity/image.h>
 #include <radiosity/object_radiometry.h>
 #include <radiosity/progress.h>
+#include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
 
 #include <cstdint>
@@ -36,11 +37,21 @@ struct PathTracedImage {
 PathTracedImage renderPathTraced(const Scene& scene, const Camera& camera,
                                  const PathTracerSettings& settings,
                                  const ProgressCallback& progress = {});
+/// The same through `caster` (built over `scene`), shared with the run's other stages.
+PathTracedImage renderPathTraced(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                                 const PathTracerSettings& settings,
+                                 const ProgressCallback& progress = {});
 
 /// Area-weighted mean irradiance and radiosity of every scene object, estimated at
 /// `pointsPerObject` stratified points on its faces with `settings.samplesPerPixel` irradiance
 /// paths each. The ground truth for the per-surface comparisons of the radiosity methods.
 std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, int pointsPerObject,
+                                                       const PathTracerSettings& settings,
+                                                       PathTracerStats* stats = nullptr,
+                                                       const ProgressCallback& progress = {});
+/// The same through `caster` (built over `scene`), shared with the run's other stages.
+std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, const RayCaster& caster,
+                                                       int pointsPerObject,
                                                        const PathTracerSettings& settings,
                                                        PathTracerStats* stats = nullptr,
                                                        const ProgressCallback& progress = {});

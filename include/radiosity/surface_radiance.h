@@ -4,6 +4,7 @@
 
 #include <radiosity/image.h>
 #include <radiosity/progress.h>
+#include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
 
 #include <cstdint>
@@ -55,7 +56,12 @@ struct SurfaceRenderSettings {
 /// DirectLightMode::PerPixel (where `radiance` has indirect irradiance) as Ke + rho (D + H_ind)
 /// / pi, D the direct light by shadow rays at the hit; else as radiance() says.
 /// Throws rad::Cancelled if `progress` returns false.
-Image renderSurfaceRadiance(const Scene& scene, const Camera& camera, const SurfaceRadiance& radiance,
-                            const SurfaceRenderSettings& settings, const ProgressCallback& progress = {});
+Image renderSurfaceRadiance(const Scene& scene, const Camera& camera,
+                            const SurfaceRadiance& radiance, const SurfaceRenderSettings& settings,
+                            const ProgressCallback& progress = {});
+/// The same through `caster` (built over `scene`), shared with the run's other stages.
+Image renderSurfaceRadiance(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                            const SurfaceRadiance& radiance, const SurfaceRenderSettings& settings,
+                            const ProgressCallback& progress = {});
 
 }  // namespace rad

@@ -7,6 +7,7 @@
 
 #include <radiosity/object_radiometry.h>
 #include <radiosity/progress.h>
+#include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
 #include <radiosity/surface_radiance.h>
 
@@ -18,22 +19,22 @@
 namespace rad {
 
 struct VoxelRadiositySettings {
-  float voxelSize = 0.0f;          ///< voxel edge in scene units; 0: from targetVoxels
-  size_t targetVoxels = 200000;    ///< approximate number of surface voxels when voxelSize is 0
-  int sphereRadius = 38;           ///< radius R of the digital sphere (R = 38: 14,790 directions)
+  float voxelSize = 0.0f;        ///< voxel edge in scene units; 0: from targetVoxels
+  size_t targetVoxels = 200000;  ///< approximate number of surface voxels when voxelSize is 0
+  int sphereRadius = 38;         ///< radius R of the digital sphere (R = 38: 14,790 directions)
   /// R for the sweeps after the first, whose light (the second bounce on) is smoother: a coarser
   /// sphere costs less, as R^2. 0: sphereRadius, as in the paper.
   int laterSphereRadius = 0;
-  int iterations = 6;              ///< sweeps over all directions, as in the paper
-  double tolerance = 0.0;          ///< stop earlier once the relative residual is below it
+  int iterations = 6;      ///< sweeps over all directions, as in the paper
+  double tolerance = 0.0;  ///< stop earlier once the relative residual is below it
   /// Add the light of the bounces after the last iteration, extrapolated from the last two
   /// (their power falls geometrically): six iterations then miss little even in bright rooms.
   bool estimateTail = true;
-  bool tangentCorrection = true;   ///< look through voxels a line only grazes
-  bool directFirstShot = true;     ///< direct light by shadow rays; the sweeps carry the rest
-  int directSamples = 64;          ///< shadow-ray samples per voxel side for the first shot
-  bool normalize = true;           ///< per-voxel normalization of the direction factors
-  bool jitterLines = true;         ///< shift each direction's lines anew every iteration
+  bool tangentCorrection = true;  ///< look through voxels a line only grazes
+  bool directFirstShot = true;    ///< direct light by shadow rays; the sweeps carry the rest
+  int directSamples = 64;         ///< shadow-ray samples per voxel side for the first shot
+  bool normalize = true;          ///< per-voxel normalization of the direction factors
+  bool jitterLines = true;        ///< shift each direction's lines anew every iteration
   /// Keep the first shot's direct light apart from the bounces (12 more bytes a side through
   /// the solve), so that pictures can take the direct light per pixel (indirectIrradiance).
   bool keepDirectLight = false;
@@ -41,17 +42,17 @@ struct VoxelRadiositySettings {
 };
 
 struct VoxelRadiosityStats {
-  size_t voxels = 0;       ///< occupied voxels (cells)
-  size_t sides = 0;        ///< voxel sides (entries): one per surface orientation in a cell
+  size_t voxels = 0;  ///< occupied voxels (cells)
+  size_t sides = 0;   ///< voxel sides (entries): one per surface orientation in a cell
   size_t directions = 0;
   size_t laterDirections = 0;  ///< directions of the sweeps after the first
   float voxelSize = 0.0f;
-  uint64_t visits = 0;     ///< voxel-direction visits of all sweeps
+  uint64_t visits = 0;  ///< voxel-direction visits of all sweeps
   uint64_t shadowRays = 0;
   /// Each iteration's relative residual: the power (area-weighted luminance) of the light it
   /// added over that of B so far.
   std::vector<double> residuals;
-  double tailShare = 0.0;         ///< share of B's power the tail estimate added
+  double tailShare = 0.0;  ///< share of B's power the tail estimate added
   double voxelizeSeconds = 0.0, directSeconds = 0.0, sweepSeconds = 0.0;
   /// The sweeps' time in each iteration: their spread shows how steady the machine was.
   std::vector<double> iterationSeconds;
@@ -61,11 +62,39 @@ struct VoxelRadiosityStats {
   std::vector<std::string> warnings;  ///< settings that lose light or speed, and why
 };
 
+class VoxelRadiosity;
+
+/// The half of the voxel method done once per geometry: the voxel grid. solve() is the half done
+/// per light state (the first shot of the lights, the sweeps).
+class VoxelModel {
+ public:
+  /// Voxelizes `scene`. `caster` is built over the same scene and shared with every stage of a
+  /// run; scene and caster must outlive the model and its solutions. Throws InputError for bad
+  /// settings.
+  VoxelModel(const Scene& scene, const RayCaster& caster, const VoxelRadiositySettings& settings);
+  /// The same with a ray caster of its own.
+  VoxelModel(const Scene& scene, const VoxelRadiositySettings& settings);
+  ~VoxelModel();
+  VoxelModel(VoxelModel&&) noexcept;
+  VoxelModel& operator=(VoxelModel&&) noexcept;
+
+  /// The solution with `lights` in place of the scene's own (emitting surfaces as the scene has
+  /// them). Thread-safe. Throws InputError if memory would not hold the solve, rad::Cancelled if
+  /// `progress` returns false.
+  VoxelRadiosity solve(std::span<const Light> lights, const ProgressCallback& progress = {}) const;
+
+  struct State;
+
+ private:
+  std::shared_ptr<State> state_;
+};
+
 /// The solved scene; a SurfaceRadiance that interpolates the voxels' irradiance smoothly.
 class VoxelRadiosity : public SurfaceRadiance {
  public:
-  /// Voxelizes and solves `scene` (which must outlive the result). Throws InputError for bad
-  /// settings and rad::Cancelled if `progress` returns false.
+  /// Voxelizes and solves `scene` under its own lights (VoxelModel and solve in one); the scene
+  /// must outlive the result. Throws InputError for bad settings and rad::Cancelled if
+  /// `progress` returns false.
   VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings& settings,
                  const ProgressCallback& progress = {});
   ~VoxelRadiosity() override;
@@ -77,7 +106,7 @@ class VoxelRadiosity : public SurfaceRadiance {
   /// With keepDirectLight and the first shot: the bounces' irradiance, interpolated as H is.
   bool hasIndirectIrradiance() const override;
   Color indirectIrradiance(const SurfaceHit& hit) const override;
-  /// The scene's lights.
+  /// The lights it was solved with.
   std::span<const Light> directLights() const override;
   /// Area-weighted means over the voxel sides of each scene object.
   std::vector<ObjectRadiometry> objectRadiometry() const;
@@ -92,6 +121,9 @@ class VoxelRadiosity : public SurfaceRadiance {
   void exportGlb(const std::string& path) const;
 
  private:
+  friend class VoxelModel;
+  VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model, std::span<const Light> lights,
+                 const ProgressCallback& progress);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

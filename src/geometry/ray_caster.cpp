@@ -13,6 +13,7 @@
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -96,7 +97,11 @@ void RayCaster::Impl::build(const Scene& s) {
   // Embree schedules its BVH build on TBB; give it as many threads as TBB would use.
   const std::string config = fmt::format("threads={}", tbb::info::default_concurrency());
   device = rtcNewDevice(config.c_str());
-  if (!device) throw std::runtime_error("ray caster: cannot create the Embree device");
+  if (!device) {
+    // Without memory for its thread pool Embree fails here: the run is out of memory.
+    if (rtcGetDeviceError(nullptr) == RTC_ERROR_OUT_OF_MEMORY) throw std::bad_alloc();
+    throw std::runtime_error("ray caster: cannot create the Embree device");
+  }
   rtcSetDeviceErrorFunction(device, onEmbreeError, &errors);
 
   scene = rtcNewScene(device);

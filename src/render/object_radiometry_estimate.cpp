@@ -66,12 +66,22 @@ std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, int p
                                                        const PathTracerSettings& settings,
                                                        PathTracerStats* stats,
                                                        const ProgressCallback& progress) {
+  validatePathTracerSettings(settings);
+  return estimateObjectRadiometry(scene, RayCaster(scene), pointsPerObject, settings, stats,
+                                  progress);
+}
+
+std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, const RayCaster& caster,
+                                                       int pointsPerObject,
+                                                       const PathTracerSettings& settings,
+                                                       PathTracerStats* stats,
+                                                       const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   validatePathTracerSettings(settings);
   if (pointsPerObject < 1)
     throw InputError("path tracer",
                      fmt::format("points per object {} out of range [1, inf)", pointsPerObject));
-  const RayCaster caster(scene);
+  const uint64_t raysBefore = caster.raysCast();
   const PathIntegrator integrator(scene, caster, settings.maxDepth);
   const std::vector<ObjectSurface> surfaces = objectSurfaces(scene);
 
@@ -112,7 +122,7 @@ std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, int p
     result[o].meanRadiosity = Color(b / double(n));
   }
   if (stats) {
-    stats->rays = caster.raysCast();
+    stats->rays = caster.raysCast() - raysBefore;
     stats->paths = uint64_t(totalPoints) * uint64_t(settings.samplesPerPixel);
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -42,10 +42,17 @@ void renderTile(const PathIntegrator& integrator, const PinholeCamera& camera,
 PathTracedImage renderPathTraced(const Scene& scene, const Camera& camera,
                                  const PathTracerSettings& settings,
                                  const ProgressCallback& progress) {
+  validatePathTracerSettings(settings);
+  return renderPathTraced(scene, RayCaster(scene), camera, settings, progress);
+}
+
+PathTracedImage renderPathTraced(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                                 const PathTracerSettings& settings,
+                                 const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   validatePathTracerSettings(settings);
+  const uint64_t raysBefore = caster.raysCast();
   const PinholeCamera pinhole(camera);
-  const RayCaster caster(scene);
   const PathIntegrator integrator(scene, caster, settings.maxDepth);
 
   PathTracedImage result;
@@ -62,7 +69,7 @@ PathTracedImage renderPathTraced(const Scene& scene, const Camera& camera,
   });
   ticker.throwIfCancelled();
 
-  result.stats.rays = caster.raysCast();
+  result.stats.rays = caster.raysCast() - raysBefore;
   result.stats.paths =
       uint64_t(camera.width) * uint64_t(camera.height) * uint64_t(settings.samplesPerPixel);
   result.stats.seconds =

@@ -53,11 +53,16 @@ class PerPixelDirectShading {
 Image renderSurfaceRadiance(const Scene& scene, const Camera& camera,
                             const SurfaceRadiance& radiance, const SurfaceRenderSettings& settings,
                             const ProgressCallback& progress) {
+  return renderSurfaceRadiance(scene, RayCaster(scene), camera, radiance, settings, progress);
+}
+
+Image renderSurfaceRadiance(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                            const SurfaceRadiance& radiance, const SurfaceRenderSettings& settings,
+                            const ProgressCallback& progress) {
   if (settings.samplesPerPixel < 1)
     throw InputError("render", "samples per pixel must be at least 1");
   if (settings.emitterSamples < 1) throw InputError("render", "emitter samples must be at least 1");
   const PinholeCamera pinhole(camera);
-  const RayCaster caster(scene);
   const bool perPixel =
       settings.direct == DirectLightMode::PerPixel && radiance.hasIndirectIrradiance();
   const PerPixelDirectShading shade(scene, caster, radiance, settings.emitterSamples);

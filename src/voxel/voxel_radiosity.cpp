@@ -15,9 +15,22 @@
 
 namespace rad {
 
-struct VoxelRadiosity::Impl {
-  const Scene* scene;
+struct VoxelModel::State {
+  const Scene* scene = nullptr;
+  const RayCaster* caster = nullptr;
+  std::unique_ptr<RayCaster> ownCaster;  ///< when the model was given none
+  VoxelRadiositySettings settings;
   VoxelGrid grid;
+  double voxelizeSeconds = 0.0;
+};
+
+struct VoxelRadiosity::Impl {
+  Impl(std::shared_ptr<const VoxelModel::State> m, std::span<const Light> l)
+      : model(std::move(m)), scene(model->scene), grid(model->grid), lights(l.begin(), l.end()) {}
+  std::shared_ptr<const VoxelModel::State> model;
+  const Scene* scene;
+  const VoxelGrid& grid;
+  std::vector<Light> lights;  ///< those it is solved with
   VoxelSolution solution;
   std::vector<Color> indirect;  ///< H less the first shot (keepDirectLight); else empty
   VoxelRadiosityStats stats;
@@ -48,16 +61,51 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+std::shared_ptr<VoxelModel::State> voxelizedState(const Scene& scene,
+                                                  const VoxelRadiositySettings& settings) {
+  validate(settings);
+  auto state = std::make_shared<VoxelModel::State>();
+  state->scene = &scene;
+  state->settings = settings;
+  const auto start = std::chrono::steady_clock::now();
+  state->grid = voxelizeScene(scene, {settings.voxelSize, settings.targetVoxels});
+  state->voxelizeSeconds = secondsSince(start);
+  return state;
+}
+
 }  // namespace
+
+VoxelModel::VoxelModel(const Scene& scene, const RayCaster& caster,
+                       const VoxelRadiositySettings& settings)
+    : state_(voxelizedState(scene, settings)) {
+  state_->caster = &caster;
+}
+
+VoxelModel::VoxelModel(const Scene& scene, const VoxelRadiositySettings& settings)
+    : state_(voxelizedState(scene, settings)) {
+  state_->ownCaster = std::make_unique<RayCaster>(scene);
+  state_->caster = state_->ownCaster.get();
+}
+
+VoxelModel::~VoxelModel() = default;
+VoxelModel::VoxelModel(VoxelModel&&) noexcept = default;
+VoxelModel& VoxelModel::operator=(VoxelModel&&) noexcept = default;
+
+VoxelRadiosity VoxelModel::solve(std::span<const Light> lights,
+                                 const ProgressCallback& progress) const {
+  return VoxelRadiosity(state_, lights, progress);
+}
 
 VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings& settings,
                                const ProgressCallback& progress)
-    : impl_(std::make_unique<Impl>()) {
-  validate(settings);
-  impl_->scene = &scene;
-  const auto start = std::chrono::steady_clock::now();
-  impl_->grid = voxelizeScene(scene, {settings.voxelSize, settings.targetVoxels});
-  impl_->stats.voxelizeSeconds = secondsSince(start);
+    : VoxelRadiosity(VoxelModel(scene, settings).solve(scene.lights, progress)) {}
+
+VoxelRadiosity::VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model,
+                               std::span<const Light> lights, const ProgressCallback& progress)
+    : impl_(std::make_unique<Impl>(model, lights)) {
+  const Scene& scene = *impl_->scene;
+  const VoxelRadiositySettings& settings = model->settings;
+  impl_->stats.voxelizeSeconds = model->voxelizeSeconds;
 
   VoxelSolverSettings solver;
   solver.sphereRadius = settings.sphereRadius;
@@ -72,7 +120,8 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
   solver.keepDirect = settings.keepDirectLight && settings.directFirstShot;
   solver.sweep.tangentCorrection = settings.tangentCorrection;
   solver.seed = settings.seed;
-  impl_->solution = solveVoxelRadiosity(scene, impl_->grid, solver, progress);
+  impl_->solution =
+      solveVoxelRadiosity(scene, impl_->grid, *model->caster, impl_->lights, solver, progress);
   if (solver.keepDirect) {
     std::vector<Color>& h = impl_->indirect;
     h = impl_->solution.irradiance;
@@ -83,11 +132,11 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
 
   VoxelRadiosityStats& s = impl_->stats;
   const VoxelSolution& solution = impl_->solution;
-  if (!settings.directFirstShot && !scene.lights.empty())
+  if (!settings.directFirstShot && !impl_->lights.empty())
     s.warnings.push_back(
         fmt::format("{} point/spot/IES light(s) ignored: only the first shot "
                     "(--first-shot) lights voxels from lights",
-                    scene.lights.size()));
+                    impl_->lights.size()));
   s.voxels = impl_->grid.cellCount();
   s.sides = impl_->grid.entryCount();
   s.directions = solution.directions;
@@ -116,7 +165,9 @@ Color VoxelRadiosity::radiance(const SurfaceHit& hit) const {
   return m.emission + m.rho * impl_->field().at(hit.point, n) / glm::pi<float>();
 }
 
-std::span<const Light> VoxelRadiosity::directLights() const { return impl_->scene->lights; }
+std::span<const Light> VoxelRadiosity::directLights() const {
+  return impl_->lights;
+}
 
 bool VoxelRadiosity::hasIndirectIrradiance() const {
   return !impl_->indirect.empty();

@@ -32,9 +32,10 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 // Direct irradiance at every entry's centroid: the analytic lights once (exact, one shadow ray
 // each), the emitters' light averaged over `directSamples` area samples.
 std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
+                                    const RayCaster& caster, std::span<const Light> lights,
                                     const VoxelSolverSettings& settings, uint64_t& rays) {
-  const RayCaster caster(scene);
-  const DirectLighting direct(scene, caster);
+  const uint64_t raysBefore = caster.raysCast();
+  const DirectLighting direct(scene, caster, lights);
   std::vector<Color> h(grid.entryCount());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.entryCount(), 256), [&](const auto& r) {
     for (size_t e = r.begin(); e != r.end(); ++e) {
@@ -50,7 +51,7 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
       h[e] = direct.hasLights() ? fromEmitters + direct.fromLights(p, n) : fromEmitters;
     }
   });
-  rays = caster.raysCast();
+  rays = caster.raysCast() - raysBefore;
   return h;
 }
 
@@ -315,6 +316,7 @@ uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& setti
 }
 
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
+                                  const RayCaster& caster, std::span<const Light> lights,
                                   const VoxelSolverSettings& settings,
                                   const ProgressCallback& progress) {
   VoxelSolution solution;
@@ -331,7 +333,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   std::vector<Color> direct(grid.entryCount(), Color(0.0f));
   if (settings.directFirstShot) {
     const auto start = std::chrono::steady_clock::now();
-    direct = directIrradiance(scene, grid, settings, solution.shadowRays);
+    direct = directIrradiance(scene, grid, caster, lights, settings, solution.shadowRays);
     solution.directSeconds = secondsSince(start);
     if (settings.keepDirect) solution.direct = direct;
   }
@@ -380,6 +382,13 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   solution.radiosity = light.radiosities();
   solution.irradiance = light.irradiances();
   return solution;
+}
+
+VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
+                                  const VoxelSolverSettings& settings,
+                                  const ProgressCallback& progress) {
+  const RayCaster caster(scene);
+  return solveVoxelRadiosity(scene, grid, caster, scene.lights, settings, progress);
 }
 
 }  // namespace rad

@@ -10,12 +10,14 @@
 // small emitters subtend fewer directions than the sphere resolves, hence the first shot.
 
 #include <radiosity/progress.h>
+#include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
 
 #include "voxel/discrete_line_sweep.h"
 #include "voxel/voxel_grid.h"
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -68,10 +70,16 @@ uint64_t voxelSolverBytesPerSide(const VoxelSolverSettings& settings);
 /// (8 a line of a band: room:16 needs at most 4.4 at 2M voxels).
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings);
 
-/// Solves the scene on a voxelization of it. Deterministic, and the same bit for bit whatever the
+/// Solves the scene on a voxelization of it, lit by its emitting surfaces and `lights` (the
+/// first shot's shadow rays go through `caster`). Deterministic, and the same bit for bit whatever the
 /// number of threads (they share each direction, and the memory does not grow with them).
 /// Throws InputError if memory would not hold the solve, before any work, and rad::Cancelled if
 /// `progress` returns false.
+VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
+                                  const RayCaster& caster, std::span<const Light> lights,
+                                  const VoxelSolverSettings& settings,
+                                  const ProgressCallback& progress = {});
+/// The same under the scene's own lights, with a ray caster of its own.
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const VoxelSolverSettings& settings,
                                   const ProgressCallback& progress = {});

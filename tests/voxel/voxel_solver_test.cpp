@@ -383,13 +383,14 @@ TEST(VoxelSolver, RefusesBeforeItAllocatesWhatTheProcessMayNotHold) {
   settings.directSamples = 1;
   constexpr uint64_t kLeft = 1u << 20;
   ASSERT_GT(voxelSolveBytes(grid, settings), 2 * kLeft);  // 6 x 100^2 sides, 4.4 MB
+  const RayCaster caster(scene);  // made with the scene, before the solve
   bool refused = false;
   {
     const test::AddressSpaceLimit limit(kLeft);
     if (limit.alreadyBelow()) GTEST_SKIP() << "the address space is already limited below 1 MB";
     ASSERT_TRUE(limit.lowered());
     try {
-      solveVoxelRadiosity(scene, grid, settings);
+      solveVoxelRadiosity(scene, grid, caster, scene.lights, settings);
     } catch (const InputError&) {
       refused = true;
     } catch (const std::bad_alloc&) {

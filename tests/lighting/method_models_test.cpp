@@ -1,9 +1,11 @@
-// The patch method's seam: a model prepared once per geometry, solved per light state.
+// The methods' seam: a model prepared once per geometry (mesh or voxel grid), solved per light
+// state.
 #include <gtest/gtest.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene_loader.h>
 #include <radiosity/surface_radiance.h>
+#include <radiosity/voxel_radiosity.h>
 
 #include <optional>
 
@@ -82,6 +84,31 @@ TEST(PatchModel, SolutionKeepsItsModelAndItsLights) {
   const Image b = renderSurfaceRadiance(moved, camera, reference, render);
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) EXPECT_EQ(a.at(x, y), b.at(x, y)) << x << ", " << y;
+}
+
+// The voxel grid made once serves any lights: a moved spot's solution equals voxelizing and
+// solving the scene with it, bit for bit (the first shot is deterministic).
+TEST(VoxelModel, SolveWithOtherLightsEqualsTheSceneWithThem) {
+  const Scene scene = loadScene("cornell-spot");
+  Scene moved = scene;
+  moved.lights[0].position.z -= 100.0f;
+  VoxelRadiositySettings s;
+  s.targetVoxels = 5000;
+  s.sphereRadius = 4;
+  s.iterations = 2;
+  s.directSamples = 4;
+  const RayCaster caster(scene);
+  const VoxelModel model(scene, caster, s);
+  const VoxelRadiosity here = model.solve(moved.lights), fromScratch(moved, s);
+  const std::vector<ObjectRadiometry> x = here.objectRadiometry(),
+                                      y = fromScratch.objectRadiometry();
+  ASSERT_EQ(x.size(), y.size());
+  for (size_t o = 0; o < x.size(); ++o)
+    EXPECT_EQ(x[o].meanRadiosity, y[o].meanRadiosity) << x[o].name;
+  const VoxelRadiosity original = model.solve(scene.lights);
+  EXPECT_NE(original.objectRadiometry()[0].meanRadiosity, x[0].meanRadiosity);  // the floor
+  ASSERT_EQ(here.directLights().size(), 1u);
+  EXPECT_EQ(here.directLights()[0].position, moved.lights[0].position);
 }
 
 }  // namespace
