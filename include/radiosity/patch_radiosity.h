@@ -112,7 +112,10 @@ struct PatchRadiosityStats {
   uint64_t lightRays = 0;  ///< shadow rays toward point, spot and IES lights
   double meshSeconds = 0.0, formFactorSeconds = 0.0, cacheLoadSeconds = 0.0, solveSeconds = 0.0;
   double lightSeconds = 0.0;  ///< direct light of the analytic lights
-  bool tableReused = false;   ///< the form factors were kept from an earlier solve of the model
+  /// Form-factor rows cast for this solve, and kept from the model's earlier solves or the disk
+  /// cache (the hemisphere estimator's master table by node; the others compute all or none).
+  size_t rowsComputed = 0, rowsReused = 0;
+  size_t masterRows = 0;  ///< node rows the model's master table holds
   std::string solver;
   int iterations = 0;
   uint64_t shots = 0;
@@ -123,9 +126,10 @@ struct PatchRadiosityStats {
 
 class PatchRadiosity;
 
-/// The half of the patch method done once per geometry: the base mesh, and the form-factor
-/// tables of the patch sets solved so far (adaptive subdivision makes the patches depend on the
-/// lights; the last two tables are kept, so that a light moved back reuses its table).
+/// The half of the patch method done once per geometry: the base mesh, and the master
+/// form-factor table: the rows of every quadtree node solved so far (adaptive subdivision makes
+/// the patches depend on the lights; a solve casts only the rows of nodes never solved before),
+/// read from and saved to the disk cache, keyed by the geometry and the base meshing.
 /// solve() is the half done per light state.
 class PatchModel {
  public:

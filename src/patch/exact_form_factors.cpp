@@ -5,6 +5,7 @@
 // "Radiosity and Realistic Image Synthesis" (1993), eq. 3.53).
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -97,19 +98,32 @@ FormFactorRows exactFormFactors(const PatchMesh& mesh, const RayCaster& caster,
 }
 
 std::optional<ExactColumns> exactColumns(const PatchMesh& mesh, const RayCaster& caster,
-                                         const FormFactorSettings& settings) {
+                                         const FormFactorSettings& settings,
+                                         const ExactRowStore* store) {
   const std::vector<uint32_t>& columns = settings.exactColumns;
   if (columns.empty()) return std::nullopt;
-  const ExactKernel kernel(mesh, caster);
   ExactColumns exact;
   exact.isExact.assign(mesh.size(), 0);
   for (const uint32_t j : columns) exact.isExact[j] = 1;
   exact.toExact.resize(mesh.size());
-  tbb::parallel_for(size_t(0), mesh.size(), [&](size_t i) {
-    // A stream of its own, apart from the hemisphere rays' (seed, i).
-    Rng rng(settings.seed ^ 0x6578616374636f6cull, i);
-    exact.toExact[i] = kernel.row(uint32_t(i), kExactColumnPoints, rng, columns);
-  });
+  std::vector<uint8_t> missing(mesh.size(), 1);
+  if (store)
+    tbb::parallel_for(size_t(0), mesh.size(), [&](size_t i) {
+      if (auto row = store->known(uint32_t(i))) {
+        exact.toExact[i] = std::move(*row);
+        missing[i] = 0;
+      }
+    });
+  if (std::find(missing.begin(), missing.end(), 1) != missing.end()) {
+    const ExactKernel kernel(mesh, caster);
+    tbb::parallel_for(size_t(0), mesh.size(), [&](size_t i) {
+      if (!missing[i]) return;
+      // A stream of its own, apart from the hemisphere rays' (seed, i).
+      Rng rng(settings.seed ^ 0x6578616374636f6cull, store ? store->streamOf(uint32_t(i)) : i);
+      exact.toExact[i] = kernel.row(uint32_t(i), kExactColumnPoints, rng, columns);
+      if (store) store->computed(uint32_t(i), exact.toExact[i]);
+    });
+  }
   // The exact patches' rows by reciprocity, in ascending column order (i ascends).
   exact.exactRows.resize(mesh.size());
   const std::vector<Patch>& patches = mesh.patches();

@@ -20,6 +20,9 @@ constexpr char kMagic[8] = {'R', 'A', 'D', 'F', 'F', 'T', 'B', 'L'};
 // 2: the emitters' columns exact (ExactColumns); 3: thresholded rows keep their sums.
 constexpr uint32_t kVersion = 3;
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 16 + 16 + 32;
+// The master table's file: the rows of every node computed, by node address.
+constexpr char kMasterMagic[8] = {'R', 'A', 'D', 'M', 'F', 'F', 'R', 'W'};
+constexpr uint32_t kMasterVersion = 1;
 
 uint64_t mix(uint64_t z) {
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
@@ -87,6 +90,32 @@ std::vector<T> getArray(const std::string& in, size_t& at, size_t count) {
   return v;
 }
 
+// The whole file, if it exists (an unreadable one leaves `bytes` empty).
+bool readCacheFile(const std::filesystem::path& file, std::string& bytes) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return false;
+  std::ifstream in(file, std::ios::binary);
+  bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) bytes.clear();
+  return true;
+}
+
+std::string notUsed(const std::filesystem::path& file, const std::string& why) {
+  return fmt::format("form-factor cache {} not used ({}); recomputing", file.string(), why);
+}
+
+// Appends the checksum and writes atomically; a warning if that failed.
+std::string writeCacheFile(const std::filesystem::path& file, std::string& out) {
+  put(out, checksum(out.data(), out.size()));
+  try {
+    std::filesystem::create_directories(file.parent_path());
+    writeBytesAtomically(file, out);
+  } catch (const std::exception& e) {
+    return fmt::format("form-factor cache not written: {}", e.what());
+  }
+  return "";
+}
+
 // The reason a table read from disk cannot be right for `patches` rows, or "".
 std::string checkTable(const std::vector<uint64_t>& offsets, const std::vector<uint32_t>& columns,
                        const std::vector<float>& values, size_t patches) {
@@ -108,10 +137,10 @@ std::string FormFactorCacheKey::hex() const {
   return fmt::format("{:016x}{:016x}", high, low);
 }
 
-FormFactorCacheKey formFactorCacheKey(const Scene& scene, const PatchMesh& mesh,
-                                      const FormFactorSettings& settings, float threshold) {
-  Hasher h;
-  h.value(kVersion);
+namespace {
+
+// The scene's geometry as the tables see it: positions, triangles, faces and sidedness.
+void hashGeometry(Hasher& h, const Scene& scene) {
   h.value(uint64_t(scene.positions.size()));
   h.bytes(scene.positions.data(), scene.positions.size() * sizeof(Vec3));
   h.value(uint64_t(scene.triangles.size()));
@@ -121,10 +150,20 @@ FormFactorCacheKey formFactorCacheKey(const Scene& scene, const PatchMesh& mesh,
     h.value(f.firstTriangle);
     h.value(f.triangleCount);
     h.value(uint8_t(scene.materials[f.material].twoSided));
-    h.value(uint8_t(scene.materials[f.material].emits()));  // the threshold keeps emitters
     h.value(uint64_t(f.corners.size()));
     h.bytes(f.corners.data(), f.corners.size() * sizeof(uint32_t));
   }
+}
+
+}  // namespace
+
+FormFactorCacheKey formFactorCacheKey(const Scene& scene, const PatchMesh& mesh,
+                                      const FormFactorSettings& settings, float threshold) {
+  Hasher h;
+  h.value(kVersion);
+  hashGeometry(h, scene);
+  for (const Face& f : scene.faces)
+    h.value(uint8_t(scene.materials[f.material].emits()));  // the threshold keeps emitters
   h.value(mesh.patchSize());
   h.value(uint64_t(mesh.size()));
   for (const Patch& p : mesh.patches()) h.value(p.node);
@@ -135,6 +174,109 @@ FormFactorCacheKey formFactorCacheKey(const Scene& scene, const PatchMesh& mesh,
   h.value(settings.seed);
   h.value(threshold);
   return h.key();
+}
+
+FormFactorCacheKey masterTableCacheKey(const Scene& scene, const PatchMesh& baseMesh, int levels,
+                                       int rays, uint64_t seed) {
+  Hasher h;
+  h.value(kMasterVersion);
+  hashGeometry(h, scene);
+  h.value(baseMesh.patchSize());
+  h.value(levels);
+  h.value(rays);
+  h.value(seed);
+  return h.key();
+}
+
+std::filesystem::path masterTableCacheFile(const std::filesystem::path& dir,
+                                           const FormFactorCacheKey& key) {
+  return dir / ("masterff-" + key.hex() + ".bin");
+}
+
+MasterRowsLoad loadMasterRows(const std::filesystem::path& file, const FormFactorCacheKey& key) {
+  MasterRowsLoad result;
+  std::string bytes;
+  if (!readCacheFile(file, bytes)) return result;
+  auto reject = [&](const std::string& why) {
+    result.warning = notUsed(file, why);
+    return result;
+  };
+  if (bytes.empty()) return reject("unreadable");
+  constexpr size_t kHeader = 8 + 4 + 4 + 16 + 8;
+  if (bytes.size() < kHeader + 8) return reject("truncated");
+  if (std::memcmp(bytes.data(), kMasterMagic, 8) != 0)
+    return reject("not a form-factor cache file");
+  size_t at = 8;
+  if (const uint32_t version = get<uint32_t>(bytes, at); version != kMasterVersion)
+    return reject(fmt::format("format version {}, expected {}", version, kMasterVersion));
+  at += 4;
+  const FormFactorCacheKey stored{get<uint64_t>(bytes, at), get<uint64_t>(bytes, at)};
+  const uint64_t count = get<uint64_t>(bytes, at);
+  // The rows' layout first (a cut file is "truncated"), then the checksum, then the values.
+  const size_t end = bytes.size() - 8, first = at;
+  for (uint64_t r = 0; r < count; ++r) {
+    if (end - at < 8 + 8 + 4 + 4 + 4) return reject("truncated");
+    at += 20;
+    const uint32_t hits = get<uint32_t>(bytes, at), exact = get<uint32_t>(bytes, at);
+    if (uint64_t(hits) + exact > (end - at) / 12) return reject("truncated");
+    at += 12 * (size_t(hits) + exact);
+  }
+  if (at != end) return reject("trailing bytes");
+  uint64_t sum;
+  std::memcpy(&sum, bytes.data() + end, 8);
+  if (sum != checksum(bytes.data(), end)) return reject("checksum mismatch: corrupt");
+  if (!(stored == key)) return reject("computed for other geometry or settings");
+  MasterRows rows;
+  at = first;
+  auto read = [&](std::vector<HemisphereHit>& out, uint32_t n) {
+    out.resize(n);
+    for (HemisphereHit& h : out) {
+      h.key = get<uint64_t>(bytes, at);
+      h.weight = get<float>(bytes, at);
+      if (!(h.weight >= 0.0f && std::isfinite(h.weight))) return false;
+    }
+    return true;
+  };
+  for (uint64_t r = 0; r < count; ++r) {
+    const uint64_t address = get<uint64_t>(bytes, at);
+    MasterRow& row = rows[address];
+    row.exactSet = get<uint64_t>(bytes, at);
+    const uint32_t flags = get<uint32_t>(bytes, at);
+    row.hasHits = flags & 1;
+    row.hasExact = flags & 2;
+    const uint32_t hits = get<uint32_t>(bytes, at), exact = get<uint32_t>(bytes, at);
+    if (!read(row.hits, hits) || !read(row.exact, exact))
+      return reject("form factor negative or not finite");
+  }
+  result.rows = std::move(rows);
+  return result;
+}
+
+std::string saveMasterRows(const std::filesystem::path& file, const FormFactorCacheKey& key,
+                           const MasterRows& rows) {
+  std::string out;
+  out.append(kMasterMagic, 8);
+  put(out, kMasterVersion);
+  put(out, uint32_t(0));
+  put(out, key.high);
+  put(out, key.low);
+  put(out, uint64_t(rows.size()));
+  auto write = [&](const std::vector<HemisphereHit>& hits) {
+    for (const HemisphereHit& h : hits) {
+      put(out, h.key);
+      put(out, h.weight);
+    }
+  };
+  for (const auto& [address, row] : rows) {
+    put(out, address);
+    put(out, row.exactSet);
+    put(out, uint32_t((row.hasHits ? 1 : 0) | (row.hasExact ? 2 : 0)));
+    put(out, uint32_t(row.hits.size()));
+    put(out, uint32_t(row.exact.size()));
+    write(row.hits);
+    write(row.exact);
+  }
+  return writeCacheFile(file, out);
 }
 
 std::filesystem::path defaultFormFactorCacheDir() {
@@ -153,16 +295,13 @@ std::filesystem::path formFactorCacheFile(const std::filesystem::path& dir,
 FormFactorCacheLoad loadFormFactorTable(const std::filesystem::path& file,
                                         const FormFactorCacheKey& key, size_t patches) {
   FormFactorCacheLoad result;
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) return result;
+  std::string bytes;
+  if (!readCacheFile(file, bytes)) return result;
   auto reject = [&](const std::string& why) {
-    result.warning =
-        fmt::format("form-factor cache {} not used ({}); recomputing", file.string(), why);
+    result.warning = notUsed(file, why);
     return result;
   };
-  std::ifstream in(file, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) return reject("unreadable");
+  if (bytes.empty()) return reject("unreadable");
   if (bytes.size() < kHeaderBytes + 8) return reject("truncated");
   if (std::memcmp(bytes.data(), kMagic, 8) != 0) return reject("not a form-factor cache file");
   size_t at = 8;
@@ -213,14 +352,7 @@ std::string saveFormFactorTable(const std::filesystem::path& file, const FormFac
   putArray(out, table.offsetArray());
   putArray(out, table.columnArray());
   putArray(out, table.valueArray());
-  put(out, checksum(out.data(), out.size()));
-  try {
-    std::filesystem::create_directories(file.parent_path());
-    writeBytesAtomically(file, out);
-  } catch (const std::exception& e) {
-    return fmt::format("form-factor cache not written: {}", e.what());
-  }
-  return "";
+  return writeCacheFile(file, out);
 }
 
 }  // namespace rad

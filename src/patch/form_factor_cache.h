@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <unordered_map>
 
 #include "patch/form_factor_estimators.h"
 #include "patch/form_factor_table.h"
@@ -30,6 +31,33 @@ struct FormFactorCacheKey {
 /// repainting a scene reuses its table).
 FormFactorCacheKey formFactorCacheKey(const Scene& scene, const PatchMesh& mesh,
                                       const FormFactorSettings& settings, float threshold);
+
+/// One node's row of the master table (MasterFormFactorTable): its hemisphere rays' hits, and its
+/// exact entries for the emitters (key: the emitter node's address, weight: F), computed against
+/// the emitter nodes whose addresses hash to exactSet.
+struct MasterRow {
+  std::vector<HemisphereHit> hits, exact;
+  uint64_t exactSet = 0;
+  bool hasHits = false;   ///< the rays were cast (a row may find nothing)
+  bool hasExact = false;  ///< the exact entries were computed (for exactSet)
+};
+/// The master table's rows by node address (PatchMesh::nodeAddress).
+using MasterRows = std::unordered_map<uint64_t, MasterRow>;
+/// What the master table depends on: the scene's positions, triangles, faces and sidedness, the
+/// base mesh's patch size, the refinement levels (the depth of its keys), rays and seed. Not the
+/// lights, the materials or the threshold: every solve of the geometry shares it.
+FormFactorCacheKey masterTableCacheKey(const Scene& scene, const PatchMesh& baseMesh, int levels,
+                                       int rays, uint64_t seed);
+std::filesystem::path masterTableCacheFile(const std::filesystem::path& dir,
+                                           const FormFactorCacheKey& key);
+struct MasterRowsLoad {
+  std::optional<MasterRows> rows;
+  std::string warning;  ///< why an existing file was not used; empty if none or it was used
+};
+MasterRowsLoad loadMasterRows(const std::filesystem::path& file, const FormFactorCacheKey& key);
+/// Writes the rows atomically; returns a warning if that failed.
+std::string saveMasterRows(const std::filesystem::path& file, const FormFactorCacheKey& key,
+                           const MasterRows& rows);
 
 /// $XDG_CACHE_HOME/radiosity, else $HOME/.cache/radiosity, else "" (no cache).
 std::filesystem::path defaultFormFactorCacheDir();

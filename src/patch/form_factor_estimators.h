@@ -11,12 +11,14 @@
 
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/progress.h>
+#include <radiosity/ray_caster.h>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
-#include <radiosity/ray_caster.h>
 #include "patch/form_factor_table.h"
 #include "patch/patch_mesh.h"
 
@@ -50,9 +52,58 @@ struct ExactColumns {
 };
 /// Points per patch for the exact columns (a 4 x 4 midpoint rule).
 constexpr int kExactColumnPoints = 16;
-/// Computes settings.exactColumns for every patch; nullopt when there are none. Thread-safe.
+/// Where exactColumns() finds rows computed before and puts those it computes: `known(i)` gives
+/// patch i's exact entries (ascending columns) if kept, `computed(i, row)` takes a new one (called
+/// from many threads, each i once), `streamOf(i)` names patch i's random stream.
+struct ExactRowStore {
+  std::function<std::optional<std::vector<FormFactorEntry>>(uint32_t patch)> known;
+  std::function<void(uint32_t patch, const std::vector<FormFactorEntry>& row)> computed;
+  std::function<uint64_t(uint32_t patch)> streamOf;
+};
+/// Computes settings.exactColumns for every patch (those `store` does not know); nullopt when
+/// there are none. Thread-safe.
 std::optional<ExactColumns> exactColumns(const PatchMesh& mesh, const RayCaster& caster,
-                                         const FormFactorSettings& settings);
+                                         const FormFactorSettings& settings,
+                                         const ExactRowStore* store = nullptr);
+
+/// One ray of the hemisphere estimator that found a surface: what it hit, as a key, and its
+/// share of the row (the sample's area weight over the rays cast). Packed to 12 bytes: the
+/// master table keeps one per ray cast.
+#pragma pack(push, 4)
+struct HemisphereHit {
+  uint64_t key = 0;
+  float weight = 0.0f;
+};
+#pragma pack(pop)
+static_assert(sizeof(HemisphereHit) == 12);
+/// The key of a hit (triangle, side, point), or kNoKey for none (the back of a one-sided face).
+using HitKey = std::function<uint64_t(uint32_t triangle, bool frontFace, const Vec3& point)>;
+/// The rays of patch `patch`'s row, in the order cast: stratified points and cosine directions
+/// drawn from the random stream (seed, stream). Thread-safe.
+std::vector<HemisphereHit> hemisphereHits(const PatchMesh& mesh, const RayCaster& caster,
+                                          uint32_t patch, int rays, uint64_t seed, uint64_t stream,
+                                          const HitKey& keyOf);
+/// Sorts a row by column and adds up repeated columns: rows leave the estimators so.
+void mergeByColumn(std::vector<FormFactorEntry>& row);
+/// The row of `patch` from its rays' hits, each key mapped by `patchOf` to the patch it lies on
+/// (kNoPatch: none), with the exact columns `exact` (if any) in place of what the rays find
+/// there.
+template <class PatchOf>
+std::vector<FormFactorEntry> rowFromHits(std::span<const HemisphereHit> hits, uint32_t patch,
+                                         const PatchOf& patchOf, const ExactColumns* exact) {
+  std::vector<FormFactorEntry> row;
+  row.reserve(hits.size());
+  for (const HemisphereHit& h : hits) {
+    const uint32_t j = patchOf(h.key);
+    // What lands on an exact column is left to its exact value.
+    if (j != kNoPatch && j != patch && !(exact && exact->isExact[j])) row.push_back({j, h.weight});
+  }
+  if (exact) row.insert(row.end(), exact->toExact[patch].begin(), exact->toExact[patch].end());
+  mergeByColumn(row);
+  return row;
+}
+/// The row of an exact patch (an emitter): its exact column's entries by reciprocity.
+std::vector<FormFactorEntry> exactPatchRow(const ExactColumns& exact, uint32_t patch);
 
 /// One row by hemisphere ray casting (entries merged by column), with the exact columns
 /// `exact` (if any) in place of what its rays find there. Thread-safe.

@@ -18,9 +18,6 @@
 
 namespace rad {
 
-namespace {
-
-// Sorts a row by column and adds up repeated columns: the rows leave here as fromRows takes them.
 void mergeByColumn(std::vector<FormFactorEntry>& row) {
   std::sort(row.begin(), row.end(), [](auto& a, auto& b) { return a.column < b.column; });
   size_t out = 0;
@@ -32,20 +29,19 @@ void mergeByColumn(std::vector<FormFactorEntry>& row) {
   row.resize(out);
 }
 
-}  // namespace
+std::vector<FormFactorEntry> exactPatchRow(const ExactColumns& exact, uint32_t patch) {
+  std::vector<FormFactorEntry> row = exact.exactRows[patch];
+  row.insert(row.end(), exact.toExact[patch].begin(), exact.toExact[patch].end());
+  mergeByColumn(row);
+  return row;
+}
 
-std::vector<FormFactorEntry> hemisphereRow(const PatchMesh& mesh, const RayCaster& caster,
-                                           uint32_t patch, int rays, uint64_t seed,
-                                           const ExactColumns* exact) {
-  if (exact && exact->isExact[patch]) {
-    std::vector<FormFactorEntry> row = exact->exactRows[patch];
-    row.insert(row.end(), exact->toExact[patch].begin(), exact->toExact[patch].end());
-    mergeByColumn(row);
-    return row;
-  }
+std::vector<HemisphereHit> hemisphereHits(const PatchMesh& mesh, const RayCaster& caster,
+                                          uint32_t patch, int rays, uint64_t seed, uint64_t stream,
+                                          const HitKey& keyOf) {
   const int side = strataPerSide(rays);
   const int n = side * side;
-  Rng rng(seed, patch);
+  Rng rng(seed, stream);
   const std::vector<int> pointStratum = randomPermutation(n, rng);
 
   const Patch& p = mesh.patches()[patch];
@@ -60,19 +56,29 @@ std::vector<FormFactorEntry> hemisphereRow(const PatchMesh& mesh, const RayCaste
   }
   std::vector<Hit> hits(static_cast<size_t>(n));
   caster.intersect(batch, hits);
-  std::vector<FormFactorEntry> row;
-  row.reserve(static_cast<size_t>(n));
+  std::vector<HemisphereHit> out;
+  out.reserve(static_cast<size_t>(n));
   for (int k = 0; k < n; ++k) {
     if (!hits[k].valid()) continue;
     const Vec3 at = batch[k].origin + hits[k].distance * batch[k].direction;
-    const uint32_t j = mesh.locate(hits[k].triangle, hits[k].frontFace, at).patch;
-    // What lands on an exact column is left to its exact value.
-    if (j != kNoPatch && j != patch && !(exact && exact->isExact[j]))
-      row.push_back({j, weight[k] / float(n)});
+    const uint64_t key = keyOf(hits[k].triangle, hits[k].frontFace, at);
+    if (key != kNoKey) out.push_back({key, weight[k] / float(n)});
   }
-  if (exact) row.insert(row.end(), exact->toExact[patch].begin(), exact->toExact[patch].end());
-  mergeByColumn(row);
-  return row;
+  return out;
+}
+
+std::vector<FormFactorEntry> hemisphereRow(const PatchMesh& mesh, const RayCaster& caster,
+                                           uint32_t patch, int rays, uint64_t seed,
+                                           const ExactColumns* exact) {
+  if (exact && exact->isExact[patch]) return exactPatchRow(*exact, patch);
+  // The key of a hit is its patch: the mesh as it is.
+  const std::vector<HemisphereHit> hits = hemisphereHits(
+      mesh, caster, patch, rays, seed, patch, [&](uint32_t triangle, bool front, const Vec3& at) {
+        const uint32_t j = mesh.locate(triangle, front, at).patch;
+        return j == kNoPatch ? kNoKey : uint64_t(j);
+      });
+  return rowFromHits(
+      hits, patch, [](uint64_t key) { return uint32_t(key); }, exact);
 }
 
 FormFactorRows hemisphereFormFactors(const PatchMesh& mesh, const RayCaster& caster,

@@ -17,7 +17,7 @@ namespace rad {
 
 namespace {
 
-constexpr int kMaxDepth = 12;
+constexpr int kMaxDepth = kMaxPatchDepth;
 constexpr float kCreaseCos = 0.8f;  // about 37 degrees: a box's walls stay apart, a sphere smooth
 
 // The corners (indices into Scene::positions) of each quadtree root of a face: the face itself
@@ -233,6 +233,7 @@ void PatchMesh::subdivide(uint32_t index, int depth, const Vec3& normal) {
     child.parent = index;
     child.root = parent.root;
     child.depth = uint8_t(parent.depth + 1);
+    child.path = (parent.path << 2) | uint32_t(k);
     child.quad = parent.quad;
     nodes_.push_back(child);
   }
@@ -298,54 +299,102 @@ int PatchMesh::corners(uint32_t patch, std::array<Vec3, 4>& out) const {
   return node.cornerCount();
 }
 
-PatchMesh::Location PatchMesh::locate(uint32_t triangle, bool frontFace, const Vec3& point) const {
-  Location loc;
-  uint32_t index = triangleRoot_[2 * size_t(triangle) + (frontFace ? 0 : 1)];
-  if (index == kNoNode) return loc;
-  const PatchNode* node = &nodes_[index];
-  const Vec3 n = roots_[node->root].back ? -scene_->faces[roots_[node->root].face].normal
-                                         : scene_->faces[roots_[node->root].face].normal;
-  if (node->quad) {
+namespace {
+
+// One step down a quad's quadtree: the child holding parameter point uv, and uv in it.
+int quadChild(Vec2& uv) {
+  const int bu = uv.x >= 0.5f ? 1 : 0, bv = uv.y >= 0.5f ? 1 : 0;
+  static constexpr int kChild[2][2] = {{0, 3}, {1, 2}};  // [bu][bv], the children's order
+  uv = glm::clamp(2.0f * uv - Vec2(float(bu), float(bv)), Vec2(0.0f), Vec2(1.0f));
+  return kChild[bu][bv];
+}
+
+// One step down a triangle's quadtree: the child holding barycentric point w, and w in it.
+int triangleChild(Vec3& w) {
+  const int k = w.x >= 0.5f ? 0 : w.y >= 0.5f ? 1 : w.z >= 0.5f ? 2 : 3;
+  if (k < 3) {
+    w *= 2.0f;
+    w[k] -= 1.0f;
+  } else {
+    w = Vec3(1.0f) - 2.0f * w;  // the middle child's corners are the opposite midpoints
+  }
+  w = glm::max(w, Vec3(0.0f));
+  w /= std::max(w.x + w.y + w.z, 1e-30f);
+  return k;
+}
+
+}  // namespace
+
+// The point's coordinates in a root: (u, v) of the quad's bilinear map, or barycentrics.
+PatchMesh::RootPoint PatchMesh::rootPoint(uint32_t root, const Vec3& point) const {
+  const PatchNode& node = nodes_[root];
+  RootPoint r;
+  if (node.quad) {
+    const Vec3 n = roots_[node.root].back ? -scene_->faces[roots_[node.root].face].normal
+                                          : scene_->faces[roots_[node.root].face].normal;
     Vec3 t, b;
     orthonormalBasis(n, t, b);
     auto flat = [&](uint32_t v) {
       return Vec2(glm::dot(vertices_[v], t), glm::dot(vertices_[v], b));
     };
-    Vec2 uv =
-        inverseBilinear(Vec2(glm::dot(point, t), glm::dot(point, b)), flat(node->corners[0]),
-                        flat(node->corners[1]), flat(node->corners[2]), flat(node->corners[3]));
-    while (!node->leaf()) {
-      const int bu = uv.x >= 0.5f ? 1 : 0, bv = uv.y >= 0.5f ? 1 : 0;
-      static constexpr int kChild[2][2] = {{0, 3}, {1, 2}};  // [bu][bv]
-      node = &nodes_[node->firstChild + kChild[bu][bv]];
-      uv = glm::clamp(2.0f * uv - Vec2(float(bu), float(bv)), Vec2(0.0f), Vec2(1.0f));
-    }
-    loc.weights = {(1 - uv.x) * (1 - uv.y), uv.x * (1 - uv.y), uv.x * uv.y, (1 - uv.x) * uv.y};
-  } else {
-    const Vec3 a = vertices_[node->corners[0]], e1 = vertices_[node->corners[1]] - a,
-               e2 = vertices_[node->corners[2]] - a, d = point - a;
-    const float d00 = glm::dot(e1, e1), d01 = glm::dot(e1, e2), d11 = glm::dot(e2, e2);
-    const float d20 = glm::dot(d, e1), d21 = glm::dot(d, e2);
-    const float den = d00 * d11 - d01 * d01;
-    Vec3 w(0.0f, (d11 * d20 - d01 * d21) / den, (d00 * d21 - d01 * d20) / den);
-    w = glm::max(Vec3(1.0f - w.y - w.z, w.y, w.z), Vec3(0.0f));
-    w /= std::max(w.x + w.y + w.z, 1e-30f);
-    while (!node->leaf()) {
-      int k = w.x >= 0.5f ? 0 : w.y >= 0.5f ? 1 : w.z >= 0.5f ? 2 : 3;
-      if (k < 3) {
-        w *= 2.0f;
-        w[k] -= 1.0f;
-      } else {
-        w = Vec3(1.0f) - 2.0f * w;  // the middle child's corners are the opposite midpoints
-      }
-      w = glm::max(w, Vec3(0.0f));
-      w /= std::max(w.x + w.y + w.z, 1e-30f);
-      node = &nodes_[node->firstChild + uint32_t(k)];
-    }
-    loc.weights = {w.x, w.y, w.z, 0.0f};
+    r.uv = inverseBilinear(Vec2(glm::dot(point, t), glm::dot(point, b)), flat(node.corners[0]),
+                           flat(node.corners[1]), flat(node.corners[2]), flat(node.corners[3]));
+    return r;
   }
+  const Vec3 a = vertices_[node.corners[0]], e1 = vertices_[node.corners[1]] - a,
+             e2 = vertices_[node.corners[2]] - a, d = point - a;
+  const float d00 = glm::dot(e1, e1), d01 = glm::dot(e1, e2), d11 = glm::dot(e2, e2);
+  const float d20 = glm::dot(d, e1), d21 = glm::dot(d, e2);
+  const float den = d00 * d11 - d01 * d01;
+  Vec3 w(0.0f, (d11 * d20 - d01 * d21) / den, (d00 * d21 - d01 * d20) / den);
+  w = glm::max(Vec3(1.0f - w.y - w.z, w.y, w.z), Vec3(0.0f));
+  r.w = w / std::max(w.x + w.y + w.z, 1e-30f);
+  return r;
+}
+
+PatchMesh::Location PatchMesh::locate(uint32_t triangle, bool frontFace, const Vec3& point) const {
+  Location loc;
+  const uint32_t index = triangleRoot_[2 * size_t(triangle) + (frontFace ? 0 : 1)];
+  if (index == kNoNode) return loc;
+  const PatchNode* node = &nodes_[index];
+  RootPoint r = rootPoint(index, point);
+  while (!node->leaf())
+    node = &nodes_[node->firstChild + uint32_t(node->quad ? quadChild(r.uv) : triangleChild(r.w))];
+  if (node->quad)
+    loc.weights = {(1 - r.uv.x) * (1 - r.uv.y), r.uv.x * (1 - r.uv.y), r.uv.x * r.uv.y,
+                   (1 - r.uv.x) * r.uv.y};
+  else
+    loc.weights = {r.w.x, r.w.y, r.w.z, 0.0f};
   loc.patch = node->patch;
   return loc;
+}
+
+int PatchMesh::finestDepth(uint32_t root, int levels) const {
+  return std::min(kMaxDepth, int(roots_[root].baseDepth) + levels);
+}
+
+uint64_t PatchMesh::finestKey(uint32_t triangle, bool frontFace, const Vec3& point,
+                              int levels) const {
+  const uint32_t index = triangleRoot_[2 * size_t(triangle) + (frontFace ? 0 : 1)];
+  if (index == kNoNode) return kNoKey;
+  const PatchNode& root = nodes_[index];
+  RootPoint r = rootPoint(index, point);
+  uint64_t path = 0;
+  for (int d = finestDepth(root.root, levels); d > 0; --d)
+    path = (path << 2) | uint64_t(root.quad ? quadChild(r.uv) : triangleChild(r.w));
+  return (uint64_t(root.root) << 32) | path;
+}
+
+std::pair<uint64_t, uint64_t> PatchMesh::nodeKeys(uint32_t node, int levels) const {
+  const PatchNode& n = nodes_[node];
+  const int below = 2 * std::max(0, finestDepth(n.root, levels) - int(n.depth));
+  const uint64_t root = uint64_t(n.root) << 32;
+  return {root | (uint64_t(n.path) << below), root | (uint64_t(n.path + 1) << below)};
+}
+
+uint64_t PatchMesh::nodeAddress(uint32_t node) const {
+  const PatchNode& n = nodes_[node];
+  return (uint64_t(n.root) << 32) | (uint64_t(n.depth) << 24) | n.path;
 }
 
 Vec3 PatchMesh::samplePoint(uint32_t patch, Vec2 u, float& weight) const {

@@ -20,6 +20,9 @@ namespace rad {
 
 inline constexpr uint32_t kNoPatch = ~0u;
 inline constexpr uint32_t kNoNode = ~0u;
+inline constexpr uint64_t kNoKey = ~0ull;
+/// The deepest a quadtree goes (2 bits a level of a node's path: 24 bits).
+inline constexpr int kMaxPatchDepth = 12;
 
 struct PatchNode {
   std::array<uint32_t, 4> corners{};  ///< welded vertex ids, CCW about the side's normal
@@ -27,6 +30,7 @@ struct PatchNode {
   uint32_t firstChild = kNoNode;  ///< children are the 4 nodes from here on
   uint32_t root = 0;              ///< the PatchRoot this node descends from
   uint32_t patch = kNoPatch;      ///< leaf: its patch index
+  uint32_t path = 0;  ///< child indices from the root down, 2 bits a level, the root's first
   uint8_t depth = 0;
   bool quad = true;  ///< 4 corners (bilinear) or 3 (corners[3] unused)
 
@@ -93,6 +97,17 @@ class PatchMesh {
   };
   Location locate(uint32_t triangle, bool frontFace, const Vec3& point) const;
 
+  /// Where a surface point lies in the quadtree as deep as refinement may ever go (`levels`
+  /// below each root's base depth, at most kMaxPatchDepth): its root and path there, whether or
+  /// not those nodes exist. A node covers the points whose finest key lies in nodeKeys(node).
+  /// kNoKey on the back of a one-sided face.
+  uint64_t finestKey(uint32_t triangle, bool frontFace, const Vec3& point, int levels) const;
+  /// The finest keys [first, last) that `node` covers.
+  std::pair<uint64_t, uint64_t> nodeKeys(uint32_t node, int levels) const;
+  /// A name for a node that does not depend on the order nodes were made in: its root, depth and
+  /// path (so that tables of rows by node outlive the mesh that made them).
+  uint64_t nodeAddress(uint32_t node) const;
+
   /// A point of the patch for u in [0,1)^2, and its weight (the bilinear map's area density over
   /// its mean; 1 for triangles, whose map is area-preserving): average weight x f estimates the
   /// area mean of f.
@@ -116,6 +131,13 @@ class PatchMesh {
 
  private:
   void addRoot(uint32_t face, bool back, std::span<const uint32_t> corners);
+  /// A point's coordinates in the root node `root`: (u, v) for a quad, barycentrics otherwise.
+  struct RootPoint {
+    Vec2 uv{0.0f};
+    Vec3 w{0.0f};
+  };
+  RootPoint rootPoint(uint32_t root, const Vec3& point) const;
+  int finestDepth(uint32_t root, int levels) const;
   void subdivide(uint32_t node, int depth, const Vec3& normal);
   uint32_t weldedVertex(const Vec3& p, const Vec3& normal);
   /// The welded vertex at p for `normal`, or kNoNode.

@@ -32,23 +32,6 @@ void validatePatchSettings(const PatchRadiositySettings& s) {
 
 }  // namespace
 
-std::shared_ptr<const FormFactorTable> PatchModel::State::keptTable(
-    const FormFactorCacheKey& key) const {
-  std::lock_guard lock(mutex_);
-  for (const auto& [k, table] : kept_)
-    if (k == key) return table;
-  return nullptr;
-}
-
-void PatchModel::State::keep(const FormFactorCacheKey& key,
-                             std::shared_ptr<const FormFactorTable> table) const {
-  std::lock_guard lock(mutex_);
-  for (const auto& [k, t] : kept_)
-    if (k == key) return;
-  kept_.emplace_back(key, std::move(table));
-  if (kept_.size() > kKeptTables) kept_.pop_front();
-}
-
 namespace {
 
 // The base mesh before any ray caster: a mesh too large to hold fails first, as "out of memory".
@@ -63,6 +46,20 @@ std::shared_ptr<PatchModel::State> meshedState(const Scene& scene,
       scene, PatchMeshSettings{settings.patchSize, settings.targetPatches});
   state->meshSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const PatchMesh& mesh = *state->baseMesh;
+  state->basePatchOf.assign(mesh.nodes().size(), kNoPatch);
+  for (uint32_t p = 0; p < mesh.size(); ++p) state->basePatchOf[mesh.patches()[p].node] = p;
+  if (settings.estimator == PatchFormFactorEstimator::Hemisphere) {
+    state->master = std::make_unique<MasterFormFactorTable>(settings.refineLevels,
+                                                            settings.formFactorRays, settings.seed);
+    if (!settings.cacheDir.empty()) {
+      state->masterKey = masterTableCacheKey(scene, mesh, settings.refineLevels,
+                                             settings.formFactorRays, settings.seed);
+      state->masterFile = masterTableCacheFile(settings.cacheDir, state->masterKey);
+      state->masterWarning = state->master->load(state->masterFile, state->masterKey);
+      state->masterLoaded = state->master->rows() > 0;
+    }
+  }
   return state;
 }
 

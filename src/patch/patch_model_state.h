@@ -1,15 +1,15 @@
 #pragma once
 // What a PatchModel shares with its solutions: the scene, the ray caster, the settings, the base
-// mesh, and the form-factor tables of the last patch sets solved.
+// mesh, and the master form-factor table.
 
 #include <radiosity/patch_radiosity.h>
 
-#include <deque>
+#include <filesystem>
 #include <memory>
-#include <mutex>
+#include <string>
+#include <vector>
 
-#include "patch/form_factor_cache.h"
-#include "patch/form_factor_table.h"
+#include "patch/master_form_factor_table.h"
 #include "patch/patch_mesh.h"
 
 namespace rad {
@@ -20,17 +20,15 @@ struct PatchModel::State {
   std::unique_ptr<RayCaster> ownCaster;  ///< when the model was given none
   PatchRadiositySettings settings;
   std::unique_ptr<PatchMesh> baseMesh;
+  std::vector<uint32_t> basePatchOf;  ///< per node of the base mesh: its patch, or kNoPatch
   double meshSeconds = 0.0;
-
-  /// The table of a patch set solved before (keyed as the disk cache keys it), or null.
-  std::shared_ptr<const FormFactorTable> keptTable(const FormFactorCacheKey& key) const;
-  /// Keeps `table` for later solves, the oldest of more than kKeptTables going.
-  void keep(const FormFactorCacheKey& key, std::shared_ptr<const FormFactorTable> table) const;
-
- private:
-  static constexpr size_t kKeptTables = 2;
-  mutable std::mutex mutex_;
-  mutable std::deque<std::pair<FormFactorCacheKey, std::shared_ptr<const FormFactorTable>>> kept_;
+  /// The hemisphere estimator's rows of every node solved so far (and read from the disk
+  /// cache, masterFile, when the model was made).
+  std::unique_ptr<MasterFormFactorTable> master;
+  std::filesystem::path masterFile;
+  FormFactorCacheKey masterKey;
+  bool masterLoaded = false;  ///< rows came from masterFile
+  std::string masterWarning;  ///< why masterFile was not read
 };
 
 }  // namespace rad

@@ -40,9 +40,8 @@ struct PatchRadiosity::Impl {
   FormFactorSettings ff;             ///< the estimator's settings, fixed once per solve
   std::vector<uint8_t> emitterRows;  ///< per patch: it emits (the threshold keeps its row whole)
   void chooseFormFactorSettings();
-  std::shared_ptr<const FormFactorTable> formFactors(const RayCaster& caster,
-                                                     const ProgressCallback& progress);
-  FormFactorTable computeTable(const RayCaster& caster, const ProgressCallback& progress);
+  FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);
+  FormFactorTable assembleTable(FormFactorRows rows) const;
   void solve(const RayCaster& caster, const ProgressCallback& progress);
   void solveLazily(const RayCaster& caster, const PatchSystem& system,
                    const ProgressCallback& progress);
@@ -113,10 +112,9 @@ void PatchRadiosity::Impl::chooseFormFactorSettings() {
   stats.exactColumns = ff.exactColumns.size();
 }
 
-FormFactorTable PatchRadiosity::Impl::computeTable(const RayCaster& caster,
-                                                   const ProgressCallback& progress) {
-  FormFactorRows rows = estimateFormFactors(*mesh, caster, ff, progress);
-  // Pairwise estimates are reciprocal by construction; the others average both directions.
+// Rows to table: pairwise estimates are reciprocal by construction; the others average both
+// directions. Then the threshold.
+FormFactorTable PatchRadiosity::Impl::assembleTable(FormFactorRows rows) const {
   FormFactorTable table = FormFactorTable::fromRows(std::move(rows));
   std::vector<float> area;
   for (const Patch& p : mesh->patches()) area.push_back(p.area);
@@ -125,17 +123,30 @@ FormFactorTable PatchRadiosity::Impl::computeTable(const RayCaster& caster,
   return table;
 }
 
-// The table for this mesh: kept by the model from an earlier solve, else from the disk cache,
-// else computed (and kept, and cached).
-std::shared_ptr<const FormFactorTable> PatchRadiosity::Impl::formFactors(
-    const RayCaster& caster, const ProgressCallback& progress) {
+// The table for this mesh: the hemisphere estimator's from the model's master table (rows kept
+// by node, cast only for nodes never solved before, saved to the disk cache when it grew); the
+// other estimators' from the disk cache of whole tables, else computed.
+FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
+                                                  const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
+  if (model->master) {
+    MasterFormFactorTable::Rows rows =
+        model->master->rowsFor(*mesh, caster, model->basePatchOf, ff, progress);
+    stats.rowsComputed = rows.computed;
+    stats.rowsReused = rows.reused;
+    stats.masterRows = model->master->rows();
+    stats.cacheLoaded = model->masterLoaded;
+    stats.cacheFile = model->masterFile.string();
+    if (!model->masterWarning.empty()) stats.warnings.push_back(model->masterWarning);
+    FormFactorTable table = assembleTable(std::move(rows.rows));
+    stats.formFactorSeconds = secondsSince(start);
+    if (rows.computed > 0 && !model->masterFile.empty())
+      if (std::string w = model->master->save(model->masterFile, model->masterKey); !w.empty())
+        stats.warnings.push_back(w);
+    return table;
+  }
   const FormFactorCacheKey key =
       formFactorCacheKey(*scene, *mesh, ff, settings.formFactorThreshold);
-  if (std::shared_ptr<const FormFactorTable> kept = model->keptTable(key)) {
-    stats.tableReused = true;
-    return kept;
-  }
   std::filesystem::path file;
   if (!settings.cacheDir.empty()) {
     file = formFactorCacheFile(settings.cacheDir, key);
@@ -145,17 +156,15 @@ std::shared_ptr<const FormFactorTable> PatchRadiosity::Impl::formFactors(
     if (load.table) {
       stats.cacheLoaded = true;
       stats.cacheLoadSeconds = secondsSince(start);
-      auto table = std::make_shared<const FormFactorTable>(std::move(*load.table));
-      model->keep(key, table);
-      return table;
+      return std::move(*load.table);
     }
   }
-  auto table = std::make_shared<const FormFactorTable>(computeTable(caster, progress));
+  FormFactorTable table = assembleTable(estimateFormFactors(*mesh, caster, ff, progress));
   stats.formFactorSeconds = secondsSince(start);
+  stats.rowsComputed = mesh->size();
   if (!file.empty())
-    if (std::string w = saveFormFactorTable(file, key, *table); !w.empty())
+    if (std::string w = saveFormFactorTable(file, key, table); !w.empty())
       stats.warnings.push_back(w);
-  model->keep(key, table);
   return table;
 }
 
@@ -247,8 +256,7 @@ void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback
                     settings.estimator == PatchFormFactorEstimator::Hemisphere &&
                     settings.cacheDir.empty();
   if (lazy) return solveLazily(caster, system, progress);
-  const std::shared_ptr<const FormFactorTable> kept = formFactors(caster, progress);
-  const FormFactorTable& table = *kept;
+  const FormFactorTable table = formFactors(caster, progress);
   stats.nonZeros = table.nonZeros();
   stats.tableBytes = table.memoryBytes();
   const ThresholdLoss& loss = table.thresholdLoss();
@@ -354,8 +362,9 @@ PatchRadiosity::PatchRadiosity(std::shared_ptr<const PatchModel::State> model,
   s.iterations = m.solution.iterations;
   s.shots = m.solution.shots;
   s.residuals = m.solution.residuals;
-  s.memoryBytes =
-      m.mesh->memoryBytes() + s.tableBytes + m.solution.radiosity.size() * 4 * sizeof(Color);
+  s.memoryBytes = m.mesh->memoryBytes() + s.tableBytes +
+                  m.solution.radiosity.size() * 4 * sizeof(Color) +
+                  (m.model->master ? m.model->master->memoryBytes() : 0);
 }
 
 std::span<const Light> PatchRadiosity::directLights() const {

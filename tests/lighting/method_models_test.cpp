@@ -7,11 +7,14 @@
 #include <radiosity/surface_radiance.h>
 #include <radiosity/voxel_radiosity.h>
 
+#include <filesystem>
 #include <optional>
 
 namespace rad {
 
 namespace {
+
+namespace fs = std::filesystem;
 
 PatchRadiositySettings noDiskCache() {
   PatchRadiositySettings s;
@@ -45,9 +48,10 @@ TEST(PatchModel, SolveWithOtherLightsEqualsTheSceneWithThem) {
   EXPECT_EQ(here.directLights()[0].position, moved.lights[0].position);
 }
 
-// Move a light, solve, move it back, solve: the third solve finds the first one's patches and
-// reuses their table (no form factors computed), and gives the first answer again.
-TEST(PatchModel, LightMovedBackReusesItsTable) {
+// The master table by node: move a light, solve, move it back, solve. The second solve casts
+// only the rows of the nodes its refinement made; the third casts none (its patches were all
+// solved before) and gives the first answer again.
+TEST(PatchModel, MasterTableCastsOnlyRowsNeverComputed) {
   const Scene scene = loadScene("cornell-spot");
   std::vector<Light> away = scene.lights;
   away[0].position.z += 150.0f;
@@ -55,13 +59,36 @@ TEST(PatchModel, LightMovedBackReusesItsTable) {
   const PatchRadiosity first = model.solve(scene.lights);
   const PatchRadiosity second = model.solve(away);
   const PatchRadiosity third = model.solve(scene.lights);
-  EXPECT_FALSE(first.stats().tableReused);
+  EXPECT_EQ(first.stats().rowsComputed, first.stats().patches);
+  EXPECT_EQ(first.stats().rowsReused, 0u);
   EXPECT_NE(second.stats().patches, first.stats().patches);  // the beam moved: other patches
-  EXPECT_FALSE(second.stats().tableReused);
-  EXPECT_TRUE(third.stats().tableReused);
-  EXPECT_EQ(third.stats().formFactorSeconds, 0.0);
+  EXPECT_GT(second.stats().rowsReused, second.stats().patches / 2);
+  EXPECT_EQ(second.stats().rowsComputed + second.stats().rowsReused, second.stats().patches);
+  EXPECT_EQ(third.stats().rowsComputed, 0u);
+  EXPECT_EQ(third.stats().rowsReused, third.stats().patches);
   EXPECT_LT(third.stats().rays, first.stats().rays / 10);  // only the lights' shadow rays
   expectSameObjects(third, first);
+}
+
+// The disk cache holds the master table, keyed by the geometry and the base meshing, not the
+// lights: a run with the light elsewhere reads the rows of an earlier run and casts only those
+// of its new nodes, and its answer equals a solve without the cache.
+TEST(PatchModel, CacheFromAnotherLightIsReused) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "radiosity_master_cache";
+  fs::remove_all(dir);
+  Scene scene = loadScene("cornell-spot");
+  PatchRadiositySettings cached;
+  cached.cacheDir = dir.string();
+  const PatchRadiosity first(scene, cached);
+  EXPECT_FALSE(first.stats().cacheLoaded);
+  ASSERT_TRUE(fs::exists(first.stats().cacheFile)) << first.stats().cacheFile;
+  scene.lights[0].position.x -= 130.0f;
+  const PatchRadiosity moved(scene, cached);
+  EXPECT_TRUE(moved.stats().cacheLoaded);
+  EXPECT_TRUE(moved.stats().warnings.empty());
+  EXPECT_GT(moved.stats().rowsReused, moved.stats().patches / 2);
+  EXPECT_LT(moved.stats().rowsComputed, moved.stats().patches / 2);
+  expectSameObjects(moved, PatchRadiosity(scene, noDiskCache()));
 }
 
 // A solution outlives the model it came from, and its picture takes the direct light of the
