@@ -12,6 +12,7 @@
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
 #include <radiosity/surface_radiance.h>
+#include <radiosity/surface_solution.h>
 
 #include <cstdint>
 #include <memory>
@@ -156,8 +157,8 @@ class PatchModel {
   std::shared_ptr<State> state_;
 };
 
-/// The solved scene; a SurfaceRadiance that interpolates irradiance smoothly across patches.
-class PatchRadiosity : public SurfaceRadiance {
+/// The solved scene; a SurfaceSolution that interpolates irradiance smoothly across patches.
+class PatchRadiosity : public SurfaceSolution {
  public:
   /// Meshes and solves `scene` under its own lights (PatchModel and solve in one); the scene
   /// must outlive the result. Throws InputError for bad settings and rad::Cancelled if
@@ -177,18 +178,15 @@ class PatchRadiosity : public SurfaceRadiance {
   /// H less the lights' D and what the emitting patches send directly, interpolated as
   /// radiance() interpolates H.
   Color indirectIrradiance(const SurfaceHit& hit) const override;
-  /// Area-weighted means over the front-side patches of each scene object.
-  std::vector<ObjectRadiometry> objectRadiometry() const;
+  const Scene& scene() const override;
+  /// Its patches (a two-sided face's back as its mirrored patches).
+  size_t elementCount() const override;
+  SurfaceElement element(size_t patch) const override;
+  /// The patch mesh: one node per scene object, its patches (a two-sided face's back as its
+  /// mirrored patches, with the back's own light; every triangle one-sided), vertex colours
+  /// Ke + rho H / pi (H as radiance() interpolates it).
+  LitMesh litMesh() const override;
   const PatchRadiosityStats& stats() const;
-  /// One row per patch (the CSV columns of docs/ARCHITECTURE.md), written atomically.
-  void exportCsv(const std::string& path) const;
-  /// A binary PLY point cloud of the patch centroids.
-  void exportPly(const std::string& path) const;
-  /// The lit patch mesh as binary glTF 2.0 (.glb), written atomically: one node per scene
-  /// object (named after it), its patches (a two-sided face's back as its mirrored patches, with
-  /// the back's own light; every triangle one-sided), COLOR_0 = Ke + rho H / pi per vertex
-  /// clamped to [0, 1] (H as radiance() interpolates it), under an unlit white material.
-  void exportGlb(const std::string& path) const;
 
  private:
   friend class PatchModel;

@@ -10,6 +10,7 @@
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
 #include <radiosity/surface_radiance.h>
+#include <radiosity/surface_solution.h>
 
 #include <cstdint>
 #include <memory>
@@ -90,7 +91,7 @@ class VoxelModel {
 };
 
 /// The solved scene; a SurfaceRadiance that interpolates the voxels' irradiance smoothly.
-class VoxelRadiosity : public SurfaceRadiance {
+class VoxelRadiosity : public SurfaceSolution {
  public:
   /// Voxelizes and solves `scene` under its own lights (VoxelModel and solve in one); the scene
   /// must outlive the result. Throws InputError for bad settings and rad::Cancelled if
@@ -108,17 +109,14 @@ class VoxelRadiosity : public SurfaceRadiance {
   Color indirectIrradiance(const SurfaceHit& hit) const override;
   /// The lights it was solved with.
   std::span<const Light> directLights() const override;
-  /// Area-weighted means over the voxel sides of each scene object.
-  std::vector<ObjectRadiometry> objectRadiometry() const;
+  const Scene& scene() const override;
+  /// Its voxel sides.
+  size_t elementCount() const override;
+  SurfaceElement element(size_t side) const override;
+  /// The scene's triangles cut into triangles no longer than a voxel, vertex colours the
+  /// radiance radiance() gives there, one node per object.
+  LitMesh litMesh() const override;
   const VoxelRadiosityStats& stats() const;
-  /// One row per voxel side (the CSV columns of docs/ARCHITECTURE.md), written atomically.
-  void exportCsv(const std::string& path) const;
-  /// A binary PLY point cloud: position, normal, sRGB colour of B / pi, radiosity B.
-  void exportPly(const std::string& path) const;
-  /// The scene's triangles as binary glTF with the solution baked in: each cut into triangles
-  /// no longer than a voxel, vertex colours the radiance radiance() gives there (linear,
-  /// clamped to [0, 1]), one node per object; written atomically.
-  void exportGlb(const std::string& path) const;
 
  private:
   friend class VoxelModel;

@@ -30,16 +30,16 @@ void append(std::string& out, const T& value) {
 
 }  // namespace
 
-std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, std::span<const SurfaceSample> samples) {
+std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, std::span<const SurfaceElement> samples) {
   return meanPerObject(scene, samples.size(), [&](size_t i) { return samples[i]; });
 }
 
 std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, size_t count,
-                                            const std::function<SurfaceSample(size_t)>& sampleAt) {
+                                            const std::function<SurfaceElement(size_t)>& sampleAt) {
   std::vector<ObjectRadiometry> objects(scene.objects.size());
   std::vector<Vec3d> h(objects.size(), Vec3d(0.0)), b(objects.size(), Vec3d(0.0));
   for (size_t i = 0; i < count; ++i) {
-    const SurfaceSample s = sampleAt(i);
+    const SurfaceElement s = sampleAt(i);
     if (s.backSide) continue;
     objects[s.object].area += s.area;
     h[s.object] += double(s.area) * Vec3d(s.irradiance);
@@ -54,12 +54,12 @@ std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, size_t count,
   return objects;
 }
 
-void writeSurfaceSamplesCsv(const std::string& path, const Scene& scene,
-                            std::span<const SurfaceSample> samples) {
+void writeSurfaceElementsCsv(const std::string& path, const Scene& scene,
+                            std::span<const SurfaceElement> samples) {
   std::string text =
       "id,object,area,cx,cy,cz,nx,ny,nz,E_r,E_g,E_b,rho_r,rho_g,rho_b,H_r,H_g,H_b,B_r,B_g,B_b\n";
   for (size_t i = 0; i < samples.size(); ++i) {
-    const SurfaceSample& s = samples[i];
+    const SurfaceElement& s = samples[i];
     const std::string object = s.object < scene.objects.size() ? scene.objects[s.object].name : "";
     text += fmt::format("{},{},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},"
                         "{:g},{:g},{:g},{:g},{:g}\n",
@@ -71,7 +71,7 @@ void writeSurfaceSamplesCsv(const std::string& path, const Scene& scene,
   writeTextAtomically(path, text);
 }
 
-void writeSurfaceSamplesPly(const std::string& path, std::span<const SurfaceSample> samples) {
+void writeSurfaceElementsPly(const std::string& path, std::span<const SurfaceElement> samples) {
   std::string out = fmt::format(
       "ply\nformat binary_little_endian 1.0\ncomment radiosity: one vertex per surface element\n"
       "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
@@ -80,7 +80,7 @@ void writeSurfaceSamplesPly(const std::string& path, std::span<const SurfaceSamp
       "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n"
       "end_header\n",
       samples.size());
-  for (const SurfaceSample& s : samples) {
+  for (const SurfaceElement& s : samples) {
     for (float v : {s.position.x, s.position.y, s.position.z, s.normal.x, s.normal.y, s.normal.z})
       append(out, v);
     for (uint8_t c : toneMapPixel(s.radiosity / glm::pi<float>(), 0.0f)) append(out, c);

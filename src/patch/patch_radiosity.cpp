@@ -13,8 +13,6 @@
 #include <unordered_map>
 
 #include "lighting/direct_lighting.h"
-#include "output/gltf_export.h"
-#include "output/surface_samples.h"
 #include "patch/form_factor_cache.h"
 #include "patch/form_factor_estimators.h"
 #include "patch/light_refinement.h"
@@ -54,7 +52,6 @@ struct PatchRadiosity::Impl {
   /// patch's own (flat); nullopt on the back of a one-sided face.
   std::optional<Color> interpolate(const SurfaceHit& hit, const std::vector<Color>& perPatch,
                                    const std::vector<Color>& perVertex) const;
-  std::vector<SurfaceSample> samples() const;
   LitMesh litMesh() const;
 };
 
@@ -403,37 +400,30 @@ Color PatchRadiosity::indirectIrradiance(const SurfaceHit& hit) const {
   return impl_->interpolate(hit, impl_->indirect, impl_->vertexIndirect).value_or(Color(0.0f));
 }
 
-std::vector<ObjectRadiometry> PatchRadiosity::objectRadiometry() const {
-  return meanPerObject(*impl_->scene, impl_->samples());
-}
-
 const PatchRadiosityStats& PatchRadiosity::stats() const {
   return impl_->stats;
 }
 
-std::vector<SurfaceSample> PatchRadiosity::Impl::samples() const {
-  std::vector<SurfaceSample> out(mesh->size());
-  for (uint32_t p = 0; p < mesh->size(); ++p) {
-    const Patch& patch = mesh->patches()[p];
-    out[p] = {patch.object,
-              patch.area,
-              patch.centroid,
-              patch.normal,
-              solution.emitted[p],
-              scene->materials[patch.material].rho,
-              solution.irradiance[p],
-              solution.radiosity[p],
-              mesh->roots()[mesh->nodeOf(p).root].back};
-  }
-  return out;
+const Scene& PatchRadiosity::scene() const {
+  return *impl_->scene;
 }
 
-void PatchRadiosity::exportCsv(const std::string& path) const {
-  writeSurfaceSamplesCsv(path, *impl_->scene, impl_->samples());
+size_t PatchRadiosity::elementCount() const {
+  return impl_->mesh->size();
 }
 
-void PatchRadiosity::exportPly(const std::string& path) const {
-  writeSurfaceSamplesPly(path, impl_->samples());
+SurfaceElement PatchRadiosity::element(size_t p) const {
+  const Impl& m = *impl_;
+  const Patch& patch = m.mesh->patches()[p];
+  return {patch.object,
+          patch.area,
+          patch.centroid,
+          patch.normal,
+          m.solution.emitted[p],
+          m.scene->materials[patch.material].rho,
+          m.solution.irradiance[p],
+          m.solution.radiosity[p],
+          m.mesh->roots()[m.mesh->nodeOf(uint32_t(p)).root].back};
 }
 
 // The mesh a viewer sees: what radiance() returns, baked into vertex colours. Smooth shading
@@ -442,6 +432,11 @@ void PatchRadiosity::exportPly(const std::string& path) const {
 // gives every patch its own corners. A two-sided face's mirrored back patches are written too,
 // with the back's own light: glTF culls the side a one-sided triangle turns away, so each side
 // shows its own.
+LitMesh PatchRadiosity::litMesh() const {
+  const Impl& m = *impl_;
+  return m.litMesh();
+}
+
 LitMesh PatchRadiosity::Impl::litMesh() const {
   const bool smooth = settings.shading == PatchShading::Smooth;
   std::vector<std::vector<uint32_t>> byObject(scene->objects.size());
@@ -479,10 +474,6 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
         {scene->objects[o].name, firstTriangle, uint32_t(out.indices.size() / 3) - firstTriangle});
   }
   return out;
-}
-
-void PatchRadiosity::exportGlb(const std::string& path) const {
-  writeLitMeshGlb(path, impl_->litMesh());
 }
 
 std::string defaultPatchCacheDir() {

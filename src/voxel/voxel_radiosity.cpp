@@ -8,7 +8,6 @@
 
 #include "core/memory_usage.h"
 #include "output/baked_mesh.h"
-#include "output/surface_samples.h"
 #include "voxel/voxel_irradiance_field.h"
 #include "voxel/voxel_solver.h"
 #include "voxel/voxelizer.h"
@@ -36,8 +35,6 @@ struct VoxelRadiosity::Impl {
   VoxelRadiosityStats stats;
 
   VoxelIrradianceField field() const { return VoxelIrradianceField(grid, solution.irradiance); }
-  SurfaceSample sample(size_t e) const;
-  std::vector<SurfaceSample> samples() const;
 };
 
 namespace {
@@ -180,16 +177,20 @@ Color VoxelRadiosity::indirectIrradiance(const SurfaceHit& hit) const {
   return VoxelIrradianceField(impl_->grid, impl_->indirect).at(hit.point, n);
 }
 
-std::vector<ObjectRadiometry> VoxelRadiosity::objectRadiometry() const {
-  return meanPerObject(*impl_->scene, impl_->grid.entryCount(),
-                       [&](size_t e) { return impl_->sample(e); });
-}
-
 const VoxelRadiosityStats& VoxelRadiosity::stats() const {
   return impl_->stats;
 }
 
-SurfaceSample VoxelRadiosity::Impl::sample(size_t e) const {
+const Scene& VoxelRadiosity::scene() const {
+  return *impl_->scene;
+}
+
+size_t VoxelRadiosity::elementCount() const {
+  return impl_->grid.entryCount();
+}
+
+SurfaceElement VoxelRadiosity::element(size_t e) const {
+  const VoxelGrid& grid = impl_->grid;
   const VoxelSurface& surface = grid.surfaces[grid.surface[e]];
   const VoxelMaterial& m = surface.material;
   return {surface.object,
@@ -198,27 +199,13 @@ SurfaceSample VoxelRadiosity::Impl::sample(size_t e) const {
           grid.unitNormal(e),
           glm::pi<float>() * m.emission,
           m.rho,
-          solution.irradiance[e],
-          solution.radiosity[e],
+          impl_->solution.irradiance[e],
+          impl_->solution.radiosity[e],
           surface.backSide};
 }
 
-std::vector<SurfaceSample> VoxelRadiosity::Impl::samples() const {
-  std::vector<SurfaceSample> out(grid.entryCount());
-  for (size_t e = 0; e < out.size(); ++e) out[e] = sample(e);
-  return out;
-}
-
-void VoxelRadiosity::exportCsv(const std::string& path) const {
-  writeSurfaceSamplesCsv(path, *impl_->scene, impl_->samples());
-}
-
-void VoxelRadiosity::exportPly(const std::string& path) const {
-  writeSurfaceSamplesPly(path, impl_->samples());
-}
-
-void VoxelRadiosity::exportGlb(const std::string& path) const {
-  writeLitMeshGlb(path, bakeSurfaceRadiance(*impl_->scene, *this, impl_->grid.voxelSize));
+LitMesh VoxelRadiosity::litMesh() const {
+  return bakeSurfaceRadiance(*impl_->scene, *this, impl_->grid.voxelSize);
 }
 
 }  // namespace rad

@@ -1,0 +1,69 @@
+#pragma once
+// What every radiosity method's solution offers beyond radiance: its surface elements (patches
+// or voxel sides) and the lit mesh a viewer shows. The per-object statistics and the exporters
+// are written once, against this interface, for every method.
+
+#include <radiosity/object_radiometry.h>
+#include <radiosity/scene.h>
+#include <radiosity/surface_radiance.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rad {
+
+/// One element of a solution: a patch, or a voxel side.
+struct SurfaceElement {
+  uint32_t object = 0;
+  float area = 0.0f;
+  Vec3 position{0.0f};
+  Vec3 normal{0.0f};
+  Color emitted{0.0f};  ///< E = pi Ke, radiosity emitted
+  Color rho{0.0f};
+  Color irradiance{0.0f};  ///< H
+  Color radiosity{0.0f};   ///< B = E + rho H
+  bool backSide = false;   ///< the back of a two-sided face
+};
+
+/// A run of triangles written as one glTF node (and mesh), named e.g. after a scene object.
+struct LitMeshGroup {
+  std::string name;
+  uint32_t firstTriangle = 0;
+  uint32_t triangleCount = 0;
+};
+
+/// A lit triangle mesh: the solved light baked into vertex colours.
+struct LitMesh {
+  std::vector<Vec3> positions;  ///< scene units
+  std::vector<Vec3> normals;    ///< per vertex; normalised on write
+  std::vector<Color> colors;    ///< linear RGB per vertex; clamped to [0, 1] on write
+  /// 3 per triangle, CCW about the side it shows (one-sided: a surface seen from both sides
+  /// has a triangle for each, with that side's light).
+  std::vector<uint32_t> indices;
+  /// Triangle ranges, one node each; empty: a single node "radiosity" with every triangle.
+  std::vector<LitMeshGroup> groups;
+};
+
+class SurfaceSolution : public SurfaceRadiance {
+ public:
+  /// The scene it solves.
+  virtual const Scene& scene() const = 0;
+  /// Its elements, made one at a time (a voxel solution holds millions).
+  virtual size_t elementCount() const = 0;
+  virtual SurfaceElement element(size_t index) const = 0;
+  /// The mesh that shows it: vertex colours the radiance radiance() gives there.
+  virtual LitMesh litMesh() const = 0;
+
+  /// Area-weighted means over the front-side elements of each scene object.
+  std::vector<ObjectRadiometry> objectRadiometry() const;
+  /// One row per element (the CSV columns of docs/ARCHITECTURE.md), written atomically.
+  void exportCsv(const std::string& path) const;
+  /// A binary PLY point cloud: position, normal, sRGB colour of B / pi, radiosity B.
+  void exportPly(const std::string& path) const;
+  /// litMesh() as binary glTF 2.0 (.glb), written atomically: one node per scene object,
+  /// COLOR_0 linear and clamped to [0, 1], under an unlit white material.
+  void exportGlb(const std::string& path) const;
+};
+
+}  // namespace rad
