@@ -27,9 +27,13 @@ run: build
 		-o $(OUT)/cornell_patch.png --stats $(OUT)/cornell_patch.json
 	@$(BUILD)/radiosity render cornell --method voxel --voxels 50000 --sphere-radius 16 \
 		--width 256 --height 256 -o $(OUT)/cornell_voxel.png --stats $(OUT)/cornell_voxel.json
-	@echo "images: $(OUT)/cornell_pathtrace.png, $(OUT)/cornell_patch.png, $(OUT)/cornell_voxel.png"
+	@$(BUILD)/radiosity render cornell-spot --method patch --width 256 --height 256 \
+		-o $(OUT)/cornell_spot_patch.png --stats $(OUT)/cornell_spot_patch.json
+	@echo "images: $(OUT)/cornell_pathtrace.png, $(OUT)/cornell_patch.png, $(OUT)/cornell_voxel.png,"
+	@echo "        $(OUT)/cornell_spot_patch.png (a spot light, patch radiosity)"
 	@echo "        (tone mapped), $(OUT)/cornell_pathtrace.exr (linear radiance)"
-	@echo "stats:  $(OUT)/cornell_pathtrace.json, $(OUT)/cornell_patch.json, $(OUT)/cornell_voxel.json"
+	@echo "stats:  $(OUT)/cornell_pathtrace.json, $(OUT)/cornell_patch.json, $(OUT)/cornell_voxel.json,"
+	@echo "        $(OUT)/cornell_spot_patch.json"
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
