@@ -54,8 +54,9 @@ class FormFactorTable {
   }
   double rowSum(size_t row) const;
 
-  /// Enforces reciprocity A_i F_ij = A_j F_ji, both set from the mean of the two estimates of
-  /// A_i F_ij (an absent entry is an estimate of 0).
+  /// Enforces reciprocity A_i F_ij = A_j F_ji, both set from the two estimates of A_i F_ij (an
+  /// absent entry is an estimate of 0) weighted by their inverse variances (equal rays a patch):
+  /// A_i A_j (F_ij + F_ji) / (A_i + A_j).
   void symmetrize(std::span<const float> area);
 
   /// Drops small entries of a reciprocal table (A_i F_ij = A_j F_ji) without losing light: each
