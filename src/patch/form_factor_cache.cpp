@@ -263,8 +263,8 @@ std::string saveMasterRows(const std::filesystem::path& file, const FormFactorCa
   put(out, uint64_t(rows.size()));
   auto write = [&](const std::vector<HemisphereHit>& hits) {
     for (const HemisphereHit& h : hits) {
-      put(out, h.key);
-      put(out, h.weight);
+      put(out, uint64_t{h.key});  // a copy: the packed field may lie on a 4-byte boundary
+      put(out, float{h.weight});
     }
   };
   for (const auto& [address, row] : rows) {

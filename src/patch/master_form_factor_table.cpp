@@ -93,7 +93,7 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
           return std::nullopt;
         std::vector<FormFactorEntry> row;
         for (const HemisphereHit& e : it->second.exact)
-          row.push_back({emitterPatch.at(e.key), e.weight});
+          row.push_back({emitterPatch.at(uint64_t{e.key}), e.weight});
         std::sort(row.begin(), row.end(), [](auto& a, auto& b) { return a.column < b.column; });
         return row;
       },
