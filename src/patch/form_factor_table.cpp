@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 #include <cassert>
 
 #include "core/memory_usage.h"
@@ -118,7 +119,13 @@ void FormFactorTable::symmetrize(std::span<const float> area) {
       std::atomic_ref<uint64_t>(tOffsets[columns_[e] + 1]).fetch_add(1, std::memory_order_relaxed);
   });
   for (size_t i = 0; i < n; ++i) tOffsets[i + 1] += tOffsets[i];
-  std::vector<FormFactorEntry> transposed(columns_.size());
+  // Left uninitialized: every place is written below, on every thread (zeroing 8 bytes an
+  // entry on one thread first took a third of the symmetrization on room:64).
+  struct Sent {
+    uint32_t column;
+    float value;
+  };
+  const std::unique_ptr<Sent[]> transposed(new Sent[columns_.size()]);
   std::vector<uint64_t> fill(tOffsets.begin(), tOffsets.end() - 1);
   tbb::parallel_for(size_t(0), n, [&](size_t k) {
     for (uint64_t e = offsets_[k]; e < offsets_[k + 1]; ++e) {
@@ -129,9 +136,8 @@ void FormFactorTable::symmetrize(std::span<const float> area) {
   });
   releaseMemory(fill);
   tbb::parallel_for(size_t(0), n, [&](size_t i) {
-    std::sort(
-        transposed.begin() + long(tOffsets[i]), transposed.begin() + long(tOffsets[i + 1]),
-        [](const FormFactorEntry& a, const FormFactorEntry& b) { return a.column < b.column; });
+    std::sort(transposed.get() + tOffsets[i], transposed.get() + tOffsets[i + 1],
+              [](const Sent& a, const Sent& b) { return a.column < b.column; });
   });
   // Row i of the result: the union of row i and transposed row i. A_i F_ij and A_j F_ji estimate
   // one quantity G_ij, by n rays from each side: their variances go as A_i^2 F_ij / n and
