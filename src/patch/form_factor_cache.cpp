@@ -72,7 +72,7 @@ void put(std::string& out, const T& v) {
   out.append(reinterpret_cast<const char*>(&v), sizeof(T));
 }
 template <typename T>
-void putArray(std::string& out, const std::vector<T>& v) {
+void putArray(std::string& out, std::span<const T> v) {
   out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
 }
 template <typename T>

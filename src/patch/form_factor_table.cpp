@@ -9,8 +9,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <memory>
 #include <cassert>
+#include <memory>
 
 #include "core/memory_usage.h"
 
@@ -43,9 +43,9 @@ FormFactorTable FormFactorTable::fromArrays(std::vector<uint64_t> offsets,
                                             std::vector<uint32_t> columns,
                                             std::vector<float> values, const ThresholdLoss& loss) {
   FormFactorTable t;
-  t.offsets_ = std::move(offsets);
-  t.columns_ = std::move(columns);
-  t.values_ = std::move(values);
+  t.offsets_.assign(offsets.begin(), offsets.end());
+  t.columns_.assign(columns.begin(), columns.end());
+  t.values_.assign(values.begin(), values.end());
   t.loss_ = loss;
   return t;
 }
@@ -160,12 +160,12 @@ void FormFactorTable::symmetrize(std::span<const float> area) {
       if (value > 0.0f) emit(c, value);
     }
   };
-  std::vector<uint64_t> offsets(n + 1, 0);
+  FilledLaterVector<uint64_t> offsets(n + 1, 0);
   tbb::parallel_for(size_t(0), n,
                     [&](size_t i) { mergeRow(i, [&](uint32_t, float) { ++offsets[i + 1]; }); });
   for (size_t i = 0; i < n; ++i) offsets[i + 1] += offsets[i];
-  std::vector<uint32_t> columns(offsets.back());
-  std::vector<float> values(offsets.back());
+  FilledLaterVector<uint32_t> columns(offsets.back());
+  FilledLaterVector<float> values(offsets.back());
   tbb::parallel_for(size_t(0), n, [&](size_t i) {
     uint64_t at = offsets[i];
     mergeRow(i, [&](uint32_t c, float v) {

@@ -8,6 +8,8 @@
 #include <span>
 #include <vector>
 
+#include "core/memory_usage.h"
+
 namespace rad {
 
 struct FormFactorEntry {
@@ -72,14 +74,15 @@ class FormFactorTable {
   const ThresholdLoss& thresholdLoss() const { return loss_; }
   size_t memoryBytes() const;
 
-  const std::vector<uint64_t>& offsetArray() const { return offsets_; }
-  const std::vector<uint32_t>& columnArray() const { return columns_; }
-  const std::vector<float>& valueArray() const { return values_; }
+  std::span<const uint64_t> offsetArray() const { return offsets_; }
+  std::span<const uint32_t> columnArray() const { return columns_; }
+  std::span<const float> valueArray() const { return values_; }
 
  private:
-  std::vector<uint64_t> offsets_;
-  std::vector<uint32_t> columns_;
-  std::vector<float> values_;
+  // Filled in parallel after they are sized: not zeroed first (FilledLaterVector).
+  FilledLaterVector<uint64_t> offsets_;
+  FilledLaterVector<uint32_t> columns_;
+  FilledLaterVector<float> values_;
   ThresholdLoss loss_;
 };
 
