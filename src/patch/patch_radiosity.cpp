@@ -6,6 +6,7 @@
 #include <radiosity/ray_caster.h>
 
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/constants.hpp>
@@ -441,9 +442,25 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
   const bool smooth = settings.shading == PatchShading::Smooth;
   std::vector<std::vector<uint32_t>> byObject(scene->objects.size());
   for (uint32_t p = 0; p < mesh->size(); ++p) byObject[mesh->patches()[p].object].push_back(p);
+  // A coarse patch next to finer ones takes their vertices on its edges into its outline, so the
+  // mesh has no T-junctions (no cracks where a viewer rasterizes it).
+  std::unordered_map<uint64_t, uint32_t> midpointOf;
+  auto edgeKey = [](uint32_t a, uint32_t b) {
+    return (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+  };
+  for (const HangingVertex& h : hanging) midpointOf[edgeKey(h.a, h.b)] = h.vertex;
+  // The vertices strictly inside the edge from a to b, in order.
+  auto inside = [&](auto&& self, uint32_t a, uint32_t b, std::vector<uint32_t>& out) -> void {
+    const auto it = midpointOf.find(edgeKey(a, b));
+    if (it == midpointOf.end()) return;
+    self(self, a, it->second, out);
+    out.push_back(it->second);
+    self(self, it->second, b, out);
+  };
 
   LitMesh out;
   std::unordered_map<uint64_t, uint32_t> vertexOf;  // (vertex, material) -> index; per object
+  std::vector<uint32_t> outline, onEdges, index;
   for (uint32_t o = 0; o < byObject.size(); ++o) {
     vertexOf.clear();
     const uint32_t firstTriangle = uint32_t(out.indices.size() / 3);
@@ -451,14 +468,22 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
       const Patch& patch = mesh->patches()[p];
       const PatchNode& node = mesh->nodeOf(p);
       const Material& material = scene->materials[patch.material];
-      std::array<uint32_t, 4> corner{};
-      for (int k = 0; k < node.cornerCount(); ++k) {
-        const uint32_t v = node.corners[k];
-        corner[k] = uint32_t(out.positions.size());
+      const int n = node.cornerCount();
+      outline.clear();
+      onEdges.clear();  // per outline point: a bit for each patch edge it lies on
+      for (int k = 0; k < n; ++k) {
+        outline.push_back(node.corners[k]);
+        onEdges.push_back((1u << k) | (1u << ((k + n - 1) % n)));
+        inside(inside, node.corners[k], node.corners[(k + 1) % n], outline);
+        onEdges.resize(outline.size(), 1u << k);
+      }
+      index.clear();
+      for (const uint32_t v : outline) {
+        index.push_back(uint32_t(out.positions.size()));
         if (smooth) {
           const auto [it, added] =
-              vertexOf.try_emplace((uint64_t(v) << 32) | patch.material, corner[k]);
-          corner[k] = it->second;
+              vertexOf.try_emplace((uint64_t(v) << 32) | patch.material, index.back());
+          index.back() = it->second;
           if (!added) continue;
         }
         const Color h = smooth ? vertexIrradiance[v] : solution.irradiance[p];
@@ -466,9 +491,36 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
         out.normals.push_back(smooth ? mesh->vertexNormals()[v] : patch.normal);
         out.colors.push_back(material.emission + material.rho * h / glm::pi<float>());
       }
-      // Corners are CCW about the side's normal, so the fans keep the front facing out.
-      for (int t = 0; t + 2 < node.cornerCount(); ++t)
-        out.indices.insert(out.indices.end(), {corner[0], corner[t + 1], corner[t + 2]});
+      // The outline is CCW about the side's normal, so fans keep the front facing out. A fan
+      // from a corner whose two edges hold no finer vertices (then no triangle is flat), else
+      // from a vertex at the centre (the corners' mean, as radiance() interpolates it there).
+      size_t apex = outline.size();
+      for (size_t i = 0; i < outline.size() && apex == outline.size(); ++i) {
+        const size_t next = (i + 1) % outline.size(),
+                     prev = (i + outline.size() - 1) % outline.size();
+        const bool corner = std::popcount(onEdges[i]) == 2;
+        if (corner && std::popcount(onEdges[next]) == 2 && std::popcount(onEdges[prev]) == 2)
+          apex = i;
+      }
+      if (apex < outline.size()) {
+        for (size_t t = 1; t + 1 < outline.size(); ++t)
+          out.indices.insert(out.indices.end(), {index[apex], index[(apex + t) % outline.size()],
+                                                 index[(apex + t + 1) % outline.size()]});
+        continue;
+      }
+      const uint32_t centre = uint32_t(out.positions.size());
+      Vec3 position(0.0f), normal(0.0f);
+      Color colour(0.0f);
+      for (int k = 0; k < n; ++k) {
+        position += mesh->vertices()[node.corners[k]] / float(n);
+        normal += mesh->vertexNormals()[node.corners[k]];
+        colour += (smooth ? vertexIrradiance[node.corners[k]] : solution.irradiance[p]) / float(n);
+      }
+      out.positions.push_back(position);
+      out.normals.push_back(smooth ? glm::normalize(normal) : patch.normal);
+      out.colors.push_back(material.emission + material.rho * colour / glm::pi<float>());
+      for (size_t t = 0; t < outline.size(); ++t)
+        out.indices.insert(out.indices.end(), {centre, index[t], index[(t + 1) % outline.size()]});
     }
     out.groups.push_back(
         {scene->objects[o].name, firstTriangle, uint32_t(out.indices.size() / 3) - firstTriangle});

@@ -3,12 +3,13 @@
 // where fine patches meet coarse ones.
 #include <gtest/gtest.h>
 #include <radiosity/patch_radiosity.h>
+#include <radiosity/ray_caster.h>
 
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 
-#include <radiosity/ray_caster.h>
 #include "light_test_scenes.h"
 #include "lighting/direct_lighting.h"
 #include "patch/light_refinement.h"
@@ -134,6 +135,48 @@ TEST(PatchRefinement, SmoothShadingHasNoCracksAtTJunctions) {
   const float peak = smooth.radiance({Vec3(0.0f), Vec3(0, 1, 0), 0, true}).g;
   EXPECT_LT(largestStep(smooth), 2e-3f * peak);
   EXPECT_GT(largestStep(flat), 10.0f * largestStep(smooth));
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+// The lit mesh of a refined floor has no T-junctions: a coarse patch takes its finer neighbours'
+// vertices on its edges into its outline, so every edge inside the floor is shared by two
+// triangles and the edges used once are the floor's outline (length 4 x 4).
+TEST(PatchRefinement, LitMeshHasNoTJunctions) {
+  const Scene scene = test::floorUnderLight(kHalf, downSpot());
+  PatchRadiositySettings s;
+  s.patchSize = 0.25f;
+  s.cacheDir.clear();
+  for (PatchShading shading : {PatchShading::Smooth, PatchShading::Flat}) {
+    s.shading = shading;
+    const PatchRadiosity solution(scene, s);
+    ASSERT_GT(solution.stats().refinedSplits, 0u);
+    const LitMesh mesh = solution.litMesh();
+    // Edges by their end positions (flat shading does not share vertices).
+    std::map<std::pair<std::array<float, 3>, std::array<float, 3>>, int> uses;
+    auto at = [&](uint32_t i) {
+      const Vec3& p = mesh.positions[i];
+      return std::array<float, 3>{p.x, p.y, p.z};
+    };
+    for (size_t t = 0; t < mesh.indices.size(); t += 3)
+      for (int k = 0; k < 3; ++k) {
+        auto a = at(mesh.indices[t + k]), b = at(mesh.indices[t + (k + 1) % 3]);
+        if (b < a) std::swap(a, b);
+        ++uses[{a, b}];
+      }
+    double once = 0.0;
+    for (const auto& [edge, count] : uses) {
+      EXPECT_LE(count, 2);
+      if (count == 1)
+        once += glm::distance(Vec3(edge.first[0], edge.first[1], edge.first[2]),
+                              Vec3(edge.second[0], edge.second[1], edge.second[2]));
+    }
+    EXPECT_NEAR(once, 8.0 * kHalf, 1e-3) << (shading == PatchShading::Smooth ? "smooth" : "flat");
+  }
 }
 
 }  // namespace
