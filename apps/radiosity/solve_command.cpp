@@ -34,17 +34,29 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
+// How the form factors came: rows cast (and kept from before: the master table, its cache), or
+// a whole table read from the cache (the pairwise and exact estimators).
+std::string formFactorsOf(const PatchRadiosityStats& p) {
+  const char* kept = p.cacheLoaded ? "from the cache" : "kept";
+  if (p.rowsComputed == 0 && p.rowsReused > 0)
+    return fmt::format("loaded in {:.2f} s, {} rows {}", p.formFactorSeconds, p.rowsReused, kept);
+  if (p.cacheLoaded && p.rowsComputed == 0)
+    return fmt::format("loaded in {:.2f} s", p.cacheLoadSeconds);
+  const double rays = double(p.rays - p.lightRays);
+  std::string text = fmt::format("{:.2f} s, {:.1f} M rays/s", p.formFactorSeconds,
+                                 rays / std::max(p.formFactorSeconds, 1e-9) * 1e-6);
+  if (p.rowsReused > 0)
+    text += fmt::format(", {} rows cast, {} {}", p.rowsComputed, p.rowsReused, kept);
+  return text;
+}
+
 // The summary line's account of each method's run (`seconds`: the whole command's).
 std::string describeRun(const PatchRadiosityStats& p, double seconds) {
   return fmt::format(
       "{} patches, form factors {} ({} entries, {:.1f} MB, rows sum to {:.3f} on average), {} {} "
       "sweeps, residual {:.2g}, {:.2f} s",
-      p.patches,
-      p.cacheLoaded ? fmt::format("loaded in {:.2f} s", p.cacheLoadSeconds)
-                    : fmt::format("{:.2f} s, {:.1f} M rays/s", p.formFactorSeconds,
-                                  double(p.rays) / std::max(p.formFactorSeconds, 1e-9) * 1e-6),
-      p.nonZeros, double(p.tableBytes) / 1e6, p.rowSumMean, p.iterations, p.solver,
-      p.residuals.empty() ? 0.0 : p.residuals.back(), seconds);
+      p.patches, formFactorsOf(p), p.nonZeros, double(p.tableBytes) / 1e6, p.rowSumMean,
+      p.iterations, p.solver, p.residuals.empty() ? 0.0 : p.residuals.back(), seconds);
 }
 
 std::string describeRun(const VoxelRadiosityStats& v, double seconds) {
