@@ -17,30 +17,15 @@ void addStatsOption(CLI::App& command, std::string& path) {
   command.add_option("--stats", path, "Write the run's numbers to this JSON file");
 }
 
-namespace {
-
-// A check that the option's value is a number above (or, with `orEqual`, at least) zero.
-CLI::Validator signCheck(bool orEqual) {
-  const char* name = orEqual ? "NONNEGATIVE" : "POSITIVE";
-  return CLI::Validator(
-      [orEqual](std::string& input) -> std::string {
+// A check that the option's value is a number at least zero.
+const CLI::Validator& nonNegativeNumber() {
+  static const CLI::Validator check(
+      [](std::string& input) -> std::string {
         double value = 0.0;
         if (!CLI::detail::lexical_cast(input, value)) return "'" + input + "' is not a number";
-        if (orEqual ? value >= 0.0 : value > 0.0) return {};
-        return input + (orEqual ? " is below 0" : " is not greater than 0");
+        return value >= 0.0 ? "" : input + " is below 0";
       },
-      name);
-}
-
-}  // namespace
-
-const CLI::Validator& positiveNumber() {
-  static const CLI::Validator check = signCheck(false);
-  return check;
-}
-
-const CLI::Validator& nonNegativeNumber() {
-  static const CLI::Validator check = signCheck(true);
+      "NONNEGATIVE");
   return check;
 }
 

@@ -21,10 +21,9 @@ void addSceneArgument(CLI::App& command, std::string& scene);
 /// The --stats FILE option of the commands that compute light transport (see writeStatsFile).
 void addStatsOption(CLI::App& command, std::string& path);
 
-/// Checks of a numeric option whose messages say what was expected ("--voxel-size: 0 is not
-/// greater than 0"), where CLI11's PositiveNumber and NonNegativeNumber print their ranges'
-/// bounds (a 309-digit largest double).
-const CLI::Validator& positiveNumber();
+/// A check of a numeric option whose message says what was expected ("--object-points: -1 is
+/// below 0"), where CLI11's NonNegativeNumber prints its range's bound (a 309-digit largest
+/// double). The methods' settings have their declarations' checks (solver_settings.h).
 const CLI::Validator& nonNegativeNumber();
 
 /// Loads the scene, prints its warnings, refuses a scene with nothing that emits (a black

@@ -52,6 +52,7 @@ FormFactorTable FormFactorTable::fromArrays(std::vector<uint64_t> offsets,
 
 RowThresholding thresholdRow(std::vector<FormFactorEntry>& row, float threshold) {
   RowThresholding sums;
+  sums.entries = row.size();
   float largest = 0.0f;
   for (const FormFactorEntry& e : row) {
     sums.total += e.value;
@@ -61,11 +62,30 @@ RowThresholding thresholdRow(std::vector<FormFactorEntry>& row, float threshold)
   std::erase_if(row,
                 [bar](const FormFactorEntry& e) { return e.value <= 0.0f || !(e.value >= bar); });
   for (const FormFactorEntry& e : row) sums.kept += e.value;
+  sums.keptEntries = row.size();
   if (threshold > 0.0f && sums.kept > 0.0 && sums.kept < sums.total) {
     const double scale = sums.total / sums.kept;  // 1 / (1 - the share dropped)
     for (FormFactorEntry& e : row) e.value = float(e.value * scale);
   }
   return sums;
+}
+
+ThresholdLoss lossOf(std::span<const RowThresholding> rows) {
+  ThresholdLoss loss;
+  double total = 0.0, kept = 0.0, entries = 0.0, keptEntries = 0.0;
+  for (const RowThresholding& row : rows) {
+    total += row.total;
+    kept += row.kept;
+    entries += double(row.entries);
+    keptEntries += double(row.keptEntries);
+    if (!(row.total > 0.0)) continue;
+    const double lost = 1.0 - row.kept / row.total;
+    loss.worstRowFraction = std::max(loss.worstRowFraction, lost);
+    if (lost > 0.01) ++loss.rowsOverOnePercent;
+  }
+  loss.entryFraction = entries > 0.0 ? 1.0 - keptEntries / entries : 0.0;
+  loss.sumFraction = total > 0.0 ? 1.0 - kept / total : 0.0;
+  return loss;
 }
 
 void FormFactorTable::applyThreshold(std::span<const float> area, float threshold,
@@ -78,19 +98,7 @@ void FormFactorTable::applyThreshold(std::span<const float> area, float threshol
     for (size_t k = 0; k < columns(j).size(); ++k) sent[j].push_back({columns(j)[k], values(j)[k]});
     sums[j] = thresholdRow(sent[j], keepRows.empty() || !keepRows[j] ? threshold : 0.0f);
   });
-  ThresholdLoss loss;
-  double total = 0.0, kept = 0.0, before = double(nonZeros()), after = 0.0;
-  for (size_t j = 0; j < n; ++j) {
-    total += sums[j].total;
-    kept += sums[j].kept;
-    after += double(sent[j].size());
-    if (!(sums[j].total > 0.0)) continue;
-    const double lost = 1.0 - sums[j].kept / sums[j].total;
-    loss.worstRowFraction = std::max(loss.worstRowFraction, lost);
-    if (lost > 0.01) ++loss.rowsOverOnePercent;
-  }
-  loss.entryFraction = before > 0.0 ? 1.0 - after / before : 0.0;
-  loss.sumFraction = total > 0.0 ? 1.0 - kept / total : 0.0;
+  const ThresholdLoss loss = lossOf(sums);
   // Gathering row i lists, in increasing j, what each patch j sends to i.
   std::vector<std::vector<FormFactorEntry>> gathered(n);
   for (uint32_t j = 0; j < n; ++j) {

@@ -25,10 +25,13 @@ struct ThresholdLoss {
   uint64_t rowsOverOnePercent = 0;  ///< rows that lost more than 1% of their sum
 };
 
-/// The sum of one row's entries before and after a threshold.
+/// One row's sum and entry count before and after a threshold.
 struct RowThresholding {
   double total = 0.0, kept = 0.0;
+  size_t entries = 0, keptEntries = 0;
 };
+/// What a threshold dropped from these rows, together.
+ThresholdLoss lossOf(std::span<const RowThresholding> rows);
 /// Thresholds row i read as where patch i's light goes (F_ij: the share of it that reaches j):
 /// drops the entries below `threshold` but the row's largest, and scales the rest so that the row
 /// keeps its sum, so the light that would have gone through the dropped entries goes to the
@@ -70,7 +73,7 @@ class FormFactorTable {
   void applyThreshold(std::span<const float> area, float threshold,
                       std::span<const uint8_t> keepRows = {});
 
-  /// What applyThreshold and fromRows dropped.
+  /// What applyThreshold dropped.
   const ThresholdLoss& thresholdLoss() const { return loss_; }
   size_t memoryBytes() const;
 

@@ -1,5 +1,5 @@
-// PatchModel: the patch method's half done once per geometry (the base mesh), and the tables it
-// keeps between solves.
+// PatchModel: the patch method's half done once per geometry: the base mesh and the master
+// form-factor table (read from the disk cache when there is one).
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
@@ -29,10 +29,6 @@ void validatePatchSettings(const PatchRadiositySettings& s) {
     fail(fmt::format("max iterations {} must be at least 1", s.maxIterations));
   if (!(s.tolerance >= 0.0)) fail(fmt::format("tolerance {} must not be negative", s.tolerance));
 }
-
-}  // namespace
-
-namespace {
 
 // The base mesh before any ray caster: a mesh too large to hold fails first, as "out of memory".
 std::shared_ptr<PatchModel::State> meshedState(const Scene& scene,

@@ -45,7 +45,7 @@ struct PatchRadiosity::Impl {
   void solveLazily(const RayCaster& caster, const PatchSystem& system,
                    const ProgressCallback& progress);
   void lightPatches(const RayCaster& caster, const ProgressCallback& progress);
-  void noteThresholdLoss(const RowThresholding& row);
+  void recordThresholdLoss(const ThresholdLoss& loss);
   void warnOfThresholdLoss();
   void separateIndirect(const FormFactorRowSource& rows, const PatchSystem& system);
   std::vector<Color> averageAtVertices(const std::vector<Color>& perPatch) const;
@@ -181,11 +181,11 @@ void PatchRadiosity::Impl::lightPatches(const RayCaster& caster, const ProgressC
   stats.lightSeconds = secondsSince(start);
 }
 
-void PatchRadiosity::Impl::noteThresholdLoss(const RowThresholding& row) {
-  if (!(row.total > 0.0)) return;
-  const double lost = 1.0 - row.kept / row.total;
-  stats.droppedWorstRowFraction = std::max(stats.droppedWorstRowFraction, lost);
-  if (lost > 0.01) ++stats.rowsDroppingOverOnePercent;
+void PatchRadiosity::Impl::recordThresholdLoss(const ThresholdLoss& loss) {
+  stats.droppedEntryFraction = loss.entryFraction;
+  stats.droppedSumFraction = loss.sumFraction;
+  stats.droppedWorstRowFraction = loss.worstRowFraction;
+  stats.rowsDroppingOverOnePercent = loss.rowsOverOnePercent;
 }
 
 // The kept entries carry the dropped ones' light (thresholdRow), so energy balances; but light
@@ -209,16 +209,14 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
   const auto start = std::chrono::steady_clock::now();
   const std::optional<ExactColumns> exact = exactColumns(*mesh, caster, ff);
   stats.formFactorSeconds += secondsSince(start);
-  RowThresholding allRows;
+  std::vector<RowThresholding> thresholded;
   auto row = [&](uint32_t i) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<FormFactorEntry> entries =
         hemisphereRow(*mesh, caster, i, ff.rays, ff.seed, exact ? &*exact : nullptr);
     const RowThresholding rowSums =
         thresholdRow(entries, emitterRows[i] ? 0.0f : settings.formFactorThreshold);
-    allRows.total += rowSums.total;
-    allRows.kept += rowSums.kept;
-    noteThresholdLoss(rowSums);
+    thresholded.push_back(rowSums);
     for (const FormFactorEntry& e : entries) {
       columns[i].push_back(e.column);
       values[i].push_back(e.value);
@@ -241,7 +239,7 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
       solveProgressive(rowOf, system, {settings.tolerance, settings.maxIterations}, progress);
   separateIndirect(rowOf, system);
   recordRowSums(sums, stats);
-  if (allRows.total > 0.0) stats.droppedSumFraction = 1.0 - allRows.kept / allRows.total;
+  recordThresholdLoss(lossOf(thresholded));
   solution.seconds -= stats.formFactorSeconds;  // the solver's time, without the rows' rays
 }
 
@@ -257,11 +255,7 @@ void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback
   const FormFactorTable table = formFactors(caster, progress);
   stats.nonZeros = table.nonZeros();
   stats.tableBytes = table.memoryBytes();
-  const ThresholdLoss& loss = table.thresholdLoss();
-  stats.droppedEntryFraction = loss.entryFraction;
-  stats.droppedSumFraction = loss.sumFraction;
-  stats.droppedWorstRowFraction = loss.worstRowFraction;
-  stats.rowsDroppingOverOnePercent = loss.rowsOverOnePercent;
+  recordThresholdLoss(table.thresholdLoss());
   std::vector<double> sums(table.rows());
   for (size_t i = 0; i < sums.size(); ++i) sums[i] = table.rowSum(i);
   recordRowSums(sums, stats);
@@ -434,8 +428,7 @@ SurfaceElement PatchRadiosity::element(size_t p) const {
 // with the back's own light: glTF culls the side a one-sided triangle turns away, so each side
 // shows its own.
 LitMesh PatchRadiosity::litMesh() const {
-  const Impl& m = *impl_;
-  return m.litMesh();
+  return impl_->litMesh();
 }
 
 LitMesh PatchRadiosity::Impl::litMesh() const {
