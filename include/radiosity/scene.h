@@ -64,6 +64,8 @@ struct Light {
   Color intensityToward(const Vec3& toward) const;
   /// Total radiant power (W) the light emits in all directions.
   Color power() const;
+  /// Every field equal (the same IES profile object).
+  bool operator==(const Light&) const = default;
 };
 
 /// A pinhole camera; fovDeg is the vertical field of view.

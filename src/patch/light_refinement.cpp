@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <unordered_map>
 
-#include "patch/patch_light_injection.h"
 #include "render/progress_ticker.h"
 
 namespace rad {
@@ -31,55 +30,111 @@ std::vector<std::pair<uint32_t, uint32_t>> neighbourPairs(const PatchMesh& mesh)
 
 }  // namespace
 
+std::vector<uint8_t> PatchLightCache::update(std::span<const Light> lights) {
+  std::vector<uint8_t> changed(lights.size(), 1);
+  if (lights.size() != lights_.size()) {
+    byLight_.assign(lights.size(), {});
+  } else {
+    for (size_t l = 0; l < lights.size(); ++l) {
+      changed[l] = !(lights[l] == lights_[l]);
+      if (changed[l]) byLight_[l].clear();
+    }
+  }
+  lights_.assign(lights.begin(), lights.end());
+  return changed;
+}
+
+const PatchLight* PatchLightCache::find(size_t light, uint64_t address) const {
+  const auto it = byLight_[light].find(address);
+  return it == byLight_[light].end() ? nullptr : &it->second;
+}
+
+void PatchLightCache::insert(size_t light, uint64_t address, const PatchLight& value) {
+  byLight_[light][address] = value;
+}
+
+namespace {
+
+// Every light's value on every patch, from the cache or evaluated now (in parallel) and cached.
+std::vector<PatchLight> lightPatches(const PatchMesh& mesh, const DirectLighting& direct,
+                                     int samples, PatchLightCache& cache) {
+  const std::span<const Light> lights = direct.lights();
+  std::vector<uint64_t> address(mesh.size());
+  std::vector<std::pair<uint32_t, uint32_t>> todo;  // (patch, light)
+  for (uint32_t p = 0; p < mesh.size(); ++p) {
+    address[p] = mesh.nodeAddress(mesh.patches()[p].node);
+    for (uint32_t l = 0; l < lights.size(); ++l)
+      if (!cache.find(l, address[p])) todo.emplace_back(p, l);
+  }
+  std::vector<PatchLight> fresh(todo.size());
+  tbb::parallel_for(size_t(0), todo.size(), [&](size_t i) {
+    fresh[i] = lightOnPatch(mesh, todo[i].first, direct, lights[todo[i].second], samples);
+  });
+  for (size_t i = 0; i < todo.size(); ++i)
+    cache.insert(todo[i].second, address[todo[i].first], fresh[i]);
+  std::vector<PatchLight> total(mesh.size());
+  for (uint32_t p = 0; p < mesh.size(); ++p)
+    for (uint32_t l = 0; l < lights.size(); ++l) total[p] += *cache.find(l, address[p]);
+  return total;
+}
+
+// The patches to split: crossed by an edge of some light's light, or differing too much from a
+// neighbour, and not yet at the finest level.
+std::vector<uint32_t> patchesToSplit(const PatchMesh& mesh, const std::vector<PatchLight>& light,
+                                     const LightRefinementSettings& settings) {
+  std::vector<uint8_t> split(mesh.size(), 0);
+  for (uint32_t p = 0; p < mesh.size(); ++p) split[p] = light[p].edgeInside;
+  float brightest = 0.0f;
+  for (uint32_t p = 0; p < mesh.size(); ++p)
+    brightest = std::max(brightest, luminance(light[p].direct));
+  for (const auto& [a, b] : neighbourPairs(mesh)) {
+    const float da = luminance(light[a].direct), db = luminance(light[b].direct);
+    const float larger = std::max(da, db);
+    // Below a thousandth of the brightest patch, differences are not worth patches.
+    if (larger > 1e-3f * brightest && std::abs(da - db) > settings.threshold * larger)
+      split[a] = split[b] = 1;
+  }
+  std::vector<uint32_t> chosen;
+  for (uint32_t p = 0; p < mesh.size(); ++p) {
+    const PatchNode& node = mesh.nodeOf(p);
+    if (split[p] && node.depth < mesh.roots()[node.root].baseDepth + settings.levels)
+      chosen.push_back(p);
+  }
+  return chosen;
+}
+
+}  // namespace
+
 LightRefinement refineForLights(PatchMesh& mesh, const DirectLighting& direct,
-                                const LightRefinementSettings& settings,
+                                const LightRefinementSettings& settings, PatchLightCache& cache,
                                 const ProgressCallback& progress) {
   LightRefinement out;
   out.basePatches = mesh.size();
   if (!direct.hasLights()) return out;
-  std::unordered_map<uint32_t, PatchLight> byNode;  // leaves already evaluated, by node id
   ProgressTicker ticker(progress, size_t(settings.levels) + 1);
   for (;;) {
-    std::vector<uint32_t> todo;
-    for (uint32_t p = 0; p < mesh.size(); ++p)
-      if (!byNode.contains(mesh.patches()[p].node)) todo.push_back(p);
-    std::vector<PatchLight> fresh(todo.size());
-    tbb::parallel_for(size_t(0), todo.size(), [&](size_t i) {
-      fresh[i] = lightOnPatch(mesh, todo[i], direct, settings.samples);
-    });
-    for (size_t i = 0; i < todo.size(); ++i) byNode[mesh.patches()[todo[i]].node] = fresh[i];
+    const std::vector<PatchLight> light = lightPatches(mesh, direct, settings.samples, cache);
     ticker.tick();
     ticker.throwIfCancelled();
-
-    auto at = [&](uint32_t p) -> const PatchLight& { return byNode.at(mesh.patches()[p].node); };
-    std::vector<uint8_t> split(mesh.size(), 0);
-    for (uint32_t p = 0; p < mesh.size(); ++p) split[p] = at(p).edgeInside;
-    float brightest = 0.0f;
-    for (uint32_t p = 0; p < mesh.size(); ++p)
-      brightest = std::max(brightest, luminance(at(p).direct));
-    for (const auto& [a, b] : neighbourPairs(mesh)) {
-      const float da = luminance(at(a).direct), db = luminance(at(b).direct);
-      const float larger = std::max(da, db);
-      // Below a thousandth of the brightest patch, differences are not worth patches.
-      if (larger > 1e-3f * brightest && std::abs(da - db) > settings.threshold * larger)
-        split[a] = split[b] = 1;
-    }
-    std::vector<uint32_t> chosen;
-    for (uint32_t p = 0; p < mesh.size(); ++p) {
-      const PatchNode& node = mesh.nodeOf(p);
-      if (split[p] && node.depth < mesh.roots()[node.root].baseDepth + settings.levels)
-        chosen.push_back(p);
-    }
+    const std::vector<uint32_t> chosen = patchesToSplit(mesh, light, settings);
     const size_t before = mesh.size();
     if (!chosen.empty()) mesh.refine(chosen);
-    if (mesh.size() == before) break;
+    if (mesh.size() == before) {
+      out.direct.resize(mesh.size());
+      for (uint32_t p = 0; p < mesh.size(); ++p) out.direct[p] = light[p].direct;
+      return out;
+    }
     out.split += chosen.size();
     ++out.rounds;
   }
-  out.direct.resize(mesh.size());
-  for (uint32_t p = 0; p < mesh.size(); ++p)
-    out.direct[p] = byNode.at(mesh.patches()[p].node).direct;
-  return out;
+}
+
+LightRefinement refineForLights(PatchMesh& mesh, const DirectLighting& direct,
+                                const LightRefinementSettings& settings,
+                                const ProgressCallback& progress) {
+  PatchLightCache cache;
+  cache.update(direct.lights());
+  return refineForLights(mesh, direct, settings, cache, progress);
 }
 
 }  // namespace rad

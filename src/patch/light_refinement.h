@@ -11,9 +11,12 @@
 
 #include <radiosity/progress.h>
 
+#include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "lighting/direct_lighting.h"
+#include "patch/patch_light_injection.h"
 #include "patch/patch_mesh.h"
 
 namespace rad {
@@ -31,9 +34,33 @@ struct LightRefinement {
   int rounds = 0;             ///< rounds that split something
 };
 
-/// Refines `mesh` for the scene's analytic lights and returns their direct light on each patch
-/// of the result. With no lights or `levels` 0 the mesh stays as it is. Throws rad::Cancelled if
-/// `progress` returns false.
+/// What each analytic light puts on each quadtree node evaluated so far, by node address
+/// (PatchMesh::nodeAddress, the same in every mesh refined from one base mesh): what lets the
+/// patches be lit again for moved lights by evaluating only the lights that moved.
+class PatchLightCache {
+ public:
+  /// Keeps what it holds of the lights equal to `lights` (by position in the list), forgets the
+  /// rest, and returns per light whether it changed (all, when the count did).
+  std::vector<uint8_t> update(std::span<const Light> lights);
+  /// What light `light` puts on the node at `address`, if evaluated.
+  const PatchLight* find(size_t light, uint64_t address) const;
+  void insert(size_t light, uint64_t address, const PatchLight& value);
+  size_t lights() const { return byLight_.size(); }
+
+ private:
+  std::vector<Light> lights_;
+  std::vector<std::unordered_map<uint64_t, PatchLight>> byLight_;
+};
+
+/// Refines `mesh` for the analytic lights of `direct` and returns their direct light on each
+/// patch of the result (the sum of each light's lightOnPatch, in their order). With no lights or
+/// `levels` 0 the mesh stays as it is. The lights' values on nodes come from `cache` where it
+/// has them (it must have been updated with the same lights), and are added to it. Throws
+/// rad::Cancelled if `progress` returns false.
+LightRefinement refineForLights(PatchMesh& mesh, const DirectLighting& direct,
+                                const LightRefinementSettings& settings, PatchLightCache& cache,
+                                const ProgressCallback& progress = {});
+/// The same with a cache of its own.
 LightRefinement refineForLights(PatchMesh& mesh, const DirectLighting& direct,
                                 const LightRefinementSettings& settings,
                                 const ProgressCallback& progress = {});
