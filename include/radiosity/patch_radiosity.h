@@ -154,6 +154,7 @@ class PatchModel {
   struct State;
 
  private:
+  friend class Relighter;
   std::shared_ptr<State> state_;
 };
 
@@ -190,9 +191,11 @@ class PatchRadiosity : public SurfaceSolution {
 
  private:
   friend class PatchModel;
+  friend class Relighter;
   PatchRadiosity(std::shared_ptr<const PatchModel::State> model, std::span<const Light> lights,
                  const ProgressCallback& progress);
   struct Impl;
+  explicit PatchRadiosity(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
 

@@ -66,4 +66,11 @@ class SurfaceSolution : public SurfaceRadiance {
   void exportGlb(const std::string& path) const;
 };
 
+/// The largest difference of two solutions' element radiosity (any channel), relative to the
+/// area-mean radiosity of `reference` (over its channels): how far `solution` is from it, as
+/// relighting is judged against a fresh solve. Both must have the same elements in the same
+/// order; throws std::invalid_argument when their counts differ.
+double largestRadiosityDifference(const SurfaceSolution& solution,
+                                  const SurfaceSolution& reference);
+
 }  // namespace rad

@@ -1,5 +1,9 @@
 // The statistics and exporters every solution shares, through the SurfaceSolution interface.
+#include <fmt/format.h>
 #include <radiosity/surface_solution.h>
+
+#include <algorithm>
+#include <stdexcept>
 
 #include "output/gltf_export.h"
 #include "output/surface_samples.h"
@@ -30,6 +34,23 @@ void SurfaceSolution::exportPly(const std::string& path) const {
 
 void SurfaceSolution::exportGlb(const std::string& path) const {
   writeLitMeshGlb(path, litMesh());
+}
+
+double largestRadiosityDifference(const SurfaceSolution& solution,
+                                  const SurfaceSolution& reference) {
+  const size_t n = reference.elementCount();
+  if (solution.elementCount() != n)
+    throw std::invalid_argument(fmt::format("solutions of {} and {} elements cannot be compared",
+                                            solution.elementCount(), n));
+  double mean = 0.0, area = 0.0, largest = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const SurfaceElement e = reference.element(i);
+    mean += e.area * (double(e.radiosity.r) + e.radiosity.g + e.radiosity.b) / 3.0;
+    area += e.area;
+    largest = std::max(largest, double(maxComponent(glm::abs(solution.element(i).radiosity -
+                                                             e.radiosity))));
+  }
+  return mean > 0.0 ? largest * area / mean : largest;
 }
 
 }  // namespace rad

@@ -19,7 +19,8 @@ bool mayReach(const Light& light, const Vec3& centre, const Vec3& normal, float 
   if (light.type != LightType::Spot) return true;
   const float distance = glm::length(v);
   if (!(distance > radius)) return true;
-  const float fromAxis = std::acos(std::clamp(glm::dot(v / distance, light.direction), -1.0f, 1.0f));
+  const float fromAxis =
+      std::acos(std::clamp(glm::dot(v / distance, light.direction), -1.0f, 1.0f));
   const float seen = std::asin(radius / distance);
   return fromAxis - seen < glm::radians(light.outerAngleDeg) * 1.0001f;
 }

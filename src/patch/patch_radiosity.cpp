@@ -19,58 +19,16 @@
 #include "patch/light_refinement.h"
 #include "patch/patch_mesh.h"
 #include "patch/patch_model_state.h"
+#include "patch/patch_radiosity_impl.h"
 #include "patch/patch_solvers.h"
 
 namespace rad {
 
-struct PatchRadiosity::Impl {
-  std::shared_ptr<const PatchModel::State> model;
-  const Scene* scene = nullptr;
-  PatchRadiositySettings settings;
-  std::vector<Light> lights;        ///< those it is solved with
-  std::unique_ptr<PatchMesh> mesh;  ///< the model's base mesh, refined for the lights
-  PatchSolution solution;
-  std::vector<Color> vertexIrradiance;
-  std::vector<Color> indirect, vertexIndirect;  ///< H less the direct light (patch, vertex)
-  std::vector<HangingVertex> hanging;           ///< of the refined mesh
-  PatchRadiosityStats stats;
-  std::vector<Color> lightDirect;  ///< D per patch (empty: no lights)
-
-  FormFactorSettings ff;             ///< the estimator's settings, fixed once per solve
-  std::vector<uint8_t> emitterRows;  ///< per patch: it emits (the threshold keeps its row whole)
-  void chooseFormFactorSettings();
-  FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);
-  FormFactorTable assembleTable(FormFactorRows rows) const;
-  void solve(const RayCaster& caster, const ProgressCallback& progress);
-  void solveLazily(const RayCaster& caster, const PatchSystem& system,
-                   const ProgressCallback& progress);
-  void lightPatches(const RayCaster& caster, const ProgressCallback& progress);
-  void recordThresholdLoss(const ThresholdLoss& loss);
-  void warnOfThresholdLoss();
-  void separateIndirect(const FormFactorRowSource& rows, const PatchSystem& system);
-  std::vector<Color> averageAtVertices(const std::vector<Color>& perPatch) const;
-  /// A per-patch quantity at a hit: interpolated from the vertex averages (smooth) or the
-  /// patch's own (flat); nullopt on the back of a one-sided face.
-  std::optional<Color> interpolate(const SurfaceHit& hit, const std::vector<Color>& perPatch,
-                                   const std::vector<Color>& perVertex) const;
-  LitMesh litMesh() const;
-};
 
 namespace {
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-PatchSystem systemOf(const Scene& scene, const PatchMesh& mesh) {
-  PatchSystem s;
-  for (const Patch& p : mesh.patches()) {
-    const Material& m = scene.materials[p.material];
-    s.emitted.push_back(glm::pi<float>() * m.emission);
-    s.rho.push_back(m.rho);
-    s.area.push_back(p.area);
-  }
-  return s;
 }
 
 void recordRowSums(const std::vector<double>& sums, PatchRadiosityStats& stats) {
@@ -87,6 +45,18 @@ void recordRowSums(const std::vector<double>& sums, PatchRadiosityStats& stats) 
 constexpr double kExactColumnPairs = 2e6, kExactPairsPerSecond = 1e6;
 
 }  // namespace
+
+PatchSystem systemOf(const Scene& scene, const PatchMesh& mesh) {
+  PatchSystem s;
+  for (const Patch& p : mesh.patches()) {
+    const Material& m = scene.materials[p.material];
+    s.emitted.push_back(glm::pi<float>() * m.emission);
+    s.rho.push_back(m.rho);
+    s.area.push_back(p.area);
+  }
+  return s;
+}
+
 
 void PatchRadiosity::Impl::chooseFormFactorSettings() {
   ff = {settings.estimator, settings.formFactorRays, settings.seed, {}};
@@ -138,7 +108,7 @@ FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
     if (!model->masterWarning.empty()) stats.warnings.push_back(model->masterWarning);
     FormFactorTable table = assembleTable(std::move(rows.rows));
     stats.formFactorSeconds = secondsSince(start);
-    if (rows.computed > 0 && !model->masterFile.empty())
+    if (saveMaster && rows.computed > 0 && !model->masterFile.empty())
       if (std::string w = model->master->save(model->masterFile, model->masterKey); !w.empty())
         stats.warnings.push_back(w);
     return table;
@@ -167,12 +137,13 @@ FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
 }
 
 // The analytic lights' direct light on the patches, refining the mesh where it changes fast.
-void PatchRadiosity::Impl::lightPatches(const RayCaster& caster, const ProgressCallback& progress) {
+void PatchRadiosity::Impl::lightPatches(const RayCaster& caster, PatchLightCache& cache,
+                                        const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   const uint64_t raysBefore = caster.raysCast();
   LightRefinement refined = refineForLights(
       *mesh, DirectLighting(*scene, caster, lights),
-      {settings.refineLevels, settings.refineThreshold, settings.lightSamples}, progress);
+      {settings.refineLevels, settings.refineThreshold, settings.lightSamples}, cache, progress);
   lightDirect = std::move(refined.direct);
   stats.basePatches = refined.basePatches;
   stats.refinedSplits = refined.split;
@@ -250,9 +221,9 @@ void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback
   chooseFormFactorSettings();
   const bool lazy = settings.solver == PatchSolverKind::Progressive &&
                     settings.estimator == PatchFormFactorEstimator::Hemisphere &&
-                    settings.cacheDir.empty();
+                    settings.cacheDir.empty() && !keepTable;
   if (lazy) return solveLazily(caster, system, progress);
-  const FormFactorTable table = formFactors(caster, progress);
+  FormFactorTable table = formFactors(caster, progress);
   stats.nonZeros = table.nonZeros();
   stats.tableBytes = table.memoryBytes();
   recordThresholdLoss(table.thresholdLoss());
@@ -279,6 +250,7 @@ void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback
         return FormFactorRowView{table.columns(i), table.values(i)};
       },
       system);
+  if (keepTable) this->table = std::move(table);
 }
 
 // What bounced at least once: H less D and less what the emitters send directly, sum over
@@ -325,38 +297,56 @@ PatchRadiosity::PatchRadiosity(const Scene& scene, const PatchRadiositySettings&
                                const ProgressCallback& progress)
     : PatchRadiosity(PatchModel(scene, settings).solve(scene.lights, progress)) {}
 
+PatchRadiosity::Impl::Impl(std::shared_ptr<const PatchModel::State> m,
+                           std::span<const Light> l)
+    : model(std::move(m)),
+      scene(model->scene),
+      settings(model->settings),
+      lights(l.begin(), l.end()),
+      mesh(std::make_unique<PatchMesh>(*model->baseMesh)) {
+  stats.meshSeconds = model->meshSeconds;
+}
+
+void PatchRadiosity::Impl::build(PatchLightCache& cache, const ProgressCallback& progress) {
+  const RayCaster& caster = *model->caster;
+  const uint64_t raysBefore = caster.raysCast();
+  cache.update(lights);
+  lightPatches(caster, cache, progress);
+  solve(caster, progress);
+  warnOfThresholdLoss();
+  shadeVertices();
+  recordMesh();
+  stats.solveSeconds = solution.seconds;
+  stats.rays = caster.raysCast() - raysBefore;
+  stats.solver = choiceName(kPatchSolverNames, settings.solver);
+  stats.iterations = solution.iterations;
+  stats.shots = solution.shots;
+  stats.residuals = solution.residuals;
+}
+
+void PatchRadiosity::Impl::shadeVertices() {
+  hanging = mesh->hangingVertices();
+  vertexIrradiance = averageAtVertices(solution.irradiance);
+  vertexIndirect = averageAtVertices(indirect);
+}
+
+void PatchRadiosity::Impl::recordMesh() {
+  stats.patches = mesh->size();
+  stats.nodes = mesh->nodes().size();
+  stats.vertices = mesh->vertices().size();
+  stats.patchSize = mesh->patchSize();
+  stats.memoryBytes = mesh->memoryBytes() + stats.tableBytes +
+                      solution.radiosity.size() * 4 * sizeof(Color) +
+                      (model->master ? model->master->memoryBytes() : 0);
+}
+
+PatchRadiosity::PatchRadiosity(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
 PatchRadiosity::PatchRadiosity(std::shared_ptr<const PatchModel::State> model,
                                std::span<const Light> lights, const ProgressCallback& progress)
-    : impl_(std::make_unique<Impl>()) {
-  Impl& m = *impl_;
-  m.model = std::move(model);
-  m.scene = m.model->scene;
-  m.settings = m.model->settings;
-  m.lights.assign(lights.begin(), lights.end());
-  m.mesh = std::make_unique<PatchMesh>(*m.model->baseMesh);
-  m.stats.meshSeconds = m.model->meshSeconds;
-  const RayCaster& caster = *m.model->caster;
-  const uint64_t raysBefore = caster.raysCast();
-  m.lightPatches(caster, progress);
-  m.solve(caster, progress);
-  m.warnOfThresholdLoss();
-  m.hanging = m.mesh->hangingVertices();
-  m.vertexIrradiance = m.averageAtVertices(m.solution.irradiance);
-  m.vertexIndirect = m.averageAtVertices(m.indirect);
-  PatchRadiosityStats& s = m.stats;
-  s.solveSeconds = m.solution.seconds;
-  s.patches = m.mesh->size();
-  s.nodes = m.mesh->nodes().size();
-  s.vertices = m.mesh->vertices().size();
-  s.patchSize = m.mesh->patchSize();
-  s.rays = caster.raysCast() - raysBefore;
-  s.solver = choiceName(kPatchSolverNames, m.settings.solver);
-  s.iterations = m.solution.iterations;
-  s.shots = m.solution.shots;
-  s.residuals = m.solution.residuals;
-  s.memoryBytes = m.mesh->memoryBytes() + s.tableBytes +
-                  m.solution.radiosity.size() * 4 * sizeof(Color) +
-                  (m.model->master ? m.model->master->memoryBytes() : 0);
+    : impl_(std::make_unique<Impl>(std::move(model), lights)) {
+  PatchLightCache cache;
+  impl_->build(cache, progress);
 }
 
 std::span<const Light> PatchRadiosity::directLights() const {

@@ -68,6 +68,29 @@ PatchSolution solveProgressive(const FormFactorRowSource& rows, const PatchSyste
                                const PatchSolverControl& control,
                                const ProgressCallback& progress = {});
 
+/// A progressive solve part way: B, H and the unshot radiosity U, where what has been shot is
+/// exact, B = S + rho F (B - U) and H = D + F (B - U), and U is what is left to bounce.
+struct ShootingState {
+  std::vector<Color> radiosity, irradiance, unshot;
+};
+/// Shoots the patch with the most unshot power until the unshot power, sum_i A_i |U_i|, is below
+/// control.tolerance times `norm` (or after control.maxIterations x patches shots); records the
+/// shots and the relative unshot power per patches-many shots in `record`. Progressive refinement
+/// warm-started from any state that keeps the equations above, which is what relighting shoots
+/// a change of the light from.
+void shootUnshot(const FormFactorRowSource& rows, const PatchSystem& system, ShootingState& state,
+                 double norm, const PatchSolverControl& control, PatchSolution& record,
+                 const ProgressCallback& progress = {});
+/// The same bounced sweep by sweep: every patch shoots its unshot radiosity at once (a Jacobi
+/// iteration of what is left; parallel, and no ordering to keep), until the unshot power is
+/// below control.tolerance times `norm` or after control.maxIterations sweeps.
+void shootUnshotInSweeps(const FormFactorTable& table, const PatchSystem& system,
+                         ShootingState& state, double norm, const PatchSolverControl& control,
+                         PatchSolution& record);
+/// The ambient term of progressive refinement for unshot radiosity U: the unshot power spread
+/// over the total area, times the interreflection factor 1 / (1 - mean rho); as irradiance.
+Color ambientTerm(const PatchSystem& system, std::span<const Color> unshot);
+
 /// Relative residual of B for the system (for tests and reports).
 double relativeResidual(const FormFactorTable& table, const PatchSystem& system,
                         std::span<const Color> radiosity);

@@ -5,6 +5,8 @@
 // F_ji following from reciprocity F_ji = F_ij A_i / A_j, so rows are computed when first needed.
 // The ambient term (their section 3.2) stands in for the power not yet shot.
 #include <radiosity/error.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <chrono>
 #include <queue>
@@ -22,9 +24,9 @@ struct Shooter {
   bool operator<(const Shooter& o) const { return power < o.power; }
 };
 
-// The ambient radiosity: unshot power spread over the total area, times the interreflection
-// factor 1 / (1 - mean rho).
-Color ambientTerm(const PatchSystem& s, const std::vector<Color>& unshot) {
+}  // namespace
+
+Color ambientTerm(const PatchSystem& s, std::span<const Color> unshot) {
   Vec3d shot(0.0), rho(0.0);
   double area = 0.0;
   for (size_t i = 0; i < s.size(); ++i) {
@@ -36,18 +38,11 @@ Color ambientTerm(const PatchSystem& s, const std::vector<Color>& unshot) {
   return Color(shot / area / (Vec3d(1.0) - rho / area));
 }
 
-}  // namespace
-
-PatchSolution solveProgressive(const FormFactorRowSource& rows, const PatchSystem& s,
-                               const PatchSolverControl& control,
-                               const ProgressCallback& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  PatchSolution out;
+void shootUnshot(const FormFactorRowSource& rows, const PatchSystem& s, ShootingState& state,
+                 double norm, const PatchSolverControl& control, PatchSolution& record,
+                 const ProgressCallback& progress) {
   const size_t n = s.size();
-  const double norm = sourceNorm(s);
-  out.radiosity = sources(s);
-  out.irradiance = directIrradiance(s);
-  std::vector<Color> unshot = out.radiosity;
+  std::vector<Color>& unshot = state.unshot;
   std::vector<double> power(n);
   std::priority_queue<Shooter> queue;
   double total = 0.0;
@@ -62,8 +57,8 @@ PatchSolution solveProgressive(const FormFactorRowSource& rows, const PatchSyste
   };
   rebuild();
   const uint64_t maxShots = uint64_t(std::max(control.maxIterations, 1)) * std::max<uint64_t>(n, 1);
-  while (norm > 0.0 && out.shots < maxShots && total / norm >= control.tolerance &&
-         !queue.empty()) {
+  uint64_t shots = 0;
+  while (norm > 0.0 && shots < maxShots && total / norm >= control.tolerance && !queue.empty()) {
     const Shooter top = queue.top();
     queue.pop();
     if (top.power != power[top.patch]) continue;  // stale: the patch received since
@@ -76,29 +71,74 @@ PatchSolution solveProgressive(const FormFactorRowSource& rows, const PatchSyste
     for (size_t k = 0; k < row.columns.size(); ++k) {
       const uint32_t j = row.columns[k];
       const Color h = shot * (row.values[k] * s.area[i] / s.area[j]);
-      out.irradiance[j] += h;
+      state.irradiance[j] += h;
       const Color b = s.rho[j] * h;
-      out.radiosity[j] += b;
+      state.radiosity[j] += b;
       unshot[j] += b;
       const double p = double(s.area[j]) * absSum(unshot[j]);
       total += p - power[j];
       power[j] = p;
       if (p > 0.0) queue.push({p, j});
     }
-    if (++out.shots % std::max<uint64_t>(n, 1) == 0) {
+    if (++shots % std::max<uint64_t>(n, 1) == 0) {
       rebuild();
-      out.residuals.push_back(total / norm);
-      ++out.iterations;
-      if (progress && !progress(double(out.shots) / double(maxShots))) throw Cancelled();
+      record.residuals.push_back(total / norm);
+      ++record.iterations;
+      if (progress && !progress(double(shots) / double(maxShots))) throw Cancelled();
     }
     if (queue.size() > 8 * n + 1024) rebuild();
   }
-  if (out.residuals.empty() || out.shots % std::max<uint64_t>(n, 1) != 0) {
-    out.residuals.push_back(norm > 0.0 ? total / norm : 0.0);
-    ++out.iterations;
+  if (record.residuals.empty() || shots % std::max<uint64_t>(n, 1) != 0) {
+    record.residuals.push_back(norm > 0.0 ? total / norm : 0.0);
+    ++record.iterations;
   }
-  const Color ambient = ambientTerm(s, unshot);
-  for (size_t i = 0; i < n; ++i) {
+  record.shots += shots;
+}
+
+void shootUnshotInSweeps(const FormFactorTable& table, const PatchSystem& s, ShootingState& state,
+                         double norm, const PatchSolverControl& control, PatchSolution& record) {
+  const size_t n = s.size();
+  std::vector<Color> received(n);
+  auto unshotPower = [&] {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, n), 0.0,
+        [&](const tbb::blocked_range<size_t>& r, double sum) {
+          for (size_t i = r.begin(); i != r.end(); ++i)
+            sum += double(s.area[i]) * absSum(state.unshot[i]);
+          return sum;
+        },
+        std::plus<>());
+  };
+  double power = unshotPower();
+  for (int sweep = 0;
+       norm > 0.0 && sweep < control.maxIterations && power >= control.tolerance * norm; ++sweep) {
+    tbb::parallel_for(size_t(0), n,
+                      [&](size_t i) { received[i] = gather(table, i, state.unshot); });
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
+      const Color b = s.rho[i] * received[i];
+      state.irradiance[i] += received[i];
+      state.radiosity[i] += b;
+      state.unshot[i] = b;
+    });
+    record.shots += n;
+    power = unshotPower();
+    record.residuals.push_back(power / norm);
+    ++record.iterations;
+  }
+  if (record.residuals.empty()) record.residuals.push_back(norm > 0.0 ? power / norm : 0.0);
+}
+
+PatchSolution solveProgressive(const FormFactorRowSource& rows, const PatchSystem& s,
+                               const PatchSolverControl& control,
+                               const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  PatchSolution out;
+  ShootingState state{sources(s), directIrradiance(s), sources(s)};
+  shootUnshot(rows, s, state, sourceNorm(s), control, out, progress);
+  const Color ambient = ambientTerm(s, state.unshot);
+  out.radiosity = std::move(state.radiosity);
+  out.irradiance = std::move(state.irradiance);
+  for (size_t i = 0; i < s.size(); ++i) {
     out.irradiance[i] += ambient;
     out.radiosity[i] += s.rho[i] * ambient;
   }

@@ -1,0 +1,81 @@
+#pragma once
+// Relighting: the patch solution kept up to date while lights move, dim or switch, at frame
+// rate. Form factors depend on the geometry only, so a change of the lights changes only the
+// direct light the patches get; the Relighter finds the patches a changed light reaches (a moved
+// spot: those of its old and new beam), and shoots the difference of their injected radiosity
+// through the form factors it keeps, warm-started from the last solution (progressive
+// refinement of the change), until what is left unshot is below the solver's tolerance. Where
+// the lights move a beam or shadow edge, the quadtree is refined anew and the rows of its new
+// nodes come from the model's master table (cast once, the first time a node is needed).
+// After: G. Drettakis and F. Sillion, "Interactive update of global illumination using a
+// line-space hierarchy", SIGGRAPH 1997; S. Chen, "Incremental radiosity: an extension of
+// progressive radiosity to an interactive image synthesis system", SIGGRAPH 1990.
+
+#include <radiosity/patch_radiosity.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+namespace rad {
+
+struct RelightSettings {
+  /// A patch's direct light is brought up to date when it changed by more than this fraction of
+  /// the brightest patch's direct light; smaller changes wait, until together they add up to
+  /// this fraction of the light put into the scene (then every patch is brought up to date).
+  double threshold = 1e-3;
+  /// Shooting stops when the unshot power is below this fraction of the light put in. Tighter
+  /// than a one-off solve's (1e-3), which leaves up to ~1% per patch: a relight pays it only
+  /// for the change, and what it leaves unshot is carried to the next relight.
+  double tolerance = 1e-4;
+};
+
+/// What one relight did.
+struct RelightStats {
+  double milliseconds = 0.0;  ///< the whole relight
+  double directMs = 0.0;      ///< the lights' direct light on the patches (and refinement)
+  double formFactorMs = 0.0;  ///< the table of a changed quadtree (0 when it stayed)
+  double bounceMs = 0.0;      ///< shooting the change, and the solution's shading
+  size_t patches = 0;
+  size_t lightsChanged = 0;
+  size_t patchesUpdated = 0;  ///< patches whose direct light was brought up to date
+  size_t patchesSkipped = 0;  ///< patches whose direct light changed less than the threshold
+  bool meshChanged = false;   ///< the quadtree changed (refined or coarsened somewhere)
+  bool reanchored = false;    ///< the changes waiting below the threshold were applied
+  size_t rowsComputed = 0, rowsReused = 0;  ///< form-factor rows cast now, kept (mesh change)
+  uint64_t shots = 0;                       ///< patches shot
+  double unshot = 0.0;                      ///< unshot power left, relative to the light put in
+};
+
+class Relighter {
+ public:
+  /// Solves the model for `lights` (its settings' solver) and keeps what relighting needs: the
+  /// form factors of the patches and the light's state. Needs the hemisphere estimator (its
+  /// master table makes the rows of a changed quadtree); throws InputError otherwise, and
+  /// rad::Cancelled if `progress` returns false. The model must outlive the relighter.
+  Relighter(const PatchModel& model, std::span<const Light> lights,
+            const RelightSettings& settings = {}, const ProgressCallback& progress = {});
+  ~Relighter();
+  Relighter(Relighter&&) noexcept;
+  Relighter& operator=(Relighter&&) noexcept;
+
+  /// Brings the solution to `lights` (the same count and order as before, any field changed;
+  /// another count is relit from scratch) and says what it did.
+  const RelightStats& relight(std::span<const Light> lights);
+  /// The solution for the last lights: the ambient term of progressive refinement stands in
+  /// for what is left unshot. Valid until the next relight.
+  const PatchRadiosity& solution() const;
+  const RelightStats& lastRelight() const;
+  /// Writes the model's master form-factor table to its disk cache (when it has one and rows
+  /// were cast since it was read or written): relighting does not write it at every change of
+  /// the quadtree. A failure is a warning, returned.
+  std::string saveFormFactors();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace rad

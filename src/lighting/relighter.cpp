@@ -1,0 +1,270 @@
+// The Relighter: a patch solution kept up to date by shooting the change of the direct light.
+// Its state is a progressive solve part way (ShootingState): what has been shot is exact and the
+// unshot radiosity is what is left, so a change of the lights is one more thing left to shoot,
+// and nothing is lost between frames: what a relight leaves unshot, the next one shoots.
+#include <fmt/format.h>
+#include <radiosity/error.h>
+#include <radiosity/relighter.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <tuple>
+
+#include "lighting/direct_lighting.h"
+#include "patch/light_refinement.h"
+#include "patch/patch_radiosity_impl.h"
+#include "patch/patch_solver_terms.h"
+
+namespace rad {
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+FormFactorRowSource rowsOf(const FormFactorTable& table) {
+  return [&table](uint32_t i) { return FormFactorRowView{table.columns(i), table.values(i)}; };
+}
+
+bool samePatches(const PatchMesh& a, const PatchMesh& b) {
+  if (a.size() != b.size()) return false;
+  for (uint32_t p = 0; p < a.size(); ++p)
+    if (a.nodeAddress(a.patches()[p].node) != b.nodeAddress(b.patches()[p].node)) return false;
+  return true;
+}
+
+// A per-patch value of `from` carried to the patches of `to` (both refined from one base mesh):
+// each new patch takes the mean of the old patches it overlaps, weighted by the overlap of their
+// finest-key ranges (a child takes its parent's value, a parent its children's mean).
+std::vector<Color> carryOver(const PatchMesh& from, std::span<const Color> value,
+                             const PatchMesh& to, int levels) {
+  std::vector<std::tuple<uint64_t, uint64_t, uint32_t>> old(from.size());
+  for (uint32_t p = 0; p < from.size(); ++p) {
+    const auto [first, last] = from.nodeKeys(from.patches()[p].node, levels);
+    old[p] = {first, last, p};
+  }
+  std::sort(old.begin(), old.end());
+  std::vector<Color> out(to.size(), Color(0.0f));
+  for (uint32_t q = 0; q < to.size(); ++q) {
+    const auto [first, last] = to.nodeKeys(to.patches()[q].node, levels);
+    auto it = std::upper_bound(old.begin(), old.end(), std::tuple{first, ~0ull, ~0u});
+    if (it != old.begin()) --it;
+    Vec3d sum(0.0);
+    double weight = 0.0;
+    for (; it != old.end() && std::get<0>(*it) < last; ++it) {
+      const uint64_t lo = std::max(first, std::get<0>(*it)), hi = std::min(last, std::get<1>(*it));
+      if (hi <= lo) continue;
+      sum += double(hi - lo) * Vec3d(value[std::get<2>(*it)]);
+      weight += double(hi - lo);
+    }
+    if (weight > 0.0) out[q] = Color(sum / weight);
+  }
+  return out;
+}
+
+}  // namespace
+
+struct Relighter::State {
+  RelightSettings settings;
+  PatchRadiosity current;
+  PatchRadiosity::Impl& m;  ///< current's insides
+  PatchLightCache cache;
+  PatchSystem system;  ///< D: the direct light the state was brought up to
+  ShootingState shooting;
+  RelightStats stats;
+  size_t unsavedRows = 0;  ///< master-table rows cast since the table was read or saved
+
+  State(PatchRadiosity solved, const RelightSettings& s)
+      : settings(s), current(std::move(solved)), m(*current.impl_) {}
+
+  const FormFactorTable& table() const { return *m.table; }
+  void anchor(std::span<const Color> guess);
+  std::vector<Color> lightPatches(std::span<const Light> lights);
+  void changeMesh(std::unique_ptr<PatchMesh> mesh, std::vector<Color> direct);
+  void applyDirect(const std::vector<Color>& direct);
+  void shoot();
+  void publish(bool meshChanged);
+};
+
+// The state for radiosities `guess`: one gathering step from it, B = S + rho F guess, with
+// H = D + F guess and U = B - guess, which keeps ShootingState's equations exactly.
+void Relighter::State::anchor(std::span<const Color> guess) {
+  const size_t n = system.size();
+  shooting.radiosity.resize(n);
+  shooting.irradiance.resize(n);
+  shooting.unshot.resize(n);
+  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    const Color gathered = gather(table(), i, guess);
+    shooting.irradiance[i] = system.directAt(i) + gathered;
+    shooting.radiosity[i] = system.source(i) + system.rho[i] * gathered;
+    shooting.unshot[i] = shooting.radiosity[i] - guess[i];
+  });
+}
+
+// The lights' direct light on the patches of a mesh refined for them anew; lights that did not
+// change are not evaluated again (the cache). The new mesh replaces the old where it differs.
+std::vector<Color> Relighter::State::lightPatches(std::span<const Light> lights) {
+  m.lights.assign(lights.begin(), lights.end());
+  const std::vector<uint8_t> changed = cache.update(m.lights);
+  stats.lightsChanged = size_t(std::count(changed.begin(), changed.end(), 1));
+  auto mesh = std::make_unique<PatchMesh>(*m.model->baseMesh);
+  const PatchRadiositySettings& s = m.settings;
+  LightRefinement refined =
+      refineForLights(*mesh, DirectLighting(*m.scene, *m.model->caster, m.lights),
+                      {s.refineLevels, s.refineThreshold, s.lightSamples}, cache);
+  if (refined.direct.empty()) refined.direct.assign(mesh->size(), Color(0.0f));
+  stats.meshChanged = !samePatches(*mesh, *m.mesh);
+  if (stats.meshChanged) {
+    changeMesh(std::move(mesh), refined.direct);
+    return {};
+  }
+  return std::move(refined.direct);
+}
+
+// A new quadtree: its rows from the master table, its system, and the state anchored at the old
+// solution carried over to the new patches.
+void Relighter::State::changeMesh(std::unique_ptr<PatchMesh> mesh, std::vector<Color> direct) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<Color> guess =
+      carryOver(*m.mesh, m.solution.radiosity, *mesh, m.settings.refineLevels);
+  m.mesh = std::move(mesh);
+  m.chooseFormFactorSettings();
+  m.stats.warnings.clear();
+  m.table = m.formFactors(*m.model->caster, {});
+  stats.rowsComputed = m.stats.rowsComputed;
+  unsavedRows += stats.rowsComputed;
+  stats.rowsReused = m.stats.rowsReused;
+  stats.formFactorMs = msSince(start);
+  system = systemOf(*m.scene, *m.mesh);
+  system.direct = std::move(direct);
+  stats.patchesUpdated = m.mesh->size();
+  anchor(guess);
+}
+
+// Brings the direct light of the patches that changed by more than the threshold up to date, as
+// more light (or less) to shoot; smaller changes wait until together they amount to the
+// threshold of the light put in.
+void Relighter::State::applyDirect(const std::vector<Color>& direct) {
+  float brightest = 0.0f;
+  for (const Color& d : direct) brightest = std::max(brightest, maxComponent(d));
+  const float perPatch = float(settings.threshold) * brightest;
+  std::vector<uint32_t> waiting;
+  double waitingPower = 0.0;
+  auto apply = [&](uint32_t i) {
+    const Color change = direct[i] - system.direct[i];
+    system.direct[i] = direct[i];
+    shooting.irradiance[i] += change;
+    shooting.radiosity[i] += system.rho[i] * change;
+    shooting.unshot[i] += system.rho[i] * change;
+    ++stats.patchesUpdated;
+  };
+  for (uint32_t i = 0; i < direct.size(); ++i) {
+    const Color change = direct[i] - system.direct[i];
+    if (change == Color(0.0f)) continue;
+    if (maxComponent(glm::abs(change)) > perPatch) {
+      apply(i);
+    } else {
+      waiting.push_back(i);
+      waitingPower += double(system.area[i]) * absSum(system.rho[i] * change);
+    }
+  }
+  stats.reanchored = !waiting.empty() && waitingPower > settings.threshold * sourceNorm(system);
+  if (stats.reanchored)
+    for (uint32_t i : waiting) apply(i);
+  else
+    stats.patchesSkipped = waiting.size();
+}
+
+void Relighter::State::shoot() {
+  PatchSolution record;
+  const double norm = sourceNorm(system);
+  shootUnshotInSweeps(table(), system, shooting, norm,
+                      {settings.tolerance, m.settings.maxIterations}, record);
+  stats.shots = record.shots;
+  stats.unshot = record.residuals.back();
+}
+
+// The solution the renderers see: the state plus the ambient term for what is left unshot.
+void Relighter::State::publish(bool meshChanged) {
+  const Color ambient = ambientTerm(system, shooting.unshot);
+  PatchSolution& out = m.solution;
+  out.emitted = system.emitted;
+  out.irradiance = shooting.irradiance;
+  out.radiosity = shooting.radiosity;
+  for (size_t i = 0; i < system.size(); ++i) {
+    out.irradiance[i] += ambient;
+    out.radiosity[i] += system.rho[i] * ambient;
+  }
+  m.lightDirect = system.direct;
+  m.separateIndirect(rowsOf(table()), system);
+  if (meshChanged) {
+    m.hanging = m.mesh->hangingVertices();
+    m.recordMesh();
+  }
+  m.vertexIrradiance = m.averageAtVertices(out.irradiance);
+  m.vertexIndirect = m.averageAtVertices(m.indirect);
+}
+
+Relighter::Relighter(const PatchModel& model, std::span<const Light> lights,
+                     const RelightSettings& settings, const ProgressCallback& progress) {
+  if (!model.state_->master)
+    throw InputError("relighting",
+                     "needs the hemisphere form-factor estimator (its master table gives the rows "
+                     "of the patches a moved light refines); the model uses another");
+  auto impl = std::make_unique<PatchRadiosity::Impl>(model.state_, lights);
+  impl->keepTable = true;
+  impl->saveMaster = false;  // saved once, by saveFormFactors(), not at every quadtree change
+  PatchLightCache cache;
+  impl->build(cache, progress);
+  state_ = std::make_unique<State>(PatchRadiosity(std::move(impl)), settings);
+  state_->unsavedRows = state_->m.stats.rowsComputed;
+  State& s = *state_;
+  s.cache = std::move(cache);
+  s.system = systemOf(*s.m.scene, *s.m.mesh);
+  s.system.direct =
+      s.m.lightDirect.empty() ? std::vector<Color>(s.system.size(), Color(0.0f)) : s.m.lightDirect;
+  s.anchor(s.m.solution.radiosity);
+  s.stats.patches = s.system.size();
+}
+
+Relighter::~Relighter() = default;
+Relighter::Relighter(Relighter&&) noexcept = default;
+Relighter& Relighter::operator=(Relighter&&) noexcept = default;
+
+const RelightStats& Relighter::relight(std::span<const Light> lights) {
+  State& s = *state_;
+  const auto start = std::chrono::steady_clock::now();
+  s.stats = {};
+  std::vector<Color> direct = s.lightPatches(lights);
+  s.stats.directMs = msSince(start) - s.stats.formFactorMs;
+  if (!s.stats.meshChanged) s.applyDirect(direct);
+  const auto bounce = std::chrono::steady_clock::now();
+  s.shoot();
+  s.publish(s.stats.meshChanged);
+  s.stats.bounceMs = msSince(bounce);
+  s.stats.patches = s.system.size();
+  s.stats.milliseconds = msSince(start);
+  return s.stats;
+}
+
+std::string Relighter::saveFormFactors() {
+  State& s = *state_;
+  const PatchModel::State& model = *s.m.model;
+  if (s.unsavedRows == 0 || model.masterFile.empty()) return {};
+  std::string warning = model.master->save(model.masterFile, model.masterKey);
+  if (warning.empty()) s.unsavedRows = 0;
+  return warning;
+}
+
+const PatchRadiosity& Relighter::solution() const {
+  return state_->current;
+}
+
+const RelightStats& Relighter::lastRelight() const {
+  return state_->stats;
+}
+
+}  // namespace rad

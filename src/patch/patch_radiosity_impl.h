@@ -1,0 +1,70 @@
+#pragma once
+// What a PatchRadiosity holds, for the code that makes one: its constructor and the Relighter,
+// which keeps one up to date as the lights move.
+
+#include <radiosity/patch_radiosity.h>
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "patch/form_factor_table.h"
+#include "patch/light_refinement.h"
+#include "patch/patch_mesh.h"
+#include "patch/patch_model_state.h"
+#include "patch/patch_solvers.h"
+
+namespace rad {
+
+/// The patches' E, rho and area (D is left empty).
+PatchSystem systemOf(const Scene& scene, const PatchMesh& mesh);
+
+struct PatchRadiosity::Impl {
+  std::shared_ptr<const PatchModel::State> model;
+  const Scene* scene = nullptr;
+  PatchRadiositySettings settings;
+  std::vector<Light> lights;        ///< those it is solved with
+  std::unique_ptr<PatchMesh> mesh;  ///< the model's base mesh, refined for the lights
+  PatchSolution solution;
+  std::vector<Color> vertexIrradiance;
+  std::vector<Color> indirect, vertexIndirect;  ///< H less the direct light (patch, vertex)
+  std::vector<HangingVertex> hanging;           ///< of the refined mesh
+  PatchRadiosityStats stats;
+  std::vector<Color> lightDirect;  ///< D per patch (empty: no lights)
+
+  bool keepTable = false;                ///< keep the form factors (for relighting)
+  bool saveMaster = true;                ///< save the master table when rows were cast
+  std::optional<FormFactorTable> table;  ///< the form factors of the patches, when kept
+
+  /// Takes the model's base mesh, to be lit and solved for `lights` by build().
+  Impl(std::shared_ptr<const PatchModel::State> model, std::span<const Light> lights);
+  /// Lights the patches (refining the mesh, with the lights' values on nodes from and into
+  /// `cache`), gets the form factors, solves and shades.
+  void build(PatchLightCache& cache, const ProgressCallback& progress);
+  /// The vertex values radiance() interpolates, from the solution and the indirect light.
+  void shadeVertices();
+  void recordMesh();
+
+  FormFactorSettings ff;             ///< the estimator's settings, fixed once per solve
+  std::vector<uint8_t> emitterRows;  ///< per patch: it emits (the threshold keeps its row whole)
+  void chooseFormFactorSettings();
+  FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);
+  FormFactorTable assembleTable(FormFactorRows rows) const;
+  void solve(const RayCaster& caster, const ProgressCallback& progress);
+  void solveLazily(const RayCaster& caster, const PatchSystem& system,
+                   const ProgressCallback& progress);
+  void lightPatches(const RayCaster& caster, PatchLightCache& cache,
+                    const ProgressCallback& progress);
+  void recordThresholdLoss(const ThresholdLoss& loss);
+  void warnOfThresholdLoss();
+  void separateIndirect(const FormFactorRowSource& rows, const PatchSystem& system);
+  std::vector<Color> averageAtVertices(const std::vector<Color>& perPatch) const;
+  /// A per-patch quantity at a hit: interpolated from the vertex averages (smooth) or the
+  /// patch's own (flat); nullopt on the back of a one-sided face.
+  std::optional<Color> interpolate(const SurfaceHit& hit, const std::vector<Color>& perPatch,
+                                   const std::vector<Color>& perVertex) const;
+  LitMesh litMesh() const;
+};
+
+}  // namespace rad
