@@ -1,15 +1,15 @@
-// `radiosity bench [pathtrace|patch|voxel|voxel-scaling|all] [--json]`: throughput numbers that notes and reports quote.
-// Fixed workloads on built-in scenes, so numbers from different machines compare.
-#include "commands.h"
-
-#include "bench_workloads.h"
+// `radiosity bench [pathtrace|patch|relight|voxel|voxel-scaling|all] [--json]`: throughput numbers
+// that notes and reports quote. Fixed workloads on built-in scenes, so numbers from different
+// machines compare.
+#include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <ostream>
+
+#include "bench_workloads.h"
+#include "commands.h"
 
 namespace rad::cli {
 
@@ -24,6 +24,7 @@ struct BenchOptions {
   int scalingRadius = 8;
   size_t scalingMaxVoxels = 4000000;
   std::string output = "bench_out";
+  size_t relightPatches = 10000;
 };
 
 int runBench(const BenchOptions& o, Console& console) {
@@ -31,10 +32,12 @@ int runBench(const BenchOptions& o, Console& console) {
   const bool all = o.which == "all";
   if (all || o.which == "pathtrace") results["pathtrace"] = benchPathTracer(console);
   if (all || o.which == "patch") results["patch"] = benchPatch(console);
+  if (all || o.which == "relight") results["relight"] = benchRelight(console, o.relightPatches);
   if (all || o.which == "voxel")
     results["voxel"] = benchVoxel(console, o.voxels, o.sphereRadius, o.pairStride);
   if (o.which == "voxel-scaling")
-    results["voxel-scaling"] = benchVoxelScaling(console, o.scalingRadius, o.scalingMaxVoxels, o.output);
+    results["voxel-scaling"] =
+        benchVoxelScaling(console, o.scalingRadius, o.scalingMaxVoxels, o.output);
   if (o.json) {
     console.out() << results.dump(2) << "\n";
     return 0;
@@ -50,8 +53,9 @@ void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* sub = app.add_subcommand("bench", "Measure throughput on fixed workloads");
   sub->add_option("which", o->which,
-                  "What to measure: pathtrace, patch, voxel, all (those three), voxel-scaling (minutes)")
-      ->check(CLI::IsMember({"pathtrace", "patch", "voxel", "voxel-scaling", "all"}));
+                  "What to measure: pathtrace, patch, relight, voxel, all (those four), "
+                  "voxel-scaling (minutes)")
+      ->check(CLI::IsMember({"pathtrace", "patch", "relight", "voxel", "voxel-scaling", "all"}));
   sub->add_option("--voxels", o->voxels,
                   "voxel: surface voxels of the room (default 2000000, the paper's)")
       ->check(CLI::Range(size_t(1000), size_t(1) << 30));
@@ -60,13 +64,17 @@ void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--pair-stride", o->pairStride,
                   "voxel: sweep every Nth direction pair of the sphere (default 24; 1: all)")
       ->check(CLI::Range(size_t(1), size_t(1) << 20));
+  sub->add_option("--relight-patches", o->relightPatches,
+                  "relight: patches of the room (default 10000)")
+      ->check(CLI::Range(size_t(100), size_t(1) << 24));
   sub->add_option("--scaling-radius", o->scalingRadius, "voxel-scaling: sphere radius (default 8)")
       ->check(CLI::Range(1, 200));
   sub->add_option("--scaling-max-voxels", o->scalingMaxVoxels,
                   "voxel-scaling: largest voxel count (default 4000000)");
   sub->add_option("--output-dir", o->output, "voxel-scaling: where the table and plot go");
   sub->add_flag("--json", o->json, "Print the results as JSON");
-  sub->callback([o, &console, &action] { action = [o, &console] { return runBench(*o, console); }; });
+  sub->callback(
+      [o, &console, &action] { action = [o, &console] { return runBench(*o, console); }; });
 }
 
 }  // namespace rad::cli

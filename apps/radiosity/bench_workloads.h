@@ -17,6 +17,11 @@ nlohmann::json benchPathTracer(Console& console);
 /// workloads (the Cornell box and a furnished room at ~10k patches, the Cornell box at ~100k).
 nlohmann::json benchPatch(Console& console);
 
+/// Relighting a spot swinging through a furnished room at about `patches` patches: ms per
+/// relight, the patches updated per frame, the master table's hit rate and the worst error
+/// against fresh solves (bench_relight.cpp says how).
+nlohmann::json benchRelight(Console& console, size_t patches);
+
 /// The voxel sweep on a furnished room at `voxels` voxels (the paper's 2e6 by default): every
 /// `pairStride`-th direction pair of the sphere of radius R swept three times on all threads,
 /// voxel-direction visits per second (the median and the fastest round), the bytes per voxel a

@@ -47,8 +47,8 @@ double largestRadiosityDifference(const SurfaceSolution& solution,
     const SurfaceElement e = reference.element(i);
     mean += e.area * (double(e.radiosity.r) + e.radiosity.g + e.radiosity.b) / 3.0;
     area += e.area;
-    largest = std::max(largest, double(maxComponent(glm::abs(solution.element(i).radiosity -
-                                                             e.radiosity))));
+    largest = std::max(largest,
+                       double(maxComponent(glm::abs(solution.element(i).radiosity - e.radiosity))));
   }
   return mean > 0.0 ? largest * area / mean : largest;
 }

@@ -11,21 +11,24 @@ namespace rad {
 
 namespace {
 
-// Patches that share a corner, each pair once (i < j).
-std::vector<std::pair<uint32_t, uint32_t>> neighbourPairs(const PatchMesh& mesh) {
-  std::unordered_map<uint32_t, std::vector<uint32_t>> byVertex;
+// Calls f(a, b) for the patches that share a corner (a pair that shares an edge comes twice).
+template <class F>
+void forEachNeighbourPair(const PatchMesh& mesh, F&& f) {
+  // The patches at each vertex, as compressed lists (a counting sort by vertex).
+  std::vector<uint32_t> start(mesh.vertices().size() + 1, 0);
   for (uint32_t p = 0; p < mesh.size(); ++p) {
     const PatchNode& node = mesh.nodeOf(p);
-    for (int k = 0; k < node.cornerCount(); ++k) byVertex[node.corners[k]].push_back(p);
+    for (int k = 0; k < node.cornerCount(); ++k) ++start[node.corners[k] + 1];
   }
-  std::vector<std::pair<uint32_t, uint32_t>> pairs;
-  for (const auto& [vertex, patches] : byVertex)
-    for (size_t a = 0; a < patches.size(); ++a)
-      for (size_t b = a + 1; b < patches.size(); ++b)
-        pairs.push_back(std::minmax(patches[a], patches[b]));
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  return pairs;
+  for (size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
+  std::vector<uint32_t> at(start.back()), fill(start.begin(), start.end() - 1);
+  for (uint32_t p = 0; p < mesh.size(); ++p) {
+    const PatchNode& node = mesh.nodeOf(p);
+    for (int k = 0; k < node.cornerCount(); ++k) at[fill[node.corners[k]]++] = p;
+  }
+  for (size_t v = 0; v + 1 < start.size(); ++v)
+    for (uint32_t i = start[v]; i < start[v + 1]; ++i)
+      for (uint32_t j = i + 1; j < start[v + 1]; ++j) f(at[i], at[j]);
 }
 
 }  // namespace
@@ -87,13 +90,13 @@ std::vector<uint32_t> patchesToSplit(const PatchMesh& mesh, const std::vector<Pa
   float brightest = 0.0f;
   for (uint32_t p = 0; p < mesh.size(); ++p)
     brightest = std::max(brightest, luminance(light[p].direct));
-  for (const auto& [a, b] : neighbourPairs(mesh)) {
+  forEachNeighbourPair(mesh, [&](uint32_t a, uint32_t b) {
     const float da = luminance(light[a].direct), db = luminance(light[b].direct);
     const float larger = std::max(da, db);
     // Below a thousandth of the brightest patch, differences are not worth patches.
     if (larger > 1e-3f * brightest && std::abs(da - db) > settings.threshold * larger)
       split[a] = split[b] = 1;
-  }
+  });
   std::vector<uint32_t> chosen;
   for (uint32_t p = 0; p < mesh.size(); ++p) {
     const PatchNode& node = mesh.nodeOf(p);

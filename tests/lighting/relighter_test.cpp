@@ -1,6 +1,7 @@
 // Relighting: a solution brought to moved lights by shooting the change must be the solution a
 // fresh solve of those lights gives, after any sequence of moves, without drifting.
 #include <gtest/gtest.h>
+#include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/relighter.h>
 #include <radiosity/scene_loader.h>
@@ -47,6 +48,71 @@ TEST(Relighter, TwentyMovesOfASpotMatchFreshSolvesAndComeBackWithoutNewRows) {
   EXPECT_GE(meshChanges, 10u);  // the beam's edge moved across patches
   EXPECT_GT(rowsOut, 0u);
   EXPECT_EQ(rowsBack, 0u);
+}
+
+// Two hundred small steps, each below the threshold for most patches: the skipped changes add up
+// and are applied (re-anchored) before they matter, so the error stays as small as one move's.
+// (A threshold of 1e-3 of the brightest patch; the default, 1e-4, skips less.)
+TEST(Relighter, HundredsOfSmallStepsDoNotDrift) {
+  const Scene scene = loadScene("cornell-spot");
+  PatchRadiositySettings s = smallSettings();
+  s.refineLevels = 0;  // the quadtree stays, so every change goes through the threshold
+  const PatchModel model(scene, s);
+  Relighter relighter(model, scene.lights, {.threshold = 1e-3});
+  size_t skipped = 0, reanchored = 0;
+  for (int k = 1; k <= 200; ++k) {
+    const RelightStats& stats = relighter.relight(swung(scene, 0.05f * float(k), 0.0f));
+    skipped += stats.patchesSkipped;
+    reanchored += stats.reanchored;
+  }
+  EXPECT_GT(skipped, 0u);
+  EXPECT_GT(reanchored, 0u);
+  EXPECT_LE(
+      largestRadiosityDifference(relighter.solution(), model.solve(swung(scene, 10.0f, 0.0f))),
+      0.005);
+}
+
+// Dimming to a quarter changes no patch's place in the quadtree, and the answer is a quarter of
+// the spot's light plus nothing else (the scene has no other light).
+TEST(Relighter, DimmingScalesTheSolutionWithoutNewPatches) {
+  const Scene scene = loadScene("cornell-spot");
+  const PatchModel model(scene, smallSettings());
+  Relighter relighter(model, scene.lights);
+  const PatchRadiosity full = model.solve(scene.lights);
+  std::vector<Light> dimmed = scene.lights;
+  dimmed[0].intensity *= 0.25f;
+  const RelightStats& stats = relighter.relight(dimmed);
+  EXPECT_FALSE(stats.meshChanged);
+  EXPECT_EQ(stats.lightsChanged, 1u);
+  double worst = 0.0, mean = 0.0;
+  for (size_t p = 0; p < full.elementCount(); ++p) {
+    const Color expected = 0.25f * full.element(p).radiosity;
+    worst = std::max(
+        worst,
+        double(maxComponent(glm::abs(relighter.solution().element(p).radiosity - expected))));
+    mean += maxComponent(expected) / double(full.elementCount());
+  }
+  EXPECT_LE(worst, 0.005 * mean);
+}
+
+TEST(Relighter, TheSameLightsChangeNothing) {
+  const Scene scene = loadScene("cornell-spot");
+  const PatchModel model(scene, smallSettings());
+  Relighter relighter(model, scene.lights);
+  const RelightStats& stats = relighter.relight(scene.lights);
+  EXPECT_EQ(stats.lightsChanged, 0u);
+  EXPECT_EQ(stats.patchesUpdated, 0u);
+  EXPECT_FALSE(stats.meshChanged);
+  EXPECT_LE(largestRadiosityDifference(relighter.solution(), model.solve(scene.lights)), 0.005);
+}
+
+TEST(Relighter, NeedsTheMasterTable) {
+  const Scene scene = loadScene("cornell-spot");
+  PatchRadiositySettings s = smallSettings();
+  s.estimator = PatchFormFactorEstimator::Pairwise;
+  s.formFactorRays = 4;
+  const PatchModel model(scene, s);
+  EXPECT_THROW(Relighter(model, scene.lights), InputError);
 }
 
 }  // namespace
