@@ -9,12 +9,22 @@
 namespace rad::cli {
 
 void addSceneArgument(CLI::App& command, std::string& scene) {
-  command.add_option("scene", scene, "Scene file (.json .obj .gltf .glb) or built-in: cornell, "
-                                     "cornell-spot, room:N")->required();
+  command
+      .add_option("scene", scene,
+                  "Scene file (.json .obj .gltf .glb) or built-in: cornell, "
+                  "cornell-spot, room:N")
+      ->required();
 }
 
 void addStatsOption(CLI::App& command, std::string& path) {
   command.add_option("--stats", path, "Write the run's numbers to this JSON file");
+}
+
+void addTimeOption(CLI::App& command, double& seconds) {
+  command
+      .add_option("--time", seconds,
+                  "Seconds into the lights' animation (spins and keyframed paths; default 0)")
+      ->check(CLI::Number);
 }
 
 // A check that the option's value is a number at least zero.
@@ -29,9 +39,11 @@ const CLI::Validator& nonNegativeNumber() {
   return check;
 }
 
-Scene loadSceneForCommand(const std::string& name, Console& console, RunStats& stats) {
+Scene loadSceneForCommand(const std::string& name, double seconds, Console& console,
+                          RunStats& stats) {
   Stopwatch loadTime;
   Scene scene = loadScene(name);
+  scene.lights = scene.lightsAt(seconds);
   stats.timingsSeconds.load = loadTime.seconds();
   for (const std::string& w : scene.warnings) console.warn(scene.name + ": " + w);
   requireEmitters(scene);

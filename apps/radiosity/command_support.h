@@ -21,14 +21,19 @@ void addSceneArgument(CLI::App& command, std::string& scene);
 /// The --stats FILE option of the commands that compute light transport (see writeStatsFile).
 void addStatsOption(CLI::App& command, std::string& path);
 
+/// The --time SECONDS option: the instant of the scene's light animation to compute.
+void addTimeOption(CLI::App& command, double& seconds);
+
 /// A check of a numeric option whose message says what was expected ("--object-points: -1 is
 /// below 0"), where CLI11's NonNegativeNumber prints its range's bound (a 309-digit largest
 /// double). The methods' settings have their declarations' checks (solver_settings.h).
 const CLI::Validator& nonNegativeNumber();
 
-/// Loads the scene, prints its warnings, refuses a scene with nothing that emits (a black
-/// result), and records the load time and the triangle count.
-Scene loadSceneForCommand(const std::string& name, Console& console, RunStats& stats);
+/// Loads the scene with its lights as they are `seconds` into their animation, prints its
+/// warnings, refuses a scene with nothing that emits (a black result), and records the load time
+/// and the triangle count.
+Scene loadSceneForCommand(const std::string& name, double seconds, Console& console,
+                          RunStats& stats);
 
 /// Completes the stats (scene, method, emitted power, total time, peak memory) and writes them.
 void writeStatsFile(const std::string& path, const Scene& scene, const std::string& sceneName,

@@ -27,6 +27,7 @@ constexpr long kMaxSide = 1l << 15;  ///< pixels along either side of a picture
 struct RenderOptions {
   explicit RenderOptions(CLI::App& command) : method(command, {"pathtrace", "voxel", "patch"}) {}
   MethodOptions method;
+  double time = 0.0;
   std::string scene, output, stats;
   int width = 0, height = 0;
   float exposure = 0.0f;
@@ -95,7 +96,7 @@ VoxelRadiositySettings voxelSettingsFor(const RenderOptions& o) {
 int runRender(RenderOptions& o, Console& console) {
   Stopwatch total;
   RunStats stats;
-  Scene scene = loadSceneForCommand(o.scene, console, stats);
+  Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
   o.method.resolve(scene);
   if (o.output.empty()) o.output = defaultOutput(o.scene, o.method.method());
   if (!isSupportedImageFormat(o.output))
@@ -157,6 +158,7 @@ void addRenderCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--exposure", o->exposure, "PNG exposure in EV (radiance x 2^EV)");
   sub->add_flag("--exr-float", o->exrFloat, "Write 32-bit float EXR instead of half");
   addStatsOption(*sub, o->stats);
+  addTimeOption(*sub, o->time);
   sub->add_option("--object-points", o->objectPoints,
                   "pathtrace: surface points per object for the stats' per-object means (0: skip)")
       ->check(nonNegativeNumber());

@@ -24,6 +24,7 @@ namespace {
 struct SolveOptions {
   explicit SolveOptions(CLI::App& command) : method(command, {"voxel", "patch"}) {}
   MethodOptions method;
+  double time = 0.0;
   std::string scene, exportPath, stats;
 };
 
@@ -93,7 +94,7 @@ int runSolve(SolveOptions& o, Console& console) {
     throw InputError("--export " + o.exportPath,
                      "unsupported export format (supported: .csv, .ply, .glb)");
   RunStats stats;
-  Scene scene = loadSceneForCommand(o.scene, console, stats);
+  Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
   o.method.resolve(scene);
   InterruptGuard interruptible;
   const bool objectMeans = !o.stats.empty();
@@ -118,6 +119,7 @@ void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
                   "or .glb (the lit mesh, vertex colours = radiance: the patches, or with --method "
                   "voxel the scene's triangles cut to the voxel size)");
   addStatsOption(*sub, o->stats);
+  addTimeOption(*sub, o->time);
   sub->callback(
       [o, &console, &action] { action = [o, &console] { return runSolve(*o, console); }; });
 }

@@ -47,6 +47,15 @@ enum class LightType { Point, Spot, Ies };
 
 /// An analytic light at a point. Intensity is radiant intensity in W/sr (RGB): the irradiance
 /// at distance d on a surface tilted by theta is I cos(theta) / d^2.
+/// A light's state at a time of its animation: the fields it sets (the others follow the
+/// keyframes around it that set them, or stay the light's own).
+struct LightKeyframe {
+  double t = 0.0;  ///< seconds
+  std::optional<Vec3> position, direction;
+  std::optional<Color> intensity;
+  bool operator==(const LightKeyframe&) const = default;
+};
+
 struct Light {
   LightType type = LightType::Point;
   Vec3 position{0.0f};
@@ -54,7 +63,13 @@ struct Light {
   Color intensity{0.0f};              ///< W/sr on the axis (spot) or in every direction (point)
   float innerAngleDeg = 0.0f;         ///< spot: full intensity inside this half-angle
   float outerAngleDeg = 0.0f;         ///< spot: zero outside this half-angle, smooth between
-  Vec3 spinDegPerS{0.0f};             ///< animation: rotation rate of the direction (degrees/s)
+  /// Animation: the direction's angular velocity (degrees/s about the vector's axis, by the
+  /// right-hand rule; a spot with [0, 90, 0] turns a quarter turn a second about +y).
+  Vec3 spinDegPerS{0.0f};
+  /// Animation: keyframes by increasing t; positions and intensities are interpolated linearly,
+  /// directions along the great circle (spherically); before the first and after the last
+  /// keyframe a field holds its value. The spin turns the direction the path gives.
+  std::vector<LightKeyframe> path;
   /// IES: the photometric table, and the W/sr per candela applied to it (`intensity` is the
   /// colour-weighted scale: intensity * candela gives W/sr).
   std::shared_ptr<const IesProfile> ies;
@@ -64,6 +79,10 @@ struct Light {
   Color intensityToward(const Vec3& toward) const;
   /// Total radiant power (W) the light emits in all directions.
   Color power() const;
+  /// True if the light moves or changes with time (a spin or a path).
+  bool animated() const { return !path.empty() || spinDegPerS != Vec3(0.0f); }
+  /// The light at `seconds` into its animation (itself when it has none).
+  Light at(double seconds) const;
   /// Every field equal (the same IES profile object).
   bool operator==(const Light&) const = default;
 };
@@ -97,6 +116,8 @@ struct Scene {
   std::vector<SceneObject> objects;
   std::vector<Material> materials;
   std::vector<Light> lights;
+  /// The lights at `seconds` into their animation (Light::at).
+  std::vector<Light> lightsAt(double seconds) const;
   std::optional<Camera> camera;  ///< none: the renderer frames the scene's bounds
   SolverSettings solver;
   std::vector<std::string> warnings;  ///< non-fatal problems found while loading

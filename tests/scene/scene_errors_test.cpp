@@ -148,6 +148,21 @@ TEST_F(JsonErrors, UnknownKeysNameTheirPath) {
   expectMessage(load("{\"solver\": {\"metod\": \"patch\"}}"), {"/solver/metod"});
 }
 
+TEST_F(JsonErrors, LightPathsNameTheirKeyframe) {
+  const std::string spot = R"({"type": "spot", "position": [0,1,0], "direction": [0,-1,0],
+      "intensity": [1,1,1], "inner_angle_deg": 10, "outer_angle_deg": 20, "path": )";
+  expectMessage(load(withLight(spot + "[]}")), {"/lights/0/path", "non-empty array"});
+  expectMessage(load(withLight(spot + R"([{"t": 1, "position": [0,1,0]}, {"t": 1, "position": [1,1,0]}]})")),
+                {"/lights/0/path/1/t", "greater than the previous"});
+  expectMessage(load(withLight(spot + R"([{"position": [0,1,0]}]})")), {"/lights/0/path/0", "\"t\""});
+  expectMessage(load(withLight(spot + R"([{"t": 0}]})")), {"/lights/0/path/0", "sets nothing"});
+  expectMessage(load(withLight(spot + R"([{"t": 0, "direction": [0,0,0]}]})")),
+                {"/lights/0/path/0/direction", "zero length"});
+  expectMessage(load(withLight(R"({"type": "point", "position": [0,1,0], "intensity": [1,1,1],
+      "path": [{"t": 0, "direction": [0,-1,0]}]})")),
+                {"/lights/0/path/0/direction", "unknown key"});
+}
+
 TEST_F(JsonErrors, WrongTypesAndRanges) {
   expectMessage(load("{\"camera\": {\"fov_deg\": \"wide\"}}"), {"/camera/fov_deg", "expected a number"});
   expectMessage(load("{\"camera\": {\"fov_deg\": 180}}"), {"/camera/fov_deg", "(0, 180)"});

@@ -190,22 +190,57 @@ Vec3 readDirection(const JsonReader& r, const Json& j, const std::string& ptr) {
   return d / len;
 }
 
+// A light's keyframes: t strictly increasing, each setting at least one field the light's type
+// has (a point light no direction; an IES light's intensity comes from its file).
+std::vector<LightKeyframe> readPath(const JsonReader& r, const Json& j, const std::string& ptr,
+                                    LightType type) {
+  if (!j.is_array() || j.empty())
+    r.fail(ptr, fmt::format("expected a non-empty array of keyframes, got {}", j.dump()));
+  std::vector<LightKeyframe> path;
+  for (size_t i = 0; i < j.size(); ++i) {
+    const std::string at = fmt::format("{}/{}", ptr, i);
+    const Json& k = j[i];
+    if (type == LightType::Point)
+      r.checkKeys(k, at, {"t", "position", "intensity"});
+    else if (type == LightType::Spot)
+      r.checkKeys(k, at, {"t", "position", "direction", "intensity"});
+    else
+      r.checkKeys(k, at, {"t", "position", "direction"});
+    if (!k.contains("t")) r.fail(at, "missing key \"t\" (the keyframe's time in seconds)");
+    if (k.size() < 2)
+      r.fail(at, "a keyframe sets nothing (expected position, direction or intensity)");
+    LightKeyframe key;
+    key.t = r.number(k["t"], at + "/t");
+    if (!path.empty() && !(key.t > path.back().t))
+      r.fail(at + "/t", fmt::format("t {} must be greater than the previous keyframe's {}", key.t,
+                                    path.back().t));
+    if (k.contains("position")) key.position = r.vec3(k["position"], at + "/position");
+    if (k.contains("direction"))
+      key.direction = readDirection(r, k["direction"], at + "/direction");
+    if (k.contains("intensity"))
+      key.intensity = r.color(k["intensity"], at + "/intensity", "intensity", 0.0, INFINITY);
+    path.push_back(key);
+  }
+  return path;
+}
+
 Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
   r.requireObject(j, ptr);
   if (!j.contains("type")) r.fail(ptr, "missing key \"type\" (point, spot or ies)");
   const std::string type = r.string(j["type"], ptr + "/type");
   Light light;
   if (type == "point") {
-    r.checkKeys(j, ptr, {"type", "position", "intensity"});
+    r.checkKeys(j, ptr, {"type", "position", "intensity", "path"});
     light.type = LightType::Point;
   } else if (type == "spot") {
     r.checkKeys(j, ptr,
                 {"type", "position", "direction", "intensity", "inner_angle_deg", "outer_angle_deg",
-                 "spin_deg_per_s"});
+                 "spin_deg_per_s", "path"});
     light.type = LightType::Spot;
   } else if (type == "ies") {
-    r.checkKeys(j, ptr,
-                {"type", "file", "position", "direction", "scale", "color", "spin_deg_per_s"});
+    r.checkKeys(
+        j, ptr,
+        {"type", "file", "position", "direction", "scale", "color", "spin_deg_per_s", "path"});
     light.type = LightType::Ies;
   } else {
     r.fail(ptr + "/type",
@@ -220,6 +255,7 @@ Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
     light.direction = readDirection(r, j["direction"], ptr + "/direction");
   if (j.contains("spin_deg_per_s"))
     light.spinDegPerS = r.vec3(j["spin_deg_per_s"], ptr + "/spin_deg_per_s");
+  if (j.contains("path")) light.path = readPath(r, j["path"], ptr + "/path", light.type);
   if (light.type != LightType::Ies)
     light.intensity =
         r.color(required("intensity"), ptr + "/intensity", "intensity", 0.0, INFINITY);
