@@ -16,11 +16,7 @@ namespace {
 constexpr float kHeight = 1.5f, kOuterDeg = 20.0f;
 
 Light spinningSpot() {
-  Light spot = test::pointLight(Vec3(0.0f, kHeight, 0.0f), Color(5.0f));
-  spot.type = LightType::Spot;
-  spot.direction = Vec3(0.0f, -1.0f, 0.0f);
-  spot.innerAngleDeg = 10.0f;
-  spot.outerAngleDeg = kOuterDeg;
+  Light spot = test::downSpot(Vec3(0.0f, kHeight, 0.0f), Color(5.0f), 10.0f, kOuterDeg);
   spot.spinDegPerS = Vec3(0.0f, 0.0f, 90.0f);  // a quarter turn a second about +z
   return spot;
 }

@@ -58,6 +58,17 @@ inline Light pointLight(const Vec3& position, const Color& intensity) {
   return l;
 }
 
+/// A spot at `position` aimed straight down.
+inline Light downSpot(const Vec3& position, const Color& intensity, float innerDeg,
+                      float outerDeg) {
+  Light l = pointLight(position, intensity);
+  l.type = LightType::Spot;
+  l.direction = Vec3(0.0f, -1.0f, 0.0f);
+  l.innerAngleDeg = innerDeg;
+  l.outerAngleDeg = outerDeg;
+  return l;
+}
+
 /// The spot profile of docs/ARCHITECTURE.md written out here (not the library's): 1 inside the
 /// inner half-angle, 0 outside the outer one, a smoothstep in cos between.
 inline double spotFalloff(double cosTheta, double innerDeg, double outerDeg) {

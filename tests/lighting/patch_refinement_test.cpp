@@ -20,12 +20,7 @@ namespace {
 constexpr float kHalf = 2.0f, kHeight = 1.5f, kOuterDeg = 30.0f;
 
 Light downSpot() {
-  Light spot = test::pointLight(Vec3(0.0f, kHeight, 0.0f), Color(6.0f));
-  spot.type = LightType::Spot;
-  spot.direction = Vec3(0, -1, 0);
-  spot.innerAngleDeg = 20.0f;
-  spot.outerAngleDeg = kOuterDeg;
-  return spot;
+  return test::downSpot(Vec3(0.0f, kHeight, 0.0f), Color(6.0f), 20.0f, kOuterDeg);
 }
 
 // The beam's edge on the floor is the circle of radius h tan(outer angle). Every patch split to
