@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iterator>
 #include <set>
+#include <map>
 #include <sstream>
 #include <tuple>
 
@@ -578,4 +579,41 @@ TEST(Cli, FlagsAndSceneKeysShareEachSettingsRange) {
                  "--cache-dir", "none", "--quiet"})
                 .status,
             0);
+}
+
+namespace {
+
+// The mean irradiance (green channel) the stats file gives an object.
+double meanIrradiance(const nlohmann::json& stats, const std::string& object) {
+  for (const auto& o : stats["objects"])
+    if (o["name"] == object) return o["mean_irradiance"][1].get<double>();
+  ADD_FAILURE() << "no object " << object;
+  return 0.0;
+}
+
+}  // namespace
+
+// --time evaluates the lights' animation: a spot whose path turns it from the red wall (t = 0)
+// to the green wall (t = 1) lights whichever wall its keyframe aims at.
+TEST(Cli, TimeEvaluatesTheLightsPath) {
+  const fs::path dir = freshDir("time");
+  const std::string obj = std::string(RADIOSITY_TEST_DATA_DIR) + "/scene/cornell/cornell_box.obj";
+  const fs::path scene = writeFile(dir / "spot.json", R"({"geometry": [{"file": ")" + obj + R"("}],
+    "lights": [{"type": "spot", "position": [278, 400, 279.5], "direction": [1, 0, 0],
+      "intensity": [2e5, 2e5, 2e5], "inner_angle_deg": 20, "outer_angle_deg": 30,
+      "path": [{"t": 0, "direction": [1, 0, 0]}, {"t": 1, "direction": [-1, 0, 0]}]}]})");
+  std::map<std::string, nlohmann::json> at;
+  for (const std::string t : {"0", "1"}) {
+    const std::string stats = (dir / ("s" + t + ".json")).string();
+    const CliResult r = run({"solve", scene.string(), "--method", "patch", "--patches", "400",
+                             "--cache-dir", "none", "--time", t, "--stats", stats});
+    ASSERT_EQ(r.status, 0) << r.err;
+    at[t] = readJson(stats);
+  }
+  // The Cornell data's red wall is at x = 550, the green one at x = 0; the ceiling light gives
+  // both walls the same at either time, the spot a wall at one time only.
+  EXPECT_GT(meanIrradiance(at["0"], "left_wall_red"), 1.3 * meanIrradiance(at["1"], "left_wall_red"));
+  EXPECT_GT(meanIrradiance(at["1"], "right_wall_green"),
+            1.3 * meanIrradiance(at["0"], "right_wall_green"));
+  EXPECT_EQ(run({"solve", scene.string(), "--time", "soon"}).status, 2);
 }
