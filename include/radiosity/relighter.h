@@ -4,7 +4,7 @@
 // direct light the patches get; the Relighter finds the patches a changed light reaches (a moved
 // spot: those of its old and new beam), and shoots the difference of their injected radiosity
 // through the form factors it keeps, warm-started from the last solution (progressive
-// refinement of the change), until what is left unshot is below the solver's tolerance. Where
+// refinement of the change), until what is left unshot is below its tolerance. Where
 // the lights move a beam or shadow edge, the quadtree is refined anew and the rows of its new
 // nodes come from the model's master table (cast once, the first time a node is needed).
 // After: G. Drettakis and F. Sillion, "Interactive update of global illumination using a
@@ -36,8 +36,9 @@ struct RelightSettings {
 struct RelightStats {
   double milliseconds = 0.0;  ///< the whole relight
   double directMs = 0.0;      ///< the lights' direct light on the patches (and refinement)
-  double formFactorMs = 0.0;  ///< the table of a changed quadtree (0 when it stayed)
-  double bounceMs = 0.0;      ///< shooting the change, and the solution's shading
+  /// The table of a changed quadtree and the state carried over to it (0 when it stayed).
+  double formFactorMs = 0.0;
+  double bounceMs = 0.0;  ///< shooting the change, and the solution's shading
   size_t patches = 0;
   size_t lightsChanged = 0;
   size_t patchesUpdated = 0;  ///< patches whose direct light was brought up to date
@@ -61,8 +62,8 @@ class Relighter {
   Relighter(Relighter&&) noexcept;
   Relighter& operator=(Relighter&&) noexcept;
 
-  /// Brings the solution to `lights` (the same count and order as before, any field changed;
-  /// another count is relit from scratch) and says what it did.
+  /// Brings the solution to `lights` and says what it did. A light is matched to the one at its
+  /// place in the last list; with another count every light counts as changed.
   const RelightStats& relight(std::span<const Light> lights);
   /// The solution for the last lights: the ambient term of progressive refinement stands in
   /// for what is left unshot. Valid until the next relight.

@@ -45,8 +45,6 @@ struct Face {
 
 enum class LightType { Point, Spot, Ies };
 
-/// An analytic light at a point. Intensity is radiant intensity in W/sr (RGB): the irradiance
-/// at distance d on a surface tilted by theta is I cos(theta) / d^2.
 /// A light's state at a time of its animation: the fields it sets (the others follow the
 /// keyframes around it that set them, or stay the light's own).
 struct LightKeyframe {
@@ -56,6 +54,8 @@ struct LightKeyframe {
   bool operator==(const LightKeyframe&) const = default;
 };
 
+/// An analytic light at a point. Intensity is radiant intensity in W/sr (RGB): the irradiance
+/// at distance d on a surface tilted by theta is I cos(theta) / d^2.
 struct Light {
   LightType type = LightType::Point;
   Vec3 position{0.0f};
@@ -116,14 +116,14 @@ struct Scene {
   std::vector<SceneObject> objects;
   std::vector<Material> materials;
   std::vector<Light> lights;
-  /// The lights at `seconds` into their animation (Light::at).
-  std::vector<Light> lightsAt(double seconds) const;
   std::optional<Camera> camera;  ///< none: the renderer frames the scene's bounds
   SolverSettings solver;
   std::vector<std::string> warnings;  ///< non-fatal problems found while loading
 
   const Face& faceOf(uint32_t triangle) const { return faces[triangleFace[triangle]]; }
-  const Material& materialOf(uint32_t triangle) const { return materials[faceOf(triangle).material]; }
+  const Material& materialOf(uint32_t triangle) const {
+    return materials[faceOf(triangle).material];
+  }
   Vec3 triangleNormal(uint32_t triangle) const;  ///< unit geometric normal (front side)
   float triangleArea(uint32_t triangle) const;
   Bounds bounds() const;
@@ -132,6 +132,8 @@ struct Scene {
   bool hasEmitters() const;
   /// The camera of the scene, or one that frames its bounds from the front (+z looking -z).
   Camera cameraOrDefault() const;
+  /// The lights at `seconds` into their animation (Light::at).
+  std::vector<Light> lightsAt(double seconds) const;
 };
 
 }  // namespace rad

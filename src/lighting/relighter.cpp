@@ -2,7 +2,6 @@
 // Its state is a progressive solve part way (ShootingState): what has been shot is exact and the
 // unshot radiosity is what is left, so a change of the lights is one more thing left to shoot,
 // and nothing is lost between frames: what a relight leaves unshot, the next one shoots.
-#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/relighter.h>
 #include <tbb/parallel_for.h>
@@ -23,10 +22,6 @@ namespace {
 double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
-}
-
-FormFactorRowSource rowsOf(const FormFactorTable& table) {
-  return [&table](uint32_t i) { return FormFactorRowView{table.columns(i), table.values(i)}; };
 }
 
 bool samePatches(const PatchMesh& a, const PatchMesh& b) {
@@ -65,6 +60,12 @@ std::vector<Color> carryOver(const PatchMesh& from, std::span<const Color> value
   return out;
 }
 
+// The patches as lights make them: the base mesh refined for them, and their direct light there.
+struct LitPatches {
+  std::unique_ptr<PatchMesh> mesh;
+  std::vector<Color> direct;
+};
+
 }  // namespace
 
 struct Relighter::State {
@@ -82,11 +83,11 @@ struct Relighter::State {
 
   const FormFactorTable& table() const { return *m.table; }
   void anchor(std::span<const Color> guess);
-  std::vector<Color> lightPatches(std::span<const Light> lights);
-  void changeMesh(std::unique_ptr<PatchMesh> mesh, std::vector<Color> direct);
+  LitPatches lightPatches(std::span<const Light> lights);
+  void changeMesh(LitPatches lit);
   void applyDirect(const std::vector<Color>& direct);
   void shoot();
-  void publish(bool meshChanged);
+  void publish();
 };
 
 // The state for radiosities `guess`: one gathering step from it, B = S + rho F guess, with
@@ -105,41 +106,34 @@ void Relighter::State::anchor(std::span<const Color> guess) {
 }
 
 // The lights' direct light on the patches of a mesh refined for them anew; lights that did not
-// change are not evaluated again (the cache). The new mesh replaces the old where it differs.
-std::vector<Color> Relighter::State::lightPatches(std::span<const Light> lights) {
+// change are not evaluated again (the cache).
+LitPatches Relighter::State::lightPatches(std::span<const Light> lights) {
   m.lights.assign(lights.begin(), lights.end());
   const std::vector<uint8_t> changed = cache.update(m.lights);
   stats.lightsChanged = size_t(std::count(changed.begin(), changed.end(), 1));
-  auto mesh = std::make_unique<PatchMesh>(*m.model->baseMesh);
+  LitPatches lit{std::make_unique<PatchMesh>(*m.model->baseMesh), {}};
   const PatchRadiositySettings& s = m.settings;
-  LightRefinement refined =
-      refineForLights(*mesh, DirectLighting(*m.scene, *m.model->caster, m.lights),
-                      {s.refineLevels, s.refineThreshold, s.lightSamples}, cache);
-  if (refined.direct.empty()) refined.direct.assign(mesh->size(), Color(0.0f));
-  stats.meshChanged = !samePatches(*mesh, *m.mesh);
-  if (stats.meshChanged) {
-    changeMesh(std::move(mesh), refined.direct);
-    return {};
-  }
-  return std::move(refined.direct);
+  lit.direct = refineForLights(*lit.mesh, DirectLighting(*m.scene, *m.model->caster, m.lights),
+                               {s.refineLevels, s.refineThreshold, s.lightSamples}, cache)
+                   .direct;
+  if (lit.direct.empty()) lit.direct.assign(lit.mesh->size(), Color(0.0f));
+  return lit;
 }
 
 // A new quadtree: its rows from the master table, its system, and the state anchored at the old
 // solution carried over to the new patches.
-void Relighter::State::changeMesh(std::unique_ptr<PatchMesh> mesh, std::vector<Color> direct) {
-  const auto start = std::chrono::steady_clock::now();
+void Relighter::State::changeMesh(LitPatches lit) {
   const std::vector<Color> guess =
-      carryOver(*m.mesh, m.solution.radiosity, *mesh, m.settings.refineLevels);
-  m.mesh = std::move(mesh);
+      carryOver(*m.mesh, m.solution.radiosity, *lit.mesh, m.settings.refineLevels);
+  m.mesh = std::move(lit.mesh);
+  m.lightDirect = std::move(lit.direct);
   m.chooseFormFactorSettings();
   m.stats.warnings.clear();
   m.table = m.formFactors(*m.model->caster, {});
   stats.rowsComputed = m.stats.rowsComputed;
-  unsavedRows += stats.rowsComputed;
   stats.rowsReused = m.stats.rowsReused;
-  stats.formFactorMs = msSince(start);
-  system = systemOf(*m.scene, *m.mesh);
-  system.direct = std::move(direct);
+  unsavedRows += stats.rowsComputed;
+  system = m.system();
   stats.patchesUpdated = m.mesh->size();
   anchor(guess);
 }
@@ -188,23 +182,15 @@ void Relighter::State::shoot() {
 }
 
 // The solution the renderers see: the state plus the ambient term for what is left unshot.
-void Relighter::State::publish(bool meshChanged) {
-  const Color ambient = ambientTerm(system, shooting.unshot);
-  PatchSolution& out = m.solution;
-  out.emitted = system.emitted;
-  out.irradiance = shooting.irradiance;
-  out.radiosity = shooting.radiosity;
-  for (size_t i = 0; i < system.size(); ++i) {
-    out.irradiance[i] += ambient;
-    out.radiosity[i] += system.rho[i] * ambient;
-  }
+void Relighter::State::publish() {
+  solutionOf(system, shooting, m.solution);
   m.lightDirect = system.direct;
   m.separateIndirect(rowsOf(table()), system);
-  if (meshChanged) {
+  if (stats.meshChanged) {
     m.hanging = m.mesh->hangingVertices();
     m.recordMesh();
   }
-  m.vertexIrradiance = m.averageAtVertices(out.irradiance);
+  m.vertexIrradiance = m.averageAtVertices(m.solution.irradiance);
   m.vertexIndirect = m.averageAtVertices(m.indirect);
 }
 
@@ -220,12 +206,10 @@ Relighter::Relighter(const PatchModel& model, std::span<const Light> lights,
   PatchLightCache cache;
   impl->build(cache, progress);
   state_ = std::make_unique<State>(PatchRadiosity(std::move(impl)), settings);
-  state_->unsavedRows = state_->m.stats.rowsComputed;
   State& s = *state_;
+  s.unsavedRows = s.m.stats.rowsComputed;
   s.cache = std::move(cache);
-  s.system = systemOf(*s.m.scene, *s.m.mesh);
-  s.system.direct =
-      s.m.lightDirect.empty() ? std::vector<Color>(s.system.size(), Color(0.0f)) : s.m.lightDirect;
+  s.system = s.m.system();
   s.anchor(s.m.solution.radiosity);
   s.stats.patches = s.system.size();
 }
@@ -238,12 +222,18 @@ const RelightStats& Relighter::relight(std::span<const Light> lights) {
   State& s = *state_;
   const auto start = std::chrono::steady_clock::now();
   s.stats = {};
-  std::vector<Color> direct = s.lightPatches(lights);
-  s.stats.directMs = msSince(start) - s.stats.formFactorMs;
-  if (!s.stats.meshChanged) s.applyDirect(direct);
+  LitPatches lit = s.lightPatches(lights);
+  s.stats.directMs = msSince(start);
+  s.stats.meshChanged = !samePatches(*lit.mesh, *s.m.mesh);
+  const auto table = std::chrono::steady_clock::now();
+  if (s.stats.meshChanged)
+    s.changeMesh(std::move(lit));
+  else
+    s.applyDirect(lit.direct);
+  if (s.stats.meshChanged) s.stats.formFactorMs = msSince(table);
   const auto bounce = std::chrono::steady_clock::now();
   s.shoot();
-  s.publish(s.stats.meshChanged);
+  s.publish();
   s.stats.bounceMs = msSince(bounce);
   s.stats.patches = s.system.size();
   s.stats.milliseconds = msSince(start);

@@ -104,6 +104,46 @@ std::string notUsed(const std::filesystem::path& file, const std::string& why) {
   return fmt::format("form-factor cache {} not used ({}); recomputing", file.string(), why);
 }
 
+// What every cache file starts with: its magic, its format version (and 4 spare bytes) and the
+// key it was computed for; `at` is where what follows starts. `rejected` says why a file that
+// exists cannot be used (empty when it may be, so far).
+struct CacheFileStart {
+  bool exists = false;
+  std::string bytes;
+  std::string rejected;
+  FormFactorCacheKey key;
+  size_t at = 0;
+};
+CacheFileStart readCacheFileStart(const std::filesystem::path& file, const char (&magic)[8],
+                                  uint32_t version, size_t headerBytes) {
+  CacheFileStart f;
+  f.exists = readCacheFile(file, f.bytes);
+  if (!f.exists) return f;
+  if (f.bytes.empty()) {
+    f.rejected = "unreadable";
+  } else if (f.bytes.size() < headerBytes + 8) {
+    f.rejected = "truncated";
+  } else if (std::memcmp(f.bytes.data(), magic, 8) != 0) {
+    f.rejected = "not a form-factor cache file";
+  } else {
+    f.at = 8;
+    const uint32_t stored = get<uint32_t>(f.bytes, f.at);
+    f.at += 4;
+    if (stored != version)
+      f.rejected = fmt::format("format version {}, expected {}", stored, version);
+    else
+      f.key = {get<uint64_t>(f.bytes, f.at), get<uint64_t>(f.bytes, f.at)};
+  }
+  return f;
+}
+
+// True if the file's last 8 bytes are the checksum of the rest.
+bool checksumMatches(const std::string& bytes) {
+  uint64_t sum;
+  std::memcpy(&sum, bytes.data() + bytes.size() - 8, 8);
+  return sum == checksum(bytes.data(), bytes.size() - 8);
+}
+
 // Appends the checksum and writes atomically; a warning if that failed.
 std::string writeCacheFile(const std::filesystem::path& file, std::string& out) {
   put(out, checksum(out.data(), out.size()));
@@ -195,22 +235,15 @@ std::filesystem::path masterTableCacheFile(const std::filesystem::path& dir,
 
 MasterRowsLoad loadMasterRows(const std::filesystem::path& file, const FormFactorCacheKey& key) {
   MasterRowsLoad result;
-  std::string bytes;
-  if (!readCacheFile(file, bytes)) return result;
   auto reject = [&](const std::string& why) {
     result.warning = notUsed(file, why);
     return result;
   };
-  if (bytes.empty()) return reject("unreadable");
-  constexpr size_t kHeader = 8 + 4 + 4 + 16 + 8;
-  if (bytes.size() < kHeader + 8) return reject("truncated");
-  if (std::memcmp(bytes.data(), kMasterMagic, 8) != 0)
-    return reject("not a form-factor cache file");
-  size_t at = 8;
-  if (const uint32_t version = get<uint32_t>(bytes, at); version != kMasterVersion)
-    return reject(fmt::format("format version {}, expected {}", version, kMasterVersion));
-  at += 4;
-  const FormFactorCacheKey stored{get<uint64_t>(bytes, at), get<uint64_t>(bytes, at)};
+  CacheFileStart f = readCacheFileStart(file, kMasterMagic, kMasterVersion, 8 + 4 + 4 + 16 + 8);
+  if (!f.exists) return result;
+  if (!f.rejected.empty()) return reject(f.rejected);
+  const std::string& bytes = f.bytes;
+  size_t at = f.at;
   const uint64_t count = get<uint64_t>(bytes, at);
   // The rows' layout first (a cut file is "truncated"), then the checksum, then the values.
   const size_t end = bytes.size() - 8, first = at;
@@ -222,10 +255,8 @@ MasterRowsLoad loadMasterRows(const std::filesystem::path& file, const FormFacto
     at += 12 * (size_t(hits) + exact);
   }
   if (at != end) return reject("trailing bytes");
-  uint64_t sum;
-  std::memcpy(&sum, bytes.data() + end, 8);
-  if (sum != checksum(bytes.data(), end)) return reject("checksum mismatch: corrupt");
-  if (!(stored == key)) return reject("computed for other geometry or settings");
+  if (!checksumMatches(bytes)) return reject("checksum mismatch: corrupt");
+  if (!(f.key == key)) return reject("computed for other geometry or settings");
   MasterRows rows;
   at = first;
   auto read = [&](std::vector<HemisphereHit>& out, uint32_t n) {
@@ -295,21 +326,15 @@ std::filesystem::path formFactorCacheFile(const std::filesystem::path& dir,
 FormFactorCacheLoad loadFormFactorTable(const std::filesystem::path& file,
                                         const FormFactorCacheKey& key, size_t patches) {
   FormFactorCacheLoad result;
-  std::string bytes;
-  if (!readCacheFile(file, bytes)) return result;
   auto reject = [&](const std::string& why) {
     result.warning = notUsed(file, why);
     return result;
   };
-  if (bytes.empty()) return reject("unreadable");
-  if (bytes.size() < kHeaderBytes + 8) return reject("truncated");
-  if (std::memcmp(bytes.data(), kMagic, 8) != 0) return reject("not a form-factor cache file");
-  size_t at = 8;
-  const uint32_t version = get<uint32_t>(bytes, at);
-  if (version != kVersion)
-    return reject(fmt::format("format version {}, expected {}", version, kVersion));
-  at += 4;
-  const FormFactorCacheKey stored{get<uint64_t>(bytes, at), get<uint64_t>(bytes, at)};
+  CacheFileStart f = readCacheFileStart(file, kMagic, kVersion, kHeaderBytes);
+  if (!f.exists) return result;
+  if (!f.rejected.empty()) return reject(f.rejected);
+  const std::string& bytes = f.bytes;
+  size_t at = f.at;
   const uint64_t rows = get<uint64_t>(bytes, at), nnz = get<uint64_t>(bytes, at);
   ThresholdLoss loss;
   loss.entryFraction = get<double>(bytes, at);
@@ -320,10 +345,8 @@ FormFactorCacheLoad loadFormFactorTable(const std::filesystem::path& file,
   const uint64_t expected = kHeaderBytes + (rows + 1) * 8 + nnz * 8 + 8;
   if (bytes.size() != expected)
     return reject(bytes.size() < expected ? "truncated" : "trailing bytes");
-  uint64_t sum;
-  std::memcpy(&sum, bytes.data() + bytes.size() - 8, 8);
-  if (sum != checksum(bytes.data(), bytes.size() - 8)) return reject("checksum mismatch: corrupt");
-  if (!(stored == key) || rows != patches) return reject("computed for other geometry or settings");
+  if (!checksumMatches(bytes)) return reject("checksum mismatch: corrupt");
+  if (!(f.key == key) || rows != patches) return reject("computed for other geometry or settings");
   auto offsets = getArray<uint64_t>(bytes, at, rows + 1);
   auto columns = getArray<uint32_t>(bytes, at, nnz);
   auto values = getArray<float>(bytes, at, nnz);

@@ -45,7 +45,6 @@ class PatchLightCache {
   /// What light `light` puts on the node at `address`, if evaluated.
   const PatchLight* find(size_t light, uint64_t address) const;
   void insert(size_t light, uint64_t address, const PatchLight& value);
-  size_t lights() const { return byLight_.size(); }
 
  private:
   std::vector<Light> lights_;

@@ -24,7 +24,6 @@
 
 namespace rad {
 
-
 namespace {
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -46,17 +45,17 @@ constexpr double kExactColumnPairs = 2e6, kExactPairsPerSecond = 1e6;
 
 }  // namespace
 
-PatchSystem systemOf(const Scene& scene, const PatchMesh& mesh) {
+PatchSystem PatchRadiosity::Impl::system() const {
   PatchSystem s;
-  for (const Patch& p : mesh.patches()) {
-    const Material& m = scene.materials[p.material];
+  for (const Patch& p : mesh->patches()) {
+    const Material& m = scene->materials[p.material];
     s.emitted.push_back(glm::pi<float>() * m.emission);
     s.rho.push_back(m.rho);
     s.area.push_back(p.area);
   }
+  s.direct = lightDirect.empty() ? std::vector<Color>(mesh->size(), Color(0.0f)) : lightDirect;
   return s;
 }
-
 
 void PatchRadiosity::Impl::chooseFormFactorSettings() {
   ff = {settings.estimator, settings.formFactorRays, settings.seed, {}};
@@ -91,11 +90,24 @@ FormFactorTable PatchRadiosity::Impl::assembleTable(FormFactorRows rows) const {
   return table;
 }
 
-// The table for this mesh: the hemisphere estimator's from the model's master table (rows kept
-// by node, cast only for nodes never solved before, saved to the disk cache when it grew); the
-// other estimators' from the disk cache of whole tables, else computed.
+// The table for this mesh, and its numbers in the stats (also when a relighter changes the mesh).
 FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
                                                   const ProgressCallback& progress) {
+  FormFactorTable table = loadOrComputeFormFactors(caster, progress);
+  stats.nonZeros = table.nonZeros();
+  stats.tableBytes = table.memoryBytes();
+  recordThresholdLoss(table.thresholdLoss());
+  std::vector<double> sums(table.rows());
+  for (size_t i = 0; i < sums.size(); ++i) sums[i] = table.rowSum(i);
+  recordRowSums(sums, stats);
+  return table;
+}
+
+// The hemisphere estimator's table from the model's master table (rows kept by node, cast only
+// for nodes never solved before, saved to the disk cache when it grew); the other estimators'
+// from the disk cache of whole tables, else computed.
+FormFactorTable PatchRadiosity::Impl::loadOrComputeFormFactors(const RayCaster& caster,
+                                                               const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   if (model->master) {
     MasterFormFactorTable::Rows rows =
@@ -215,8 +227,7 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
 }
 
 void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback& progress) {
-  PatchSystem system = systemOf(*scene, *mesh);
-  system.direct = lightDirect;
+  const PatchSystem system = this->system();
   const PatchSolverControl control{settings.tolerance, settings.maxIterations};
   chooseFormFactorSettings();
   const bool lazy = settings.solver == PatchSolverKind::Progressive &&
@@ -224,12 +235,6 @@ void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback
                     settings.cacheDir.empty() && !keepTable;
   if (lazy) return solveLazily(caster, system, progress);
   FormFactorTable table = formFactors(caster, progress);
-  stats.nonZeros = table.nonZeros();
-  stats.tableBytes = table.memoryBytes();
-  recordThresholdLoss(table.thresholdLoss());
-  std::vector<double> sums(table.rows());
-  for (size_t i = 0; i < sums.size(); ++i) sums[i] = table.rowSum(i);
-  recordRowSums(sums, stats);
   switch (settings.solver) {
     case PatchSolverKind::Jacobi:
       solution = solveJacobi(table, system, control, progress);
@@ -238,18 +243,10 @@ void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback
       solution = solveGaussSeidel(table, system, control, progress);
       break;
     case PatchSolverKind::Progressive:
-      solution = solveProgressive(
-          [&](uint32_t i) {
-            return FormFactorRowView{table.columns(i), table.values(i)};
-          },
-          system, control, progress);
+      solution = solveProgressive(rowsOf(table), system, control, progress);
       break;
   }
-  separateIndirect(
-      [&](uint32_t i) {
-        return FormFactorRowView{table.columns(i), table.values(i)};
-      },
-      system);
+  separateIndirect(rowsOf(table), system);
   if (keepTable) this->table = std::move(table);
 }
 
@@ -297,8 +294,7 @@ PatchRadiosity::PatchRadiosity(const Scene& scene, const PatchRadiositySettings&
                                const ProgressCallback& progress)
     : PatchRadiosity(PatchModel(scene, settings).solve(scene.lights, progress)) {}
 
-PatchRadiosity::Impl::Impl(std::shared_ptr<const PatchModel::State> m,
-                           std::span<const Light> l)
+PatchRadiosity::Impl::Impl(std::shared_ptr<const PatchModel::State> m, std::span<const Light> l)
     : model(std::move(m)),
       scene(model->scene),
       settings(model->settings),

@@ -17,9 +17,6 @@
 
 namespace rad {
 
-/// The patches' E, rho and area (D is left empty).
-PatchSystem systemOf(const Scene& scene, const PatchMesh& mesh);
-
 struct PatchRadiosity::Impl {
   std::shared_ptr<const PatchModel::State> model;
   const Scene* scene = nullptr;
@@ -42,6 +39,8 @@ struct PatchRadiosity::Impl {
   /// Lights the patches (refining the mesh, with the lights' values on nodes from and into
   /// `cache`), gets the form factors, solves and shades.
   void build(PatchLightCache& cache, const ProgressCallback& progress);
+  /// The equation's terms on the mesh: E, rho, area, and D (zeros without lights).
+  PatchSystem system() const;
   /// The vertex values radiance() interpolates, from the solution and the indirect light.
   void shadeVertices();
   void recordMesh();
@@ -49,7 +48,11 @@ struct PatchRadiosity::Impl {
   FormFactorSettings ff;             ///< the estimator's settings, fixed once per solve
   std::vector<uint8_t> emitterRows;  ///< per patch: it emits (the threshold keeps its row whole)
   void chooseFormFactorSettings();
+  /// The form factors of the patches, with their numbers (entries, bytes, threshold loss, row
+  /// sums) put in the stats.
   FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);
+  FormFactorTable loadOrComputeFormFactors(const RayCaster& caster,
+                                           const ProgressCallback& progress);
   FormFactorTable assembleTable(FormFactorRows rows) const;
   void solve(const RayCaster& caster, const ProgressCallback& progress);
   void solveLazily(const RayCaster& caster, const PatchSystem& system,

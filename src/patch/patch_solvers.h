@@ -61,6 +61,8 @@ struct FormFactorRowView {
 };
 /// Gives row i; called from one thread; the view must stay valid until the solver returns.
 using FormFactorRowSource = std::function<FormFactorRowView(uint32_t patch)>;
+/// The rows of `table` (which must outlive the source).
+FormFactorRowSource rowsOf(const FormFactorTable& table);
 
 /// Progressive refinement: shoots the patch with the most unshot power (Southwell iteration),
 /// asking for each row when its patch first shoots; adds the ambient term at the end.
@@ -87,9 +89,10 @@ void shootUnshot(const FormFactorRowSource& rows, const PatchSystem& system, Sho
 void shootUnshotInSweeps(const FormFactorTable& table, const PatchSystem& system,
                          ShootingState& state, double norm, const PatchSolverControl& control,
                          PatchSolution& record);
-/// The ambient term of progressive refinement for unshot radiosity U: the unshot power spread
-/// over the total area, times the interreflection factor 1 / (1 - mean rho); as irradiance.
-Color ambientTerm(const PatchSystem& system, std::span<const Color> unshot);
+/// The solution a shooting state stands for: its B and H plus the ambient term of progressive
+/// refinement for what is left unshot (the unshot power spread over the total area, times the
+/// interreflection factor 1 / (1 - mean rho)), and E. Sets those arrays of `out`.
+void solutionOf(const PatchSystem& system, const ShootingState& state, PatchSolution& out);
 
 /// Relative residual of B for the system (for tests and reports).
 double relativeResidual(const FormFactorTable& table, const PatchSystem& system,

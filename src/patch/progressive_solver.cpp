@@ -26,6 +26,14 @@ struct Shooter {
 
 }  // namespace
 
+FormFactorRowSource rowsOf(const FormFactorTable& table) {
+  return [&table](uint32_t i) { return FormFactorRowView{table.columns(i), table.values(i)}; };
+}
+
+namespace {
+
+// The ambient irradiance: unshot power spread over the total area, times the interreflection
+// factor 1 / (1 - mean rho).
 Color ambientTerm(const PatchSystem& s, std::span<const Color> unshot) {
   Vec3d shot(0.0), rho(0.0);
   double area = 0.0;
@@ -36,6 +44,19 @@ Color ambientTerm(const PatchSystem& s, std::span<const Color> unshot) {
   }
   if (area <= 0.0) return Color(0.0f);
   return Color(shot / area / (Vec3d(1.0) - rho / area));
+}
+
+}  // namespace
+
+void solutionOf(const PatchSystem& s, const ShootingState& state, PatchSolution& out) {
+  const Color ambient = ambientTerm(s, state.unshot);
+  out.radiosity = state.radiosity;
+  out.irradiance = state.irradiance;
+  for (size_t i = 0; i < s.size(); ++i) {
+    out.irradiance[i] += ambient;
+    out.radiosity[i] += s.rho[i] * ambient;
+  }
+  finishSolution(s, out);
 }
 
 void shootUnshot(const FormFactorRowSource& rows, const PatchSystem& s, ShootingState& state,
@@ -135,14 +156,7 @@ PatchSolution solveProgressive(const FormFactorRowSource& rows, const PatchSyste
   PatchSolution out;
   ShootingState state{sources(s), directIrradiance(s), sources(s)};
   shootUnshot(rows, s, state, sourceNorm(s), control, out, progress);
-  const Color ambient = ambientTerm(s, state.unshot);
-  out.radiosity = std::move(state.radiosity);
-  out.irradiance = std::move(state.irradiance);
-  for (size_t i = 0; i < s.size(); ++i) {
-    out.irradiance[i] += ambient;
-    out.radiosity[i] += s.rho[i] * ambient;
-  }
-  finishSolution(s, out);
+  solutionOf(s, state, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
