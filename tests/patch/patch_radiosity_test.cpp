@@ -28,7 +28,8 @@ namespace {
 // less).
 TEST(PatchCornell, SurfaceMeansMatchThePathTracer) {
   const Scene scene = loadScene("cornell");
-  const std::map<std::string, ObjectRadiometry> expected = test::tracedObjectMeans(scene, 20000, 16, 5);
+  const std::map<std::string, ObjectRadiometry> expected =
+      test::tracedObjectMeans(scene, 20000, 16, 5);
 
   PatchRadiositySettings settings;  // the defaults: ~4000 patches, 256 rays each, Gauss-Seidel
   const PatchRadiosity solution(scene, settings);
@@ -101,11 +102,15 @@ TEST(PatchRadiosity, LargeEmittersFallBackToRaysWithAWarning) {
   EXPECT_TRUE(coarse.stats().warnings.empty());
 }
 
-std::vector<ObjectRadiometry> solveWith(const Scene& scene, const fs::path& cache,
-                                        PatchRadiosityStats& stats) {
+// The hemisphere estimator caches its master table by node; the others whole tables.
+std::vector<ObjectRadiometry> solveWith(
+    const Scene& scene, const fs::path& cache, PatchRadiosityStats& stats,
+    PatchFormFactorEstimator estimator = PatchFormFactorEstimator::Hemisphere) {
   PatchRadiositySettings settings;
   settings.patchSize = 0.125f;
   settings.cacheDir = cache.string();
+  settings.estimator = estimator;
+  if (estimator == PatchFormFactorEstimator::Pairwise) settings.formFactorRays = 4;
   const PatchRadiosity solution(scene, settings);
   stats = solution.stats();
   return solution.objectRadiometry();
@@ -117,16 +122,16 @@ void expectSame(const std::vector<ObjectRadiometry>& a, const std::vector<Object
     EXPECT_EQ(a[o].meanRadiosity, b[o].meanRadiosity) << a[o].name;
 }
 
-TEST(PatchCache, SecondRunLoadsAndBadFilesAreRecomputed) {
+void expectSecondRunLoadsAndBadFilesRecomputed(PatchFormFactorEstimator estimator) {
   const fs::path dir = fs::path(::testing::TempDir()) / "radiosity_patch_cache";
   fs::remove_all(dir);
   const Scene scene = smallRoom();
   PatchRadiosityStats first, again;
-  const auto reference = solveWith(scene, dir, first);
+  const auto reference = solveWith(scene, dir, first, estimator);
   EXPECT_FALSE(first.cacheLoaded);
   EXPECT_TRUE(first.warnings.empty());
   ASSERT_TRUE(fs::exists(first.cacheFile));
-  expectSame(solveWith(scene, dir, again), reference);
+  expectSame(solveWith(scene, dir, again, estimator), reference);
   EXPECT_TRUE(again.cacheLoaded);
   EXPECT_EQ(again.rays, 0u);  // nothing recomputed
 
@@ -144,12 +149,12 @@ TEST(PatchCache, SecondRunLoadsAndBadFilesAreRecomputed) {
     damage(bytes);
     std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
     PatchRadiosityStats s;
-    expectSame(solveWith(scene, dir, s), reference);
+    expectSame(solveWith(scene, dir, s, estimator), reference);
     EXPECT_FALSE(s.cacheLoaded);
     ASSERT_EQ(s.warnings.size(), 1u);
     EXPECT_NE(s.warnings[0].find(expectedReason), std::string::npos) << s.warnings[0];
     PatchRadiosityStats repaired;
-    solveWith(scene, dir, repaired);
+    solveWith(scene, dir, repaired, estimator);
     EXPECT_TRUE(repaired.cacheLoaded);
   };
   damageAndCheck(
@@ -161,6 +166,14 @@ TEST(PatchCache, SecondRunLoadsAndBadFilesAreRecomputed) {
   damageAndCheck(
       "foreign", [](std::string& b) { b.replace(0, 8, "NOTOURS!"); }, "not a form-factor");
   fs::remove_all(dir);
+}
+
+TEST(PatchCache, SecondRunLoadsAndBadMasterTablesAreRecomputed) {
+  expectSecondRunLoadsAndBadFilesRecomputed(PatchFormFactorEstimator::Hemisphere);
+}
+
+TEST(PatchCache, SecondRunLoadsAndBadWholeTablesAreRecomputed) {
+  expectSecondRunLoadsAndBadFilesRecomputed(PatchFormFactorEstimator::Pairwise);
 }
 
 // Smooth shading: radiance is continuous across patch boundaries (a point just either side of an
