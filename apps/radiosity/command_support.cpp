@@ -56,7 +56,12 @@ void writeStatsFile(const std::string& path, const Scene& scene, const std::stri
   stats.scene = sceneName;
   stats.method = method;
   stats.emittedPower = scene.emittedPower();
-  if (!stats.objects.empty()) stats.absorbedPower = absorbedPower(scene, stats.objects);
+  if (!stats.lightGroups.empty()) {
+    stats.emittedPower = Color(0.0f);
+    for (const RunStats::LightGroupEntry& g : stats.lightGroups) stats.emittedPower += g.power;
+  }
+  if (!stats.objects.empty())
+    stats.absorbedPower = absorbedPower(scene, stats.objects, stats.emissionScales);
   stats.timingsSeconds.total = totalSeconds;
   stats.memoryPeakBytes = peakResidentBytes();
   writeRunStats(path, stats);

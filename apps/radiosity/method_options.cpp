@@ -20,11 +20,31 @@ namespace {
 // cache file that could not be used).
 template <class Model, class Settings>
 auto solveShowingProgress(const Scene& scene, const RayCaster& caster, const Settings& settings,
-                          const std::string& label, Console& console) {
+                          std::span<const GroupScale> groups, const std::string& label,
+                          Console& console) {
   auto solution = Model(scene, caster, settings).solve(scene.lights, console.progress(label));
   console.finishProgress();
   for (const std::string& w : solution.stats().warnings) console.warn(w);
+  if (groups.empty()) return solution;
+  const std::vector<Color> scales = groupScalesFor(solution.lightGroups(), groups);
+  solution.setGroupScales(scales);
+  if (std::all_of(scales.begin(), scales.end(), [](const Color& s) { return s == Color(0.0f); }))
+    console.warn("--group switched every light group off: there is no light");
   return solution;
+}
+
+// The light groups, their scales and power, and the per-object means.
+void reportObjects(const Scene& scene, const SurfaceSolution& solution, const SolveReport& report) {
+  if (!report.objectMeans) return;
+  report.stats.objects = solution.objectRadiometry();
+  const std::span<const LightGroup> groups = solution.lightGroups();
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const Color scale = solution.groupScales()[g];
+    report.stats.lightGroups.push_back(
+        {groups[g].name, scale, scale * groupPower(scene, scene.lights, groups[g])});
+  }
+  const std::span<const Color> scales = solution.emissionScales();
+  report.stats.emissionScales.assign(scales.begin(), scales.end());
 }
 
 // The declaration's own check, so that a flag's message is the scene key's.
@@ -62,6 +82,11 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
       if (d.group != "General") options_[d.name]->group(d.group);
     }
   }
+  c.add_option("--group", groupText_,
+               "Scale a light group's light, NAME=SCALE or NAME=r,g,b (0: off; repeatable); "
+               "solves the groups apart (--light-groups). A light's group is its \"group\", "
+               "else light<i>; an emitting material's, its name")
+      ->type_name("NAME=SCALE");
 }
 
 void MethodOptions::resolve(const Scene& scene) {
@@ -77,6 +102,10 @@ void MethodOptions::resolve(const Scene& scene) {
     if (!v) throw InputError(d.flag(), why);  // checked by CLI11 already
     given.values[d.name] = *v;
   }
+  groupScales_.clear();
+  for (const std::string& text : groupText_) groupScales_.push_back(parseGroupScale(text));
+  groupScalesFor(lightGroupsOf(scene, scene.lights), groupScales_);  // every name a group's
+  if (!groupScales_.empty()) given.values["light_groups"] = true;
   if (!given.values.contains("method") && !scene.solver.values.contains("method"))
     given.values["method"] = methods_.front();
   settings_ = resolveMethodSettings(scene.solver, given, scene.name);
@@ -87,10 +116,12 @@ void MethodOptions::resolve(const Scene& scene) {
 }
 
 VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
-                           const VoxelRadiositySettings& settings, Console& console,
-                           RunStats& stats, bool objectMeans) {
+                           const VoxelRadiositySettings& settings,
+                           std::span<const GroupScale> groups, Console& console,
+                           const SolveReport& report) {
   VoxelRadiosity solution =
-      solveShowingProgress<VoxelModel>(scene, caster, settings, "voxel solve", console);
+      solveShowingProgress<VoxelModel>(scene, caster, settings, groups, "voxel solve", console);
+  RunStats& stats = report.stats;
   const VoxelRadiosityStats& v = solution.stats();
   stats.methodDetails = {
       {"voxel_size", v.voxelSize},
@@ -118,15 +149,17 @@ VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
   stats.iterations = int(v.residuals.size());
   stats.residual = v.residuals.empty() ? 0.0 : v.residuals.back();
   stats.residuals = v.residuals;
-  if (objectMeans) stats.objects = solution.objectRadiometry();
+  reportObjects(scene, solution, report);
   return solution;
 }
 
 PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
-                            const PatchRadiositySettings& settings, Console& console,
-                            RunStats& stats, bool objectMeans) {
+                            const PatchRadiositySettings& settings,
+                            std::span<const GroupScale> groups, Console& console,
+                            const SolveReport& report) {
   PatchRadiosity solution =
-      solveShowingProgress<PatchModel>(scene, caster, settings, "patch solve", console);
+      solveShowingProgress<PatchModel>(scene, caster, settings, groups, "patch solve", console);
+  RunStats& stats = report.stats;
   const PatchRadiosityStats& p = solution.stats();
   stats.methodDetails = {
       {"patch_size", p.patchSize},
@@ -167,7 +200,7 @@ PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
   stats.iterations = p.iterations;
   stats.residual = p.residuals.empty() ? 0.0 : p.residuals.back();
   stats.residuals = p.residuals;
-  if (objectMeans) stats.objects = solution.objectRadiometry();
+  reportObjects(scene, solution, report);
   return solution;
 }
 

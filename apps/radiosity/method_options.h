@@ -3,6 +3,7 @@
 // a flag and a key of the scene's "solver" object; the flag wins, then the scene, then the
 // method's default. Also the solve both commands run: progress, warnings and stats.
 
+#include <radiosity/light_groups.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
 #include <radiosity/scene.h>
@@ -30,7 +31,8 @@ class MethodOptions {
   MethodOptions(CLI::App& command, std::vector<std::string> methods);
 
   /// Resolves the settings: the flags given, then the scene's "solver" values, then the
-  /// methods' defaults. Throws InputError for a method the command does not offer.
+  /// methods' defaults; any --group solves the light groups apart. Throws InputError for a
+  /// method the command does not offer or a --group that names no group of the scene.
   void resolve(const Scene& scene);
 
   const std::string& method() const { return settings_.method; }
@@ -38,9 +40,13 @@ class MethodOptions {
   const PathTracerSettings& pathTracer() const { return settings_.pathTracer; }
   const VoxelRadiositySettings& voxel() const { return settings_.voxel; }
   const PatchRadiositySettings& patch() const { return settings_.patch; }
+  /// What the --group flags ask.
+  const std::vector<GroupScale>& groupScales() const { return groupScales_; }
 
  private:
   std::vector<std::string> methods_;
+  std::vector<std::string> groupText_;
+  std::vector<GroupScale> groupScales_;
   MethodSettings settings_;
   /// What each flag was given, by setting name (std::map: CLI11 keeps pointers to them).
   std::map<std::string, std::string> text_;
@@ -48,16 +54,25 @@ class MethodOptions {
   std::map<std::string, CLI::Option*> options_;
 };
 
+/// What a solve of the commands reports besides the solution: its numbers, and the per-object
+/// means (stats.objects, a pass over every element) only if `objectMeans`, since only the stats
+/// file reports them.
+struct SolveReport {
+  RunStats& stats;
+  bool objectMeans = false;
+};
+
 /// Solves `scene` (through `caster`, the run's one ray caster) by the voxel method with a
-/// progress bar, prints the method's warnings and puts
-/// its numbers in `stats`; the per-object means (stats.objects, a pass over every voxel side) only
-/// if `objectMeans`, since only the stats file reports them. Throws what the solver throws.
+/// progress bar, scales its light groups as `groups` asks, prints the method's warnings and
+/// reports its numbers. Throws what the solver throws.
 VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
-                           const VoxelRadiositySettings& settings, Console& console,
-                           RunStats& stats, bool objectMeans);
+                           const VoxelRadiositySettings& settings,
+                           std::span<const GroupScale> groups, Console& console,
+                           const SolveReport& report);
 /// The same for the patch method.
 PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
-                            const PatchRadiositySettings& settings, Console& console,
-                            RunStats& stats, bool objectMeans);
+                            const PatchRadiositySettings& settings,
+                            std::span<const GroupScale> groups, Console& console,
+                            const SolveReport& report);
 
 }  // namespace rad::cli

@@ -113,18 +113,20 @@ int runRender(RenderOptions& o, Console& console) {
   InterruptGuard interruptible;
   const RayCaster caster(scene);  // the run's one BVH
   const std::string& method = o.method.method();
-  const bool objectMeans = !o.stats.empty();
+  const SolveReport report{stats, !o.stats.empty()};
+  const std::vector<GroupScale>& groups = o.method.groupScales();
+  if (method == "pathtrace" && !groups.empty())
+    scaleEmitters(scene, lightGroupsOf(scene, scene.lights),
+                  groupScalesFor(lightGroupsOf(scene, scene.lights), groups));
   const Image image =
       method == "pathtrace" ? renderWithPathTracer(scene, caster, camera, o, console, stats)
       : method == "patch"
-          ? renderSolution(
-                scene, caster, camera,
-                solvePatches(scene, caster, o.method.patch(), console, stats, objectMeans), o,
-                console, stats)
-          : renderSolution(
-                scene, caster, camera,
-                solveVoxels(scene, caster, voxelSettingsFor(o), console, stats, objectMeans), o,
-                console, stats);
+          ? renderSolution(scene, caster, camera,
+                           solvePatches(scene, caster, o.method.patch(), groups, console, report),
+                           o, console, stats)
+          : renderSolution(scene, caster, camera,
+                           solveVoxels(scene, caster, voxelSettingsFor(o), groups, console, report),
+                           o, console, stats);
   ImageWriteOptions writeOptions;
   writeOptions.exposureEV = o.exposure;
   writeOptions.exrPixelType = o.exrFloat ? ExrPixelType::Float : ExrPixelType::Half;

@@ -97,14 +97,15 @@ int runSolve(SolveOptions& o, Console& console) {
   Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
   o.method.resolve(scene);
   InterruptGuard interruptible;
-  const bool objectMeans = !o.stats.empty();
+  const SolveReport report{stats, !o.stats.empty()};
   const RayCaster caster(scene);  // the run's one BVH
+  const std::vector<GroupScale>& groups = o.method.groupScales();
   if (o.method.method() == "patch")
     return finishSolve(o, scene,
-                       solvePatches(scene, caster, o.method.patch(), console, stats, objectMeans),
-                       ext, total, stats, console);
+                       solvePatches(scene, caster, o.method.patch(), groups, console, report), ext,
+                       total, stats, console);
   return finishSolve(o, scene,
-                     solveVoxels(scene, caster, o.method.voxel(), console, stats, objectMeans), ext,
+                     solveVoxels(scene, caster, o.method.voxel(), groups, console, report), ext,
                      total, stats, console);
 }
 

@@ -87,6 +87,9 @@ struct PatchRadiositySettings {
   /// (relative), are split, down to refineLevels levels below the base patch size (0: none).
   int refineLevels = 2;
   float refineThreshold = 0.5f;
+  /// Solve each light group apart (light_groups.h; one solve of the system per group, on one
+  /// mesh refined for all the lights), so that setGroupScales() rescales them without a solve.
+  bool lightGroups = false;
   uint64_t seed = 1;
 };
 
@@ -175,7 +178,9 @@ class PatchRadiosity : public SurfaceSolution {
   Color radiance(const SurfaceHit& hit) const override;
   bool hasIndirectIrradiance() const override { return true; }
   /// The lights it was solved with.
+  /// The lights it was solved with (with light groups, each times its group's scale).
   std::span<const Light> directLights() const override;
+  std::span<const Color> emissionScales() const override;
   /// H less the lights' D and what the emitting patches send directly, interpolated as
   /// radiance() interpolates H.
   Color indirectIrradiance(const SurfaceHit& hit) const override;
@@ -187,6 +192,11 @@ class PatchRadiosity : public SurfaceSolution {
   /// mirrored patches, with the back's own light; every triangle one-sided), vertex colours
   /// Ke + rho H / pi (H as radiance() interpolates it).
   LitMesh litMesh() const override;
+  /// With settings.lightGroups: the groups, each solved on the same patches.
+  std::span<const LightGroup> lightGroups() const override;
+  std::span<const Color> groupScales() const override;
+  void setGroupScales(std::span<const Color> scales) override;
+  Color groupRadiosity(size_t group, size_t patch) const override;
   const PatchRadiosityStats& stats() const;
 
  private:

@@ -70,6 +70,8 @@ struct Light {
   /// directions along the great circle (spherically); before the first and after the last
   /// keyframe a field holds its value. The spin turns the direction the path gives.
   std::vector<LightKeyframe> path;
+  /// The light group it belongs to (light_groups.h); empty: a group of its own.
+  std::string group;
   /// IES: the photometric table, and the W/sr per candela applied to it (`intensity` is the
   /// colour-weighted scale: intensity * candela gives W/sr).
   std::shared_ptr<const IesProfile> ies;

@@ -35,6 +35,10 @@ class SurfaceRadiance {
   /// The point, spot and IES lights whose direct light indirectIrradiance() leaves out (those
   /// the solution was solved with), for the renderer to add per pixel.
   virtual std::span<const Light> directLights() const { return {}; }
+  /// Per scene material, the factor on its emission that radiance() shows (its light group's
+  /// scale, light_groups.h); empty: the scene's own emission. A renderer that adds the direct
+  /// light per pixel applies it to the emitters it samples too.
+  virtual std::span<const Color> emissionScales() const { return {}; }
 };
 
 /// Where a radiosity picture's direct light comes from.

@@ -3,11 +3,13 @@
 // or voxel sides) and the lit mesh a viewer shows. The per-object statistics and the exporters
 // are written once, against this interface, for every method.
 
+#include <radiosity/light_groups.h>
 #include <radiosity/object_radiometry.h>
 #include <radiosity/scene.h>
 #include <radiosity/surface_radiance.h>
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,7 +57,19 @@ class SurfaceSolution : public SurfaceRadiance {
   /// The mesh that shows it: vertex colours the radiance radiance() gives there.
   virtual LitMesh litMesh() const = 0;
 
-  /// Area-weighted means over the front-side elements of each scene object.
+  /// The light groups it solved apart (empty: its emitters were solved together).
+  virtual std::span<const LightGroup> lightGroups() const { return {}; }
+  /// The scale each group's light has now (1 each until set).
+  virtual std::span<const Color> groupScales() const { return {}; }
+  /// Combines the groups' solutions anew, each times its scale (RGB, finite, >= 0; 0 switches a
+  /// group off): the full multi-bounce answer for the dimmed, tinted or switched lights, without
+  /// a solve. Throws std::invalid_argument unless there is one scale per group.
+  virtual void setGroupScales(std::span<const Color> scales);
+  /// Element `index`'s radiosity from group `group`'s light alone, at its current scale.
+  virtual Color groupRadiosity(size_t group, size_t index) const;
+
+  /// Area-weighted means over the front-side elements of each scene object (with light groups,
+  /// each group's share of its radiosity).
   std::vector<ObjectRadiometry> objectRadiometry() const;
   /// One row per element (the CSV columns of docs/ARCHITECTURE.md), written atomically.
   void exportCsv(const std::string& path) const;

@@ -1,12 +1,11 @@
 #pragma once
 // Basic value types shared by every part of the library: vectors, colours, bounds.
 
+#include <algorithm>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
-
-#include <algorithm>
 #include <limits>
 
 namespace rad {
@@ -20,8 +19,15 @@ using UVec3 = glm::uvec3;
 /// and intensity alike; the name of the variable says which quantity it holds.
 using Color = glm::vec3;
 
-inline float luminance(const Color& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
-inline float maxComponent(const Color& c) { return std::max(c.r, std::max(c.g, c.b)); }
+inline float luminance(const Color& c) {
+  return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
+inline float maxComponent(const Color& c) {
+  return std::max(c.r, std::max(c.g, c.b));
+}
+inline float minComponent(const Color& c) {
+  return std::min(c.r, std::min(c.g, c.b));
+}
 
 /// Axis-aligned bounding box; empty (min > max) until a point is added.
 struct Bounds {

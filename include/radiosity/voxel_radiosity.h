@@ -39,6 +39,9 @@ struct VoxelRadiositySettings {
   /// Keep the first shot's direct light apart from the bounces (12 more bytes a side through
   /// the solve), so that pictures can take the direct light per pixel (indirectIrradiance).
   bool keepDirectLight = false;
+  /// Solve each light group apart (light_groups.h; a first shot and sweeps per group), so that
+  /// setGroupScales() rescales them without a solve.
+  bool lightGroups = false;
   uint64_t seed = 1;
 };
 
@@ -107,8 +110,9 @@ class VoxelRadiosity : public SurfaceSolution {
   /// With keepDirectLight and the first shot: the bounces' irradiance, interpolated as H is.
   bool hasIndirectIrradiance() const override;
   Color indirectIrradiance(const SurfaceHit& hit) const override;
-  /// The lights it was solved with.
+  /// The lights it was solved with (with light groups, each times its group's scale).
   std::span<const Light> directLights() const override;
+  std::span<const Color> emissionScales() const override;
   const Scene& scene() const override;
   /// Its voxel sides.
   size_t elementCount() const override;
@@ -116,6 +120,11 @@ class VoxelRadiosity : public SurfaceSolution {
   /// The scene's triangles cut into triangles no longer than a voxel, vertex colours the
   /// radiance radiance() gives there, one node per object.
   LitMesh litMesh() const override;
+  /// With settings.lightGroups: the groups, each solved on the same voxels.
+  std::span<const LightGroup> lightGroups() const override;
+  std::span<const Color> groupScales() const override;
+  void setGroupScales(std::span<const Color> scales) override;
+  Color groupRadiosity(size_t group, size_t side) const override;
   const VoxelRadiosityStats& stats() const;
 
  private:

@@ -28,7 +28,11 @@ DirectLighting::DirectLighting(const Scene& scene, const RayCaster& caster)
 
 DirectLighting::DirectLighting(const Scene& scene, const RayCaster& caster,
                                std::span<const Light> lights)
-    : caster_(&caster), lights_(lights), emitters_(scene) {
+    : DirectLighting(scene, caster, lights, {}) {}
+
+DirectLighting::DirectLighting(const Scene& scene, const RayCaster& caster,
+                               std::span<const Light> lights, std::span<const Color> emissionScales)
+    : caster_(&caster), lights_(lights), emitters_(scene, emissionScales) {
   const Bounds b = scene.bounds();
   sceneExtent_ = b.empty() ? 1.0f : std::max(b.diagonal(), std::max(maxAbs(b.min), maxAbs(b.max)));
   if (!(sceneExtent_ > 0.0f)) sceneExtent_ = 1.0f;

@@ -22,6 +22,10 @@ class DirectLighting {
   /// outlive it. Safe to use from many threads at once.
   DirectLighting(const Scene& scene, const RayCaster& caster);
   DirectLighting(const Scene& scene, const RayCaster& caster, std::span<const Light> lights);
+  /// The same with a factor on each material's emission (a light group's scale, or 0 and 1 to
+  /// take one group's emitters alone; empty: none).
+  DirectLighting(const Scene& scene, const RayCaster& caster, std::span<const Light> lights,
+                 std::span<const Color> emissionScales);
 
   /// The analytic lights it evaluates.
   std::span<const Light> lights() const { return lights_; }

@@ -2,14 +2,17 @@
 
 namespace rad {
 
-EmitterSampler::EmitterSampler(const Scene& scene)
-    : scene_(&scene), pdfArea_(scene.triangles.size(), 0.0f) {
+EmitterSampler::EmitterSampler(const Scene& scene, std::span<const Color> emissionScales)
+    : scene_(&scene),
+      emissionScales_(emissionScales.begin(), emissionScales.end()),
+      pdfArea_(scene.triangles.size(), 0.0f) {
   std::vector<double> weights;
   for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
     const Material& m = scene.materialOf(t);
     if (!m.emits()) continue;
     // pi is common to every weight; luminance is positive whenever any channel is.
-    const double weight = double(luminance(glm::max(m.emission, Color(0.0f)))) *
+    const Color emission = emissionOf(scene.faceOf(t).material);
+    const double weight = double(luminance(glm::max(emission, Color(0.0f)))) *
                           double(scene.triangleArea(t)) * (m.twoSided ? 2.0 : 1.0);
     if (!(weight > 0.0)) continue;
     triangles_.push_back(t);
@@ -23,6 +26,11 @@ EmitterSampler::EmitterSampler(const Scene& scene)
   }
 }
 
+Color EmitterSampler::emissionOf(uint32_t material) const {
+  const Color ke = scene_->materials[material].emission;
+  return emissionScales_.empty() ? ke : ke * emissionScales_[material];
+}
+
 EmitterSample EmitterSampler::sample(float choose, Vec2 position) const {
   const size_t i = distribution_.sample(choose);
   const uint32_t t = triangles_[i];
@@ -33,7 +41,7 @@ EmitterSample EmitterSampler::sample(float choose, Vec2 position) const {
   s.point = (1.0f - b.x - b.y) * scene_->positions[tri.x] + b.x * scene_->positions[tri.y] +
             b.y * scene_->positions[tri.z];
   s.normal = scene_->triangleNormal(t);
-  s.emission = m.emission;
+  s.emission = emissionOf(scene_->faceOf(t).material);
   s.twoSided = m.twoSided;
   s.pdfArea = pdfArea_[t];
   return s;

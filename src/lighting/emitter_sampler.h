@@ -1,10 +1,12 @@
 #pragma once
 // Chooses a point on the scene's emissive triangles for next-event estimation: a triangle with
 // probability proportional to its emitted power (luminance of pi * Ke * area, both sides of a
-// two-sided one), then a point uniform in its area.
+// two-sided one), then a point uniform in its area. A light group's scale on a material's
+// emission (light_groups.h) scales what it is chosen by and what it sends alike.
 
 #include <radiosity/scene.h>
 
+#include <span>
 #include <vector>
 
 #include "geometry/sampling.h"
@@ -21,8 +23,9 @@ struct EmitterSample {
 
 class EmitterSampler {
  public:
-  /// Keeps a pointer to `scene`, which must outlive the sampler.
-  explicit EmitterSampler(const Scene& scene);
+  /// Keeps a pointer to `scene`, which must outlive the sampler. `emissionScales`: a factor on
+  /// each material's emission (empty: none; a material scaled to 0 is never chosen).
+  explicit EmitterSampler(const Scene& scene, std::span<const Color> emissionScales = {});
 
   bool empty() const { return triangles_.empty(); }
   /// `choose` picks the triangle, `position` the point in it; all uniform in [0, 1).
@@ -31,7 +34,10 @@ class EmitterSampler {
   float pdfArea(uint32_t triangle) const { return pdfArea_[triangle]; }
 
  private:
+  Color emissionOf(uint32_t material) const;
+
   const Scene* scene_;
+  std::vector<Color> emissionScales_;
   std::vector<uint32_t> triangles_;
   DiscreteDistribution distribution_;
   std::vector<float> pdfArea_;  // per scene triangle

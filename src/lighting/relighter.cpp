@@ -185,7 +185,7 @@ void Relighter::State::shoot() {
 void Relighter::State::publish() {
   solutionOf(system, shooting, m.solution);
   m.lightDirect = system.direct;
-  m.separateIndirect(rowsOf(table()), system);
+  m.indirect = m.indirectOf(m.solution, rowsOf(table()), system);
   if (stats.meshChanged) {
     m.hanging = m.mesh->hangingVertices();
     m.recordMesh();
@@ -203,6 +203,7 @@ Relighter::Relighter(const PatchModel& model, std::span<const Light> lights,
   auto impl = std::make_unique<PatchRadiosity::Impl>(model.state_, lights);
   impl->keepTable = true;
   impl->saveMaster = false;  // saved once, by saveFormFactors(), not at every quadtree change
+  impl->settings.lightGroups = false;  // one state, shot as the lights change
   PatchLightCache cache;
   impl->build(cache, progress);
   state_ = std::make_unique<State>(PatchRadiosity(std::move(impl)), settings);

@@ -15,10 +15,13 @@ nlohmann::json rgb(const Color& c) {
 
 }  // namespace
 
-Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& objects) {
+Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& objects,
+                    std::span<const Color> emissionScales) {
   std::vector<Color> emitted(scene.objects.size(), Color(0.0f));
-  for (const Face& f : scene.faces)
-    emitted[f.object] += scene.materials[f.material].emission * (glm::pi<float>() * f.area);
+  for (const Face& f : scene.faces) {
+    const Color scale = emissionScales.empty() ? Color(1.0f) : emissionScales[f.material];
+    emitted[f.object] += scale * scene.materials[f.material].emission * (glm::pi<float>() * f.area);
+  }
   Color absorbed(0.0f);
   for (size_t i = 0; i < objects.size() && i < scene.objects.size(); ++i) {
     const ObjectRadiometry& o = objects[i];
@@ -29,11 +32,16 @@ Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& obj
 
 nlohmann::json toJson(const RunStats& s) {
   nlohmann::json objects = nlohmann::json::array();
-  for (const ObjectRadiometry& o : s.objects)
+  for (const ObjectRadiometry& o : s.objects) {
     objects.push_back({{"name", o.name},
                        {"area", o.area},
                        {"mean_irradiance", rgb(o.meanIrradiance)},
                        {"mean_radiosity", rgb(o.meanRadiosity)}});
+    if (o.groupShares.empty()) continue;
+    nlohmann::json& shares = objects.back()["group_shares"] = nlohmann::json::object();
+    for (size_t g = 0; g < o.groupShares.size() && g < s.lightGroups.size(); ++g)
+      shares[s.lightGroups[g].name] = o.groupShares[g];
+  }
   nlohmann::json j = {
       {"scene", s.scene},
       {"method", s.method},
@@ -56,6 +64,11 @@ nlohmann::json toJson(const RunStats& s) {
       {"objects", objects},
       {"memory_peak_bytes", s.memoryPeakBytes},
   };
+  if (!s.lightGroups.empty()) {
+    nlohmann::json& groups = j["light_groups"] = nlohmann::json::array();
+    for (const RunStats::LightGroupEntry& g : s.lightGroups)
+      groups.push_back({{"name", g.name}, {"scale", rgb(g.scale)}, {"power", rgb(g.power)}});
+  }
   if (!s.methodDetails.empty()) j[s.method] = s.methodDetails;
   if (!s.settings.empty()) {
     nlohmann::json settings = nlohmann::json::object();

@@ -6,9 +6,9 @@
 #include <radiosity/scene.h>
 #include <radiosity/types.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cstdint>
+#include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -26,9 +26,17 @@ struct RunStats {
   int iterations = 0;
   double residual = 0.0;
   std::vector<double> residuals;  ///< per iteration, for methods that iterate
-  Color emittedPower{0.0f};   ///< W, every emitter and light
-  Color absorbedPower{0.0f};  ///< W, sum of (1 - rho) H A over the objects
+  Color emittedPower{0.0f};       ///< W, every emitter and light
+  Color absorbedPower{0.0f};      ///< W, sum of (1 - rho) H A over the objects
   std::vector<ObjectRadiometry> objects;
+  /// The light groups solved apart (objects' groupShares are in this order), with their scales
+  /// and the power (W) each emits at its scale; empty: solved together.
+  struct LightGroupEntry {
+    std::string name;
+    Color scale{1.0f}, power{0.0f};
+  };
+  std::vector<LightGroupEntry> lightGroups;
+  std::vector<Color> emissionScales;  ///< per material, its group's scale (empty: none)
   uint64_t memoryPeakBytes = 0;
   /// Numbers particular to the method, written under the method's name ("voxel": {...}).
   nlohmann::json methodDetails;
@@ -37,8 +45,10 @@ struct RunStats {
 };
 
 /// Power absorbed by the objects, sum of (1 - rho) H A = H A - (B - E) A with E the objects'
-/// emitted radiosity, from their mean irradiance and radiosity.
-Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& objects);
+/// emitted radiosity (each material's emission times `emissionScales`, when given), from their
+/// mean irradiance and radiosity.
+Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& objects,
+                    std::span<const Color> emissionScales = {});
 
 nlohmann::json toJson(const RunStats& stats);
 /// Writes the stats as indented JSON, atomically (temporary file + rename).

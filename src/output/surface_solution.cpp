@@ -21,7 +21,34 @@ std::vector<SurfaceElement> elementsOf(const SurfaceSolution& solution) {
 }  // namespace
 
 std::vector<ObjectRadiometry> SurfaceSolution::objectRadiometry() const {
-  return meanPerObject(scene(), elementCount(), [&](size_t i) { return element(i); });
+  std::vector<ObjectRadiometry> objects =
+      meanPerObject(scene(), elementCount(), [&](size_t i) { return element(i); });
+  const size_t groups = lightGroups().size();
+  if (groups == 0) return objects;
+  std::vector<std::vector<double>> power(objects.size(), std::vector<double>(groups, 0.0));
+  for (size_t i = 0; i < elementCount(); ++i) {
+    const SurfaceElement e = element(i);
+    if (e.backSide) continue;
+    for (size_t g = 0; g < groups; ++g)
+      power[e.object][g] += double(e.area) * luminance(groupRadiosity(g, i));
+  }
+  for (size_t o = 0; o < objects.size(); ++o) {
+    double total = 0.0;
+    for (double p : power[o]) total += p;
+    objects[o].groupShares.assign(groups, 0.0);
+    if (total > 0.0)
+      for (size_t g = 0; g < groups; ++g) objects[o].groupShares[g] = power[o][g] / total;
+  }
+  return objects;
+}
+
+void SurfaceSolution::setGroupScales(std::span<const Color> scales) {
+  if (!scales.empty())
+    throw std::invalid_argument("this solution's light groups were not solved apart");
+}
+
+Color SurfaceSolution::groupRadiosity(size_t /*group*/, size_t /*index*/) const {
+  throw std::invalid_argument("this solution's light groups were not solved apart");
 }
 
 void SurfaceSolution::exportCsv(const std::string& path) const {

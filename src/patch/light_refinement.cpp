@@ -55,6 +55,16 @@ void PatchLightCache::insert(size_t light, uint64_t address, const PatchLight& v
   byLight_[light][address] = value;
 }
 
+std::vector<Color> PatchLightCache::directOf(const PatchMesh& mesh,
+                                             std::span<const uint32_t> lights) const {
+  std::vector<Color> direct(mesh.size(), Color(0.0f));
+  for (uint32_t p = 0; p < mesh.size(); ++p) {
+    const uint64_t address = mesh.nodeAddress(mesh.patches()[p].node);
+    for (uint32_t l : lights) direct[p] += find(l, address)->direct;
+  }
+  return direct;
+}
+
 namespace {
 
 // Every light's value on every patch, from the cache or evaluated now (in parallel) and cached.

@@ -45,6 +45,9 @@ class PatchLightCache {
   /// What light `light` puts on the node at `address`, if evaluated.
   const PatchLight* find(size_t light, uint64_t address) const;
   void insert(size_t light, uint64_t address, const PatchLight& value);
+  /// The direct light of the lights `lights` (indices) on each patch of `mesh`, which it must
+  /// hold (the mesh refined with it): one light group's D.
+  std::vector<Color> directOf(const PatchMesh& mesh, std::span<const uint32_t> lights) const;
 
  private:
   std::vector<Light> lights_;

@@ -157,6 +157,8 @@ void PatchRadiosity::Impl::lightPatches(const RayCaster& caster, PatchLightCache
       *mesh, DirectLighting(*scene, caster, lights),
       {settings.refineLevels, settings.refineThreshold, settings.lightSamples}, cache, progress);
   lightDirect = std::move(refined.direct);
+  for (size_t g = 0; g < mix.groups().size() && !lightDirect.empty(); ++g)
+    groupDirect.push_back(cache.directOf(*mesh, mix.groups()[g].lights));
   stats.basePatches = refined.basePatches;
   stats.refinedSplits = refined.split;
   stats.refineRounds = refined.rounds;
@@ -220,7 +222,7 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
   };
   solution =
       solveProgressive(rowOf, system, {settings.tolerance, settings.maxIterations}, progress);
-  separateIndirect(rowOf, system);
+  indirect = indirectOf(solution, rowOf, system);
   recordRowSums(sums, stats);
   recordThresholdLoss(lossOf(thresholded));
   solution.seconds -= stats.formFactorSeconds;  // the solver's time, without the rows' rays
@@ -228,35 +230,83 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
 
 void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback& progress) {
   const PatchSystem system = this->system();
-  const PatchSolverControl control{settings.tolerance, settings.maxIterations};
   chooseFormFactorSettings();
   const bool lazy = settings.solver == PatchSolverKind::Progressive &&
                     settings.estimator == PatchFormFactorEstimator::Hemisphere &&
-                    settings.cacheDir.empty() && !keepTable;
+                    settings.cacheDir.empty() && !keepTable && !mix.apart();
   if (lazy) return solveLazily(caster, system, progress);
   FormFactorTable table = formFactors(caster, progress);
+  if (mix.apart()) {
+    solveGroups(table, progress);
+  } else {
+    solution = solveSystem(table, system, progress);
+    indirect = indirectOf(solution, rowsOf(table), system);
+  }
+  if (keepTable) this->table = std::move(table);
+}
+
+PatchSolution PatchRadiosity::Impl::solveSystem(const FormFactorTable& table,
+                                                const PatchSystem& system,
+                                                const ProgressCallback& progress) const {
+  const PatchSolverControl control{settings.tolerance, settings.maxIterations};
   switch (settings.solver) {
     case PatchSolverKind::Jacobi:
-      solution = solveJacobi(table, system, control, progress);
-      break;
+      return solveJacobi(table, system, control, progress);
     case PatchSolverKind::GaussSeidel:
-      solution = solveGaussSeidel(table, system, control, progress);
-      break;
+      return solveGaussSeidel(table, system, control, progress);
     case PatchSolverKind::Progressive:
-      solution = solveProgressive(rowsOf(table), system, control, progress);
       break;
   }
-  separateIndirect(rowsOf(table), system);
-  if (keepTable) this->table = std::move(table);
+  return solveProgressive(rowsOf(table), system, control, progress);
+}
+
+// Each group's emitters alone: its materials' E (the others' zero) and its lights' D. The
+// solution's iterations, shots and residuals are the groups' together, in group order.
+void PatchRadiosity::Impl::solveGroups(const FormFactorTable& table,
+                                       const ProgressCallback& progress) {
+  const PatchSystem all = system();
+  groupIrradiance.clear();
+  groupIndirect.clear();
+  solution = {};
+  for (size_t g = 0; g < mix.groups().size(); ++g) {
+    PatchSystem s = all;
+    for (uint32_t p = 0; p < mesh->size(); ++p)
+      s.emitted[p] = glm::pi<float>() * mix.groupEmission(*scene, g, mesh->patches()[p].material);
+    s.direct = groupDirect.empty() ? std::vector<Color>(mesh->size(), Color(0.0f)) : groupDirect[g];
+    PatchSolution solved = solveSystem(table, s, progressPart(progress, g, mix.groups().size()));
+    groupIndirect.push_back(indirectOf(solved, rowsOf(table), s));
+    groupIrradiance.push_back(std::move(solved.irradiance));
+    solution.iterations += solved.iterations;
+    solution.shots += solved.shots;
+    solution.seconds += solved.seconds;
+    solution.residuals.insert(solution.residuals.end(), solved.residuals.begin(),
+                              solved.residuals.end());
+  }
+  groupDirect.clear();
+  combineGroups();
+}
+
+void PatchRadiosity::Impl::combineGroups() {
+  solution.irradiance = mix.combine(groupIrradiance);
+  indirect = mix.combine(groupIndirect);
+  solution.emitted.resize(mesh->size());
+  solution.radiosity.resize(mesh->size());
+  for (uint32_t p = 0; p < mesh->size(); ++p) {
+    const uint32_t material = mesh->patches()[p].material;
+    solution.emitted[p] = glm::pi<float>() * mix.emission(*scene, material);
+    solution.radiosity[p] =
+        solution.emitted[p] + scene->materials[material].rho * solution.irradiance[p];
+  }
 }
 
 // What bounced at least once: H less D and less what the emitters send directly, sum over
 // emitting j of E_j F_ji A_j / A_i (row j read as where j's light goes, as shooting reads it).
-void PatchRadiosity::Impl::separateIndirect(const FormFactorRowSource& rows,
-                                            const PatchSystem& system) {
+std::vector<Color> PatchRadiosity::Impl::indirectOf(const PatchSolution& solved,
+                                                    const FormFactorRowSource& rows,
+                                                    const PatchSystem& system) const {
   std::vector<Vec3d> h(system.size());
   for (size_t i = 0; i < h.size(); ++i)
-    h[i] = Vec3d(solution.irradiance[i]) - Vec3d(system.directAt(i));
+    h[i] = Vec3d(solved.irradiance[i]) - Vec3d(system.directAt(i));
   for (uint32_t j = 0; j < system.size(); ++j) {
     if (maxComponent(system.emitted[j]) <= 0.0f) continue;
     const FormFactorRowView row = rows(j);
@@ -265,8 +315,9 @@ void PatchRadiosity::Impl::separateIndirect(const FormFactorRowSource& rows,
       h[i] -= Vec3d(system.emitted[j]) * (double(row.values[k]) * system.area[j] / system.area[i]);
     }
   }
-  indirect.resize(h.size());
-  for (size_t i = 0; i < h.size(); ++i) indirect[i] = Color(glm::max(h[i], Vec3d(0.0)));
+  std::vector<Color> out(h.size());
+  for (size_t i = 0; i < h.size(); ++i) out[i] = Color(glm::max(h[i], Vec3d(0.0)));
+  return out;
 }
 
 std::vector<Color> PatchRadiosity::Impl::averageAtVertices(
@@ -306,6 +357,7 @@ PatchRadiosity::Impl::Impl(std::shared_ptr<const PatchModel::State> m, std::span
 void PatchRadiosity::Impl::build(PatchLightCache& cache, const ProgressCallback& progress) {
   const RayCaster& caster = *model->caster;
   const uint64_t raysBefore = caster.raysCast();
+  mix = LightGroupMix(*scene, lights, settings.lightGroups);
   cache.update(lights);
   lightPatches(caster, cache, progress);
   solve(caster, progress);
@@ -346,7 +398,33 @@ PatchRadiosity::PatchRadiosity(std::shared_ptr<const PatchModel::State> model,
 }
 
 std::span<const Light> PatchRadiosity::directLights() const {
-  return impl_->lights;
+  return impl_->mix.apart() ? impl_->mix.lights() : std::span<const Light>(impl_->lights);
+}
+
+std::span<const Color> PatchRadiosity::emissionScales() const {
+  return impl_->mix.emissionScales();
+}
+
+std::span<const LightGroup> PatchRadiosity::lightGroups() const {
+  return impl_->mix.groups();
+}
+
+std::span<const Color> PatchRadiosity::groupScales() const {
+  return impl_->mix.scales();
+}
+
+void PatchRadiosity::setGroupScales(std::span<const Color> scales) {
+  impl_->mix.setScales(scales);
+  impl_->combineGroups();
+  impl_->shadeVertices();
+}
+
+Color PatchRadiosity::groupRadiosity(size_t group, size_t p) const {
+  const Impl& m = *impl_;
+  const Patch& patch = m.mesh->patches()[p];
+  const Color e = glm::pi<float>() * m.mix.groupEmission(*m.scene, group, patch.material);
+  return m.mix.scales()[group] *
+         (e + m.scene->materials[patch.material].rho * m.groupIrradiance.at(group)[p]);
 }
 
 PatchRadiosity::~PatchRadiosity() = default;
@@ -372,7 +450,8 @@ Color PatchRadiosity::radiance(const SurfaceHit& hit) const {
       impl_->interpolate(hit, impl_->solution.irradiance, impl_->vertexIrradiance);
   if (!h) return Color(0.0f);
   // The hit's own material: colour edges and emitters stay sharp.
-  return m.emission + m.rho * *h / glm::pi<float>();
+  return impl_->mix.emission(*impl_->scene, impl_->scene->faceOf(hit.triangle).material) +
+         m.rho * *h / glm::pi<float>();
 }
 
 Color PatchRadiosity::indirectIrradiance(const SurfaceHit& hit) const {
@@ -468,7 +547,8 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
         const Color h = smooth ? vertexIrradiance[v] : solution.irradiance[p];
         out.positions.push_back(mesh->vertices()[v]);
         out.normals.push_back(smooth ? mesh->vertexNormals()[v] : patch.normal);
-        out.colors.push_back(material.emission + material.rho * h / glm::pi<float>());
+        out.colors.push_back(mix.emission(*scene, patch.material) +
+                             material.rho * h / glm::pi<float>());
       }
       // The outline is CCW about the side's normal, so fans keep the front facing out. A fan
       // from a corner whose two edges hold no finer vertices (then no triangle is flat), else
@@ -497,7 +577,8 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
       }
       out.positions.push_back(position);
       out.normals.push_back(smooth ? glm::normalize(normal) : patch.normal);
-      out.colors.push_back(material.emission + material.rho * colour / glm::pi<float>());
+      out.colors.push_back(mix.emission(*scene, patch.material) +
+                           material.rho * colour / glm::pi<float>());
       for (size_t t = 0; t < outline.size(); ++t)
         out.indices.insert(out.indices.end(), {centre, index[t], index[(t + 1) % outline.size()]});
     }

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "lighting/light_group_mix.h"
 #include "patch/form_factor_table.h"
 #include "patch/light_refinement.h"
 #include "patch/patch_mesh.h"
@@ -29,6 +30,11 @@ struct PatchRadiosity::Impl {
   std::vector<HangingVertex> hanging;           ///< of the refined mesh
   PatchRadiosityStats stats;
   std::vector<Color> lightDirect;  ///< D per patch (empty: no lights)
+
+  /// The light groups, when solved apart: per group, its D, H and indirect H per patch, which
+  /// `solution` and `indirect` combine at the mix's scales.
+  LightGroupMix mix;
+  std::vector<std::vector<Color>> groupDirect, groupIrradiance, groupIndirect;
 
   bool keepTable = false;                ///< keep the form factors (for relighting)
   bool saveMaster = true;                ///< save the master table when rows were cast
@@ -55,13 +61,21 @@ struct PatchRadiosity::Impl {
                                            const ProgressCallback& progress);
   FormFactorTable assembleTable(FormFactorRows rows) const;
   void solve(const RayCaster& caster, const ProgressCallback& progress);
+  PatchSolution solveSystem(const FormFactorTable& table, const PatchSystem& system,
+                            const ProgressCallback& progress) const;
+  /// A solve per light group (its emitters alone), then their combination.
+  void solveGroups(const FormFactorTable& table, const ProgressCallback& progress);
+  /// solution and indirect from the groups' arrays at the mix's scales.
+  void combineGroups();
   void solveLazily(const RayCaster& caster, const PatchSystem& system,
                    const ProgressCallback& progress);
   void lightPatches(const RayCaster& caster, PatchLightCache& cache,
                     const ProgressCallback& progress);
   void recordThresholdLoss(const ThresholdLoss& loss);
   void warnOfThresholdLoss();
-  void separateIndirect(const FormFactorRowSource& rows, const PatchSystem& system);
+  /// What bounced at least once: H less D and less what the emitters send directly.
+  std::vector<Color> indirectOf(const PatchSolution& solved, const FormFactorRowSource& rows,
+                                const PatchSystem& system) const;
   std::vector<Color> averageAtVertices(const std::vector<Color>& perPatch) const;
   /// A per-patch quantity at a hit: interpolated from the vertex averages (smooth) or the
   /// patch's own (flat); nullopt on the back of a one-sided face.

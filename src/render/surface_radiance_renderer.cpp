@@ -23,7 +23,7 @@ class PerPixelDirectShading {
   PerPixelDirectShading(const Scene& scene, const RayCaster& caster,
                         const SurfaceRadiance& radiance, int emitterSamples)
       : scene_(scene),
-        direct_(scene, caster, radiance.directLights()),
+        direct_(scene, caster, radiance.directLights(), radiance.emissionScales()),
         radiance_(radiance),
         emitterSamples_(emitterSamples) {}
 
@@ -38,7 +38,10 @@ class PerPixelDirectShading {
         emitted += direct_.sampleEmitters(hit.point, n, rng);
       h += emitted / float(emitterSamples_);
     }
-    return m.emission + m.rho * h * glm::one_over_pi<float>();
+    const std::span<const Color> scales = radiance_.emissionScales();
+    const Color ke =
+        scales.empty() ? m.emission : m.emission * scales[scene_.faceOf(hit.triangle).material];
+    return ke + m.rho * h * glm::one_over_pi<float>();
   }
 
  private:

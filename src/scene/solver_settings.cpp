@@ -118,6 +118,13 @@ std::vector<SettingDeclaration> declare() {
   d.back().apply = [](M& m, const SettingValue& v) {  // every method draws from it
     m.pathTracer.seed = m.voxel.seed = m.patch.seed = uint64_t(std::get<int64_t>(v));
   };
+  d.push_back(field("light_groups", kGeneral, &M::patch, &PatchRadiositySettings::lightGroups,
+                    "Solve each light group apart (patch, voxel: a solve per group), so that "
+                    "--group dims, tints or switches them off with their full bounce; on with "
+                    "any --group"));
+  d.back().apply = [](M& m, const SettingValue& v) {
+    m.patch.lightGroups = m.voxel.lightGroups = std::get<bool>(v);
+  };
   d.push_back(field("max_depth", kPathTracer, &M::pathTracer, &PathTracerSettings::maxDepth,
                     "Path tracer bounce limit (Russian roulette ends paths long before)", 1,
                     100000));

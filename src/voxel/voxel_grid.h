@@ -6,11 +6,10 @@
 
 #include <radiosity/types.h>
 
-#include <glm/vec3.hpp>
-
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <vector>
 
 namespace rad {
@@ -31,6 +30,10 @@ struct VoxelSurface {
   VoxelMaterial material;
   uint32_t object = 0;    ///< the scene object the side belongs to
   bool backSide = false;  ///< the back of a two-sided face (results per object count fronts)
+  /// The scene material whose emission it carries (the one that gave it most where several
+  /// did), so that a light group's scale finds it; kNoEmitter where it emits nothing.
+  uint32_t emitter = kNoEmitter;
+  static constexpr uint32_t kNoEmitter = UINT32_MAX;
   bool operator==(const VoxelSurface&) const = default;
 };
 
@@ -101,7 +104,7 @@ struct VoxelGrid {
   Vec3 origin{0.0f};  ///< corner of voxel (0, 0, 0)
   float voxelSize = 1.0f;
   float pointStep = 1.0f;  ///< a PackedPoint's step (scene units): pointStepFor(dims, voxelSize)
-  IVec3 dims{0};      ///< voxels per axis; every coordinate fits in int16
+  IVec3 dims{0};           ///< voxels per axis; every coordinate fits in int16
 
   // Cells, sorted by (x, y, z).
   std::vector<int16_t> cellZ;

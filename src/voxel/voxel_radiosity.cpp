@@ -7,6 +7,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "core/memory_usage.h"
+#include "lighting/light_group_mix.h"
 #include "output/baked_mesh.h"
 #include "voxel/voxel_irradiance_field.h"
 #include "voxel/voxel_solver.h"
@@ -33,6 +34,18 @@ struct VoxelRadiosity::Impl {
   VoxelSolution solution;
   std::vector<Color> indirect;  ///< H less the first shot (keepDirectLight); else empty
   VoxelRadiosityStats stats;
+  /// The light groups, when solved apart: per group, H and the indirect H per side, which
+  /// `solution` and `indirect` combine at the mix's scales.
+  LightGroupMix mix;
+  std::vector<std::vector<Color>> groupIrradiance, groupIndirect;
+
+  /// Solves for `lights` with `solver`: the solution and the indirect light.
+  std::pair<VoxelSolution, std::vector<Color>> solve(std::span<const Light> lights,
+                                                     const VoxelSolverSettings& solver,
+                                                     const ProgressCallback& progress) const;
+  void solveGroups(VoxelSolverSettings solver, const ProgressCallback& progress);
+  void combineGroups();
+  Color emission(size_t side) const;
 
   VoxelIrradianceField field() const { return VoxelIrradianceField(grid, solution.irradiance); }
 };
@@ -70,7 +83,82 @@ std::shared_ptr<VoxelModel::State> voxelizedState(const Scene& scene,
   return state;
 }
 
+VoxelSolverSettings solverSettings(const VoxelRadiositySettings& settings) {
+  VoxelSolverSettings solver;
+  solver.sphereRadius = settings.sphereRadius;
+  solver.laterSphereRadius = settings.laterSphereRadius;
+  solver.iterations = settings.iterations;
+  solver.tolerance = settings.tolerance;
+  solver.estimateTail = settings.estimateTail;
+  solver.directFirstShot = settings.directFirstShot;
+  solver.directSamples = settings.directSamples;
+  solver.normalize = settings.normalize;
+  solver.jitterLines = settings.jitterLines;
+  solver.keepDirect = settings.keepDirectLight && settings.directFirstShot;
+  solver.sweep.tangentCorrection = settings.tangentCorrection;
+  solver.seed = settings.seed;
+  return solver;
+}
+
 }  // namespace
+
+std::pair<VoxelSolution, std::vector<Color>> VoxelRadiosity::Impl::solve(
+    std::span<const Light> lights, const VoxelSolverSettings& solver,
+    const ProgressCallback& progress) const {
+  VoxelSolution solved =
+      solveVoxelRadiosity(*scene, grid, *model->caster, lights, solver, progress);
+  std::vector<Color> h;
+  if (solver.keepDirect) {
+    h = solved.irradiance;
+    for (size_t e = 0; e < h.size(); ++e) h[e] = glm::max(h[e] - solved.direct[e], Color(0.0f));
+    releaseMemory(solved.direct);
+  }
+  return {std::move(solved), std::move(h)};
+}
+
+// A solve per group (its lights and its materials' emission alone); the numbers of the solution
+// are the groups' together (rays, visits, seconds summed; residuals in group order).
+void VoxelRadiosity::Impl::solveGroups(VoxelSolverSettings solver,
+                                       const ProgressCallback& progress) {
+  const size_t groups = mix.groups().size();
+  for (size_t g = 0; g < groups; ++g) {
+    solver.emissionScales.assign(scene->materials.size(), Color(0.0f));
+    for (uint32_t m : mix.groups()[g].materials) solver.emissionScales[m] = Color(1.0f);
+    const std::vector<Light> own = mix.lightsOf(g);
+    auto [solved, h] = solve(own, solver, progressPart(progress, g, groups));
+    groupIrradiance.push_back(std::move(solved.irradiance));
+    if (!h.empty()) groupIndirect.push_back(std::move(h));
+    VoxelSolution& all = solution;
+    if (g == 0)
+      all = std::move(solved);
+    else {
+      all.cellVisits += solved.cellVisits;
+      all.shadowRays += solved.shadowRays;
+      all.directSeconds += solved.directSeconds;
+      all.sweepSeconds += solved.sweepSeconds;
+      all.residuals.insert(all.residuals.end(), solved.residuals.begin(), solved.residuals.end());
+      all.iterationSeconds.insert(all.iterationSeconds.end(), solved.iterationSeconds.begin(),
+                                  solved.iterationSeconds.end());
+    }
+  }
+  combineGroups();
+}
+
+Color VoxelRadiosity::Impl::emission(size_t side) const {
+  const VoxelSurface& s = grid.surfaces[grid.surface[side]];
+  if (s.emitter == VoxelSurface::kNoEmitter || mix.emissionScales().empty())
+    return s.material.emission;
+  return s.material.emission * mix.emissionScales()[s.emitter];
+}
+
+void VoxelRadiosity::Impl::combineGroups() {
+  solution.irradiance = mix.combine(groupIrradiance);
+  if (!groupIndirect.empty()) indirect = mix.combine(groupIndirect);
+  solution.radiosity.resize(solution.irradiance.size());
+  for (size_t e = 0; e < solution.radiosity.size(); ++e)
+    solution.radiosity[e] =
+        glm::pi<float>() * emission(e) + grid.materialOf(e).rho * solution.irradiance[e];
+}
 
 VoxelModel::VoxelModel(const Scene& scene, const RayCaster& caster,
                        const VoxelRadiositySettings& settings)
@@ -104,28 +192,12 @@ VoxelRadiosity::VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model,
   const VoxelRadiositySettings& settings = model->settings;
   impl_->stats.voxelizeSeconds = model->voxelizeSeconds;
 
-  VoxelSolverSettings solver;
-  solver.sphereRadius = settings.sphereRadius;
-  solver.laterSphereRadius = settings.laterSphereRadius;
-  solver.iterations = settings.iterations;
-  solver.tolerance = settings.tolerance;
-  solver.estimateTail = settings.estimateTail;
-  solver.directFirstShot = settings.directFirstShot;
-  solver.directSamples = settings.directSamples;
-  solver.normalize = settings.normalize;
-  solver.jitterLines = settings.jitterLines;
-  solver.keepDirect = settings.keepDirectLight && settings.directFirstShot;
-  solver.sweep.tangentCorrection = settings.tangentCorrection;
-  solver.seed = settings.seed;
-  impl_->solution =
-      solveVoxelRadiosity(scene, impl_->grid, *model->caster, impl_->lights, solver, progress);
-  if (solver.keepDirect) {
-    std::vector<Color>& h = impl_->indirect;
-    h = impl_->solution.irradiance;
-    for (size_t e = 0; e < h.size(); ++e)
-      h[e] = glm::max(h[e] - impl_->solution.direct[e], Color(0.0f));
-    releaseMemory(impl_->solution.direct);
-  }
+  const VoxelSolverSettings solver = solverSettings(settings);
+  impl_->mix = LightGroupMix(scene, impl_->lights, settings.lightGroups);
+  if (impl_->mix.apart())
+    impl_->solveGroups(solver, progress);
+  else
+    std::tie(impl_->solution, impl_->indirect) = impl_->solve(impl_->lights, solver, progress);
 
   VoxelRadiosityStats& s = impl_->stats;
   const VoxelSolution& solution = impl_->solution;
@@ -159,11 +231,38 @@ Color VoxelRadiosity::radiance(const SurfaceHit& hit) const {
   if (!hit.frontFace && !m.twoSided) return Color(0.0f);
   const Vec3 n = hit.frontFace ? hit.normal : -hit.normal;
   // The hit's own material, not the voxel's blend: colour edges and emitters stay sharp.
-  return m.emission + m.rho * impl_->field().at(hit.point, n) / glm::pi<float>();
+  return impl_->mix.emission(*impl_->scene, impl_->scene->faceOf(hit.triangle).material) +
+         m.rho * impl_->field().at(hit.point, n) / glm::pi<float>();
 }
 
 std::span<const Light> VoxelRadiosity::directLights() const {
-  return impl_->lights;
+  return impl_->mix.lights();
+}
+
+std::span<const Color> VoxelRadiosity::emissionScales() const {
+  return impl_->mix.emissionScales();
+}
+
+std::span<const LightGroup> VoxelRadiosity::lightGroups() const {
+  return impl_->mix.groups();
+}
+
+std::span<const Color> VoxelRadiosity::groupScales() const {
+  return impl_->mix.scales();
+}
+
+void VoxelRadiosity::setGroupScales(std::span<const Color> scales) {
+  impl_->mix.setScales(scales);
+  impl_->combineGroups();
+}
+
+Color VoxelRadiosity::groupRadiosity(size_t group, size_t side) const {
+  const Impl& m = *impl_;
+  const VoxelSurface& s = m.grid.surfaces[m.grid.surface[side]];
+  const bool emits = s.emitter != VoxelSurface::kNoEmitter &&
+                     m.mix.groupEmission(*m.scene, group, s.emitter) != Color(0.0f);
+  const Color e = emits ? glm::pi<float>() * s.material.emission : Color(0.0f);
+  return m.mix.scales()[group] * (e + s.material.rho * m.groupIrradiance.at(group)[side]);
 }
 
 bool VoxelRadiosity::hasIndirectIrradiance() const {
@@ -197,7 +296,7 @@ SurfaceElement VoxelRadiosity::element(size_t e) const {
           grid.areaOf(e),
           grid.centroidOf(e),
           grid.unitNormal(e),
-          glm::pi<float>() * m.emission,
+          glm::pi<float>() * impl_->emission(e),
           m.rho,
           impl_->solution.irradiance[e],
           impl_->solution.radiosity[e],

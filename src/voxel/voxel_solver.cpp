@@ -1,25 +1,24 @@
 #include "voxel/voxel_solver.h"
 
-#include <radiosity/error.h>
-
-#include "core/memory_usage.h"
-#include "core/rng.h"
-#include <radiosity/ray_caster.h>
-#include "lighting/direct_lighting.h"
-#include "render/progress_ticker.h"
-#include "voxel/direction_set.h"
-
 #include <fmt/format.h>
-#include <glm/gtc/constants.hpp>
 #include <immintrin.h>
+#include <radiosity/error.h>
+#include <radiosity/ray_caster.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstring>
+#include <glm/gtc/constants.hpp>
 #include <map>
 #include <memory>
+
+#include "core/memory_usage.h"
+#include "core/rng.h"
+#include "lighting/direct_lighting.h"
+#include "render/progress_ticker.h"
+#include "voxel/direction_set.h"
 
 namespace rad {
 
@@ -35,7 +34,7 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
                                     const RayCaster& caster, std::span<const Light> lights,
                                     const VoxelSolverSettings& settings, uint64_t& rays) {
   const uint64_t raysBefore = caster.raysCast();
-  const DirectLighting direct(scene, caster, lights);
+  const DirectLighting direct(scene, caster, lights, settings.emissionScales);
   std::vector<Color> h(grid.entryCount());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.entryCount(), 256), [&](const auto& r) {
     for (size_t e = r.begin(); e != r.end(); ++e) {
@@ -230,6 +229,7 @@ class SideLight {
       : grid_(grid),
         firstShot_(settings.directFirstShot),
         normalize_(settings.normalize),
+        emissionScales_(settings.emissionScales),
         irradiance_(direct.begin(), direct.end()),
         gathered_(grid.entryCount()) {
     normalizeFor(directions);
@@ -282,7 +282,10 @@ class SideLight {
 
  private:
   Color emitted(size_t e) const {
-    return glm::pi<float>() * grid_.materialOf(e).emission;
+    const VoxelSurface& s = grid_.surfaces[grid_.surface[e]];
+    const Color e0 = glm::pi<float>() * s.material.emission;
+    if (emissionScales_.empty() || s.emitter == VoxelSurface::kNoEmitter) return e0;
+    return e0 * emissionScales_[s.emitter];
   }
   Color rho(size_t e) const { return grid_.materialOf(e).rho; }
   Color irradiance(size_t e) const { return irradiance_[e].value(); }
@@ -296,6 +299,7 @@ class SideLight {
 
   const VoxelGrid& grid_;
   bool firstShot_, normalize_;
+  std::span<const Color> emissionScales_;
   std::vector<Float24Color> irradiance_;
   std::vector<Color> gathered_;
   std::vector<uint16_t> weights_;  ///< per side, its facing weight w - 1 (facingWeights)
@@ -304,9 +308,9 @@ class SideLight {
 }  // namespace
 
 uint64_t voxelSolverBytesPerSide(const VoxelSolverSettings& settings) {
-  return sizeof(Color) +                               // the bounce being gathered
-         sizeof(Float24Color) +                        // irradiance so far
-         sizeof(DiscreteLineSweep::SentLight) +        // light sent
+  return sizeof(Color) +                                // the bounce being gathered
+         sizeof(Float24Color) +                         // irradiance so far
+         sizeof(DiscreteLineSweep::SentLight) +         // light sent
          (settings.normalize ? sizeof(uint16_t) : 0) +  // normalization weights
          (settings.keepDirect ? sizeof(Color) : 0);     // the first shot, kept apart
 }

@@ -13,28 +13,31 @@
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
 
-#include "voxel/discrete_line_sweep.h"
-#include "voxel/voxel_grid.h"
-
 #include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "voxel/discrete_line_sweep.h"
+#include "voxel/voxel_grid.h"
+
 namespace rad {
 
 struct VoxelSolverSettings {
-  int sphereRadius = 38;       ///< radius R of the digital sphere of directions
+  int sphereRadius = 38;  ///< radius R of the digital sphere of directions
   /// R for the sweeps after the first (the second bounce on, smoother); 0: sphereRadius.
   int laterSphereRadius = 0;
-  int iterations = 6;          ///< sweeps over all directions (light bounces)
-  double tolerance = 0.0;      ///< stop early below this relative residual (0: never)
-  bool estimateTail = true;    ///< add the bounces after the last iteration, extrapolated
-  bool directFirstShot = true; ///< direct light by shadow rays, then sweep the indirect bounces
-  int directSamples = 64;      ///< shadow-ray samples per voxel side for the first shot
-  bool normalize = true;       ///< divide each side's gathered light by its sum of cos * w
-  bool jitterLines = true;     ///< shift each direction's lines anew every iteration
-  bool keepDirect = false;     ///< return the first shot's direct irradiance too
+  int iterations = 6;           ///< sweeps over all directions (light bounces)
+  double tolerance = 0.0;       ///< stop early below this relative residual (0: never)
+  bool estimateTail = true;     ///< add the bounces after the last iteration, extrapolated
+  bool directFirstShot = true;  ///< direct light by shadow rays, then sweep the indirect bounces
+  int directSamples = 64;       ///< shadow-ray samples per voxel side for the first shot
+  bool normalize = true;        ///< divide each side's gathered light by its sum of cos * w
+  bool jitterLines = true;      ///< shift each direction's lines anew every iteration
+  bool keepDirect = false;      ///< return the first shot's direct irradiance too
+  /// A factor on each scene material's emission (0 and 1 to solve one light group's emitters
+  /// alone); empty: the scene's own.
+  std::vector<Color> emissionScales;
   SweepSettings sweep;
   uint64_t seed = 1;
 };
@@ -46,15 +49,15 @@ struct VoxelSolution {
   /// Per iteration: the power of the light it added to B (its bounce, reflected) over B's
   /// (area- and luminance-weighted): B's relative change.
   std::vector<double> residuals;
-  double tailShare = 0.0;         ///< share of B's power the tail estimate added
+  double tailShare = 0.0;  ///< share of B's power the tail estimate added
   size_t directions = 0;
-  size_t laterDirections = 0;     ///< directions of the sweeps after the first
-  uint64_t cellVisits = 0;        ///< voxel-direction visits of all sweeps
+  size_t laterDirections = 0;  ///< directions of the sweeps after the first
+  uint64_t cellVisits = 0;     ///< voxel-direction visits of all sweeps
   uint64_t shadowRays = 0;
   double directSeconds = 0.0, sweepSeconds = 0.0;
   std::vector<double> iterationSeconds;  ///< the sweeps' time in each iteration
-  size_t workingBytes = 0;        ///< solver arrays beyond the grid (accumulators, line tables)
-  size_t sweepThreads = 0;        ///< threads that shared each direction's sweep
+  size_t workingBytes = 0;  ///< solver arrays beyond the grid (accumulators, line tables)
+  size_t sweepThreads = 0;  ///< threads that shared each direction's sweep
 };
 
 /// What the solver holds per side besides the grid and the sweep's working memory (the bounce
@@ -71,8 +74,8 @@ uint64_t voxelSolverBytesPerSide(const VoxelSolverSettings& settings);
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings);
 
 /// Solves the scene on a voxelization of it, lit by its emitting surfaces and `lights` (the
-/// first shot's shadow rays go through `caster`). Deterministic, and the same bit for bit whatever the
-/// number of threads (they share each direction, and the memory does not grow with them).
+/// first shot's shadow rays go through `caster`). Deterministic, and the same bit for bit whatever
+/// the number of threads (they share each direction, and the memory does not grow with them).
 /// Throws InputError if memory would not hold the solve, before any work, and rad::Cancelled if
 /// `progress` returns false.
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,

@@ -1,11 +1,8 @@
 #include "voxel/voxelizer.h"
 
-#include <radiosity/error.h>
-
-#include "core/memory_usage.h"
-
 #include <fmt/format.h>
 #include <immintrin.h>
+#include <radiosity/error.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -16,6 +13,8 @@
 #include <cmath>
 #include <map>
 #include <tuple>
+
+#include "core/memory_usage.h"
 
 namespace rad {
 
@@ -73,7 +72,9 @@ uint64_t cellKey(int x, int y, int z) {
   return (uint64_t(uint16_t(x)) << 32) | (uint64_t(uint16_t(y)) << 16) | uint64_t(uint16_t(z));
 }
 
-IVec3 keyCell(uint64_t key) { return IVec3(int((key >> 32) & 0xffff), int((key >> 16) & 0xffff), int(key & 0xffff)); }
+IVec3 keyCell(uint64_t key) {
+  return IVec3(int((key >> 32) & 0xffff), int((key >> 16) & 0xffff), int(key & 0xffff));
+}
 
 // Where a triangle's fragments go once their count is known: their place in the array of all.
 struct FragmentSpan {
@@ -109,14 +110,16 @@ void fragmentTriangle(const Scene& scene, const VoxelGrid& grid, uint32_t t, boo
     const ClipPolygon slab = clipToSlab(tri, 0, x * s - eps, (x + 1) * s + eps);
     if (slab.n == 0) continue;
     double ylo = slab.p[0].y, yhi = ylo;
-    for (int i = 1; i < slab.n; ++i) ylo = std::min(ylo, slab.p[i].y), yhi = std::max(yhi, slab.p[i].y);
+    for (int i = 1; i < slab.n; ++i)
+      ylo = std::min(ylo, slab.p[i].y), yhi = std::max(yhi, slab.p[i].y);
     int y0, y1;
     cellRange(ylo, yhi, 1, y0, y1);
     for (int y = y0; y <= y1; ++y) {
       const ClipPolygon row = clipToSlab(slab, 1, y * s - eps, (y + 1) * s + eps);
       if (row.n == 0) continue;
       double zlo = row.p[0].z, zhi = zlo;
-      for (int i = 1; i < row.n; ++i) zlo = std::min(zlo, row.p[i].z), zhi = std::max(zhi, row.p[i].z);
+      for (int i = 1; i < row.n; ++i)
+        zlo = std::min(zlo, row.p[i].z), zhi = std::max(zhi, row.p[i].z);
       int z0, z1;
       cellRange(zlo, zhi, 2, z0, z1);
       for (int z = z0; z <= z1; ++z) {
@@ -149,6 +152,8 @@ struct Side {
   uint32_t orientation = 0, object = 0;
   Vec3d normalSum{0.0}, centroidSum{0.0}, rhoArea{0.0}, keArea{0.0};
   double weight = 0.0, area = 0.0, backArea = 0.0;
+  uint32_t emitter = VoxelSurface::kNoEmitter;  ///< the material of the most emission so far
+  double emitterWeight = 0.0;
 };
 
 void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orientations,
@@ -174,17 +179,23 @@ void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orien
   if (f.backSide) side->backArea += f.area;
   side->rhoArea += w * Vec3d(m.rho);
   side->keArea += w * Vec3d(m.emission);
+  const double emitted = w * luminance(m.emission);
+  if (emitted > side->emitterWeight) {
+    side->emitterWeight = emitted;
+    side->emitter = scene.faceOf(f.triangle).material;
+  }
 }
 
 // The grid's surfaces by content, so that sides made of the same share one.
-using SurfaceKey = std::tuple<std::array<float, 6>, uint32_t, bool>;
+using SurfaceKey = std::tuple<std::array<float, 6>, uint32_t, bool, uint32_t>;
 
 uint32_t internSurface(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& index,
                        const VoxelSurface& s) {
   const VoxelMaterial& m = s.material;
   const SurfaceKey key{{m.rho.r, m.rho.g, m.rho.b, m.emission.r, m.emission.g, m.emission.b},
                        s.object,
-                       s.backSide};
+                       s.backSide,
+                       s.emitter};
   auto [it, inserted] = index.emplace(key, uint32_t(grid.surfaces.size()));
   if (inserted) grid.surfaces.push_back(s);
   return it->second;
@@ -198,8 +209,8 @@ void appendSide(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& surfaceIndex, c
   const float faces = float(side.area / (double(grid.voxelSize) * grid.voxelSize));
   grid.faceArea.push_back(_cvtss_sh(faces, _MM_FROUND_TO_NEAREST_INT));
   const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};
-  grid.surface.push_back(
-      internSurface(grid, surfaceIndex, {m, side.object, side.backArea > 0.5 * side.area}));
+  grid.surface.push_back(internSurface(
+      grid, surfaceIndex, {m, side.object, side.backArea > 0.5 * side.area, side.emitter}));
 }
 
 // Calls f(cell key, sides) for each cell of the fragments (sorted by cell): its fragments
@@ -307,21 +318,23 @@ VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
   grid.origin = b.min - 0.5f * grid.voxelSize;
   const Vec3 cells = glm::floor((b.max - grid.origin) / grid.voxelSize) + 1.0f;
   if (glm::any(glm::greaterThan(cells, Vec3(32767.0f))))
-    throw InputError(scene.name, fmt::format("voxel size {:g} gives a {:g} x {:g} x {:g} grid (at most "
-                                             "32767 per axis)", grid.voxelSize, cells.x, cells.y, cells.z));
+    throw InputError(scene.name,
+                     fmt::format("voxel size {:g} gives a {:g} x {:g} x {:g} grid (at most "
+                                 "32767 per axis)",
+                                 grid.voxelSize, cells.x, cells.y, cells.z));
   grid.dims = IVec3(cells);
   grid.pointStep = VoxelGrid::pointStepFor(grid.dims, grid.voxelSize);
   // Refused before the fragments are made, rather than killed for memory while making them.
   const double expected = settings.voxelSize > 0.0f ? expectedVoxelCount(scene, grid.voxelSize)
-                                                   : double(settings.targetVoxels);
+                                                    : double(settings.targetVoxels);
   const uint64_t available = availableMemoryBytes();
   if (available > 0 && expected * kVoxelizeBytesPerVoxel > double(available))
-    throw InputError(scene.name, fmt::format("voxel size {:g} gives about {:.0f} voxels, which need "
-                                             "about {:.2f} GB to voxelize and {:.2f} GB is available; "
-                                             "use a larger voxel size or fewer voxels",
-                                             grid.voxelSize, expected,
-                                             expected * kVoxelizeBytesPerVoxel / 1e9,
-                                             double(available) / 1e9));
+    throw InputError(scene.name,
+                     fmt::format("voxel size {:g} gives about {:.0f} voxels, which need "
+                                 "about {:.2f} GB to voxelize and {:.2f} GB is available; "
+                                 "use a larger voxel size or fewer voxels",
+                                 grid.voxelSize, expected, expected * kVoxelizeBytesPerVoxel / 1e9,
+                                 double(available) / 1e9));
 
   // Each triangle's fragments are counted first, then made again straight into their place in
   // one array, in triangle order (deterministic): clipping twice (0.6 s at 2M voxels) is cheaper
@@ -355,7 +368,8 @@ VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
   // cell): a total order, sorted in place and in parallel, where a stable sort would hold a
   // second copy of the fragments.
   tbb::parallel_sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) {
-    return std::tie(a.cellKey, a.triangle, a.backSide) < std::tie(b.cellKey, b.triangle, b.backSide);
+    return std::tie(a.cellKey, a.triangle, a.backSide) <
+           std::tie(b.cellKey, b.triangle, b.backSide);
   });
   buildEntries(scene, fragments, grid);
   releaseMemory(fragments);

@@ -1,23 +1,22 @@
 // End-to-end tests of the command line, driven in-process through runCli.
 #include "cli.h"
 
-#include "core/address_space_limit.h"
-
-#include <radiosity/image.h>
-#include <radiosity/solver_settings.h>
-
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
+#include <radiosity/image.h>
+#include <radiosity/solver_settings.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <set>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <tuple>
+
+#include "core/address_space_limit.h"
 
 namespace fs = std::filesystem;
 
@@ -62,7 +61,9 @@ size_t csvRowCount(const std::string& path) {
   std::ifstream rows(path);
   std::string header, line;
   std::getline(rows, header);
-  EXPECT_EQ(header, "id,object,area,cx,cy,cz,nx,ny,nz,E_r,E_g,E_b,rho_r,rho_g,rho_b,H_r,H_g,H_b,B_r,B_g,B_b");
+  EXPECT_EQ(
+      header,
+      "id,object,area,cx,cy,cz,nx,ny,nz,E_r,E_g,E_b,rho_r,rho_g,rho_b,H_r,H_g,H_b,B_r,B_g,B_b");
   size_t count = 0;
   while (std::getline(rows, line)) ++count;
   return count;
@@ -85,8 +86,9 @@ size_t distinctPixels(const rad::Image& image) {
 TEST(Cli, RendersCornellBoxWithStats) {
   const fs::path dir = freshDir("render");
   const std::string png = (dir / "x.png").string(), stats = (dir / "s.json").string();
-  const CliResult r = run({"render", "cornell", "--method", "pathtrace", "--width", "64", "--height",
-                           "64", "--spp", "4", "-o", png, "--stats", stats, "--object-points", "8"});
+  const CliResult r =
+      run({"render", "cornell", "--method", "pathtrace", "--width", "64", "--height", "64", "--spp",
+           "4", "-o", png, "--stats", stats, "--object-points", "8"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_GT(fs::file_size(png), 100u);
   const nlohmann::json j = readJson(stats);
@@ -114,7 +116,8 @@ TEST(Cli, RendersCornellBoxWithStats) {
   }
   // Absorbed power cannot exceed what was emitted (the box is open, light escapes).
   EXPECT_LT(j["energy"]["absorbed"][1].get<double>(), j["energy"]["emitted"][1].get<double>());
-  EXPECT_GT(j["energy"]["absorbed"][1].get<double>(), 0.3 * j["energy"]["emitted"][1].get<double>());
+  EXPECT_GT(j["energy"]["absorbed"][1].get<double>(),
+            0.3 * j["energy"]["emitted"][1].get<double>());
 }
 
 TEST(Cli, WritesExrAndPfm) {
@@ -246,7 +249,9 @@ TEST(Cli, SameSeedSameImage) {
   auto render = [&](const std::string& name, const std::string& seed, const std::string& threads) {
     const std::string path = (dir / name).string();
     EXPECT_EQ(run({"render", "cornell", "--width", "24", "--height", "24", "--spp", "2", "--seed",
-                   seed, "--threads", threads, "-o", path, "--quiet"}).status, 0);
+                   seed, "--threads", threads, "-o", path, "--quiet"})
+                  .status,
+              0);
     return readBytes(path);
   };
   const std::string a = render("a.pfm", "7", "1"), b = render("b.pfm", "7", "2");
@@ -259,10 +264,10 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
   const fs::path dir = freshDir("voxel_solve");
   const std::string csv = (dir / "v.csv").string(), ply = (dir / "v.ply").string();
   const std::string stats = (dir / "v.json").string();
-  const std::vector<std::string> coarse = {"--voxels", "3000", "--sphere-radius", "4",
-                                           "--direct-samples", "4", "--quiet"};
-  std::vector<std::string> args = {"solve", "cornell", "--method", "voxel", "--export", csv,
-                                   "--stats", stats};
+  const std::vector<std::string> coarse = {"--voxels",         "3000", "--sphere-radius", "4",
+                                           "--direct-samples", "4",    "--quiet"};
+  std::vector<std::string> args = {"solve",    "cornell", "--method", "voxel",
+                                   "--export", csv,       "--stats",  stats};
   args.insert(args.end(), coarse.begin(), coarse.end());
   ASSERT_EQ(run(args).status, 0);
   const nlohmann::json j = readJson(stats);
@@ -304,9 +309,11 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
   EXPECT_EQ(serial["voxel"]["sweep_threads"].get<int>(), 1);
   EXPECT_GE(j["voxel"]["sweep_threads"].get<int>(), 1);
   EXPECT_EQ(readBytes(serialCsv), readBytes(csv));
-  EXPECT_LE(serial["voxel"]["bytes_per_side"].get<double>(), j["voxel"]["bytes_per_side"].get<double>());
+  EXPECT_LE(serial["voxel"]["bytes_per_side"].get<double>(),
+            j["voxel"]["bytes_per_side"].get<double>());
   // Per voxel (cell) and per side: a cell holds one side or more.
-  EXPECT_GE(j["voxel"]["bytes_per_voxel"].get<double>(), j["voxel"]["bytes_per_side"].get<double>());
+  EXPECT_GE(j["voxel"]["bytes_per_voxel"].get<double>(),
+            j["voxel"]["bytes_per_side"].get<double>());
 
   // The tail estimate (on by default) adds the bounces after the sixth, a little light on every
   // surface; --no-tail-estimate leaves them out.
@@ -370,9 +377,10 @@ TEST(Cli, RendersWithVoxels) {
 TEST(Cli, SolvesWithPatchesExportsAndCaches) {
   const fs::path dir = freshDir("patch_solve");
   const std::string csv = (dir / "p.csv").string(), stats = (dir / "p.json").string();
-  const std::vector<std::string> args = {"solve", "cornell", "--method", "patch", "--patches", "500",
-                                         "--ff-rays", "64", "--cache-dir", (dir / "cache").string(),
-                                         "--export", csv, "--stats", stats};
+  const std::vector<std::string> args = {
+      "solve",    "cornell",   "--method", "patch",       "--patches",
+      "500",      "--ff-rays", "64",       "--cache-dir", (dir / "cache").string(),
+      "--export", csv,         "--stats",  stats};
   const CliResult first = run(args);
   ASSERT_EQ(first.status, 0) << first.err;
   const nlohmann::json j = readJson(stats);
@@ -380,7 +388,8 @@ TEST(Cli, SolvesWithPatchesExportsAndCaches) {
   EXPECT_GE(j["counts"]["patches"].get<int>(), 500);
   // 64 hemisphere rays a patch, plus one visibility ray per quadrature point (16) for each pair
   // of a patch and a light patch facing it, the light's columns being exact.
-  const double patches = j["counts"]["patches"].get<double>(), rays = j["counts"]["rays"].get<double>();
+  const double patches = j["counts"]["patches"].get<double>(),
+               rays = j["counts"]["rays"].get<double>();
   const double exactColumns = j["patch"]["exact_columns"].get<double>();
   EXPECT_GE(exactColumns, 1.0);
   EXPECT_GT(rays, 64.0 * patches);
@@ -403,10 +412,12 @@ TEST(Cli, PatchSolversGiveTheSameImage) {
   auto render = [&](const std::string& solver) {
     const std::string pfm = (dir / (solver + ".pfm")).string();
     const std::string stats = (dir / (solver + ".json")).string();
-    const CliResult r = run({"render", "cornell", "--method", "patch", "--patches", "300",
-                             "--ff-rays", "64", "--cache-dir", (dir / "cache").string(), "--solver",
-                             solver, "--tolerance", "1e-6", "--width", "32", "--height", "32",
-                             "-o", pfm, "--stats", stats, "--quiet"});
+    const CliResult r =
+        run({"render",   "cornell",   "--method",    "patch",       "--patches",
+             "300",      "--ff-rays", "64",          "--cache-dir", (dir / "cache").string(),
+             "--solver", solver,      "--tolerance", "1e-6",        "--width",
+             "32",       "--height",  "32",          "-o",          pfm,
+             "--stats",  stats,       "--quiet"});
     EXPECT_EQ(r.status, 0) << r.err;
     const nlohmann::json j = readJson(stats);
     EXPECT_EQ(j["patch"]["solver"], solver);
@@ -432,10 +443,12 @@ TEST(Cli, FlatShadingIsConstantPerPatch) {
   const std::string stats = (dir / "s.json").string();
   auto render = [&](const std::string& shading) {
     const std::string pfm = (dir / (shading + ".pfm")).string();
-    const CliResult r = run({"render", "cornell", "--method", "patch", "--patches", "300",
-                             "--ff-rays", "16", "--cache-dir", (dir / "cache").string(),
-                             "--shading", shading, "--direct", "solution", "--spp", "1", "--width",
-                             "64", "--height", "64", "-o", pfm, "--stats", stats, "--quiet"});
+    const CliResult r =
+        run({"render",    "cornell",   "--method", "patch",       "--patches",
+             "300",       "--ff-rays", "16",       "--cache-dir", (dir / "cache").string(),
+             "--shading", shading,     "--direct", "solution",    "--spp",
+             "1",         "--width",   "64",       "--height",    "64",
+             "-o",        pfm,         "--stats",  stats,         "--quiet"});
     EXPECT_EQ(r.status, 0) << r.err;
     return rad::readImage(pfm);
   };
@@ -452,14 +465,15 @@ TEST(Cli, FlatShadingIsConstantPerPatch) {
 TEST(Cli, PerPixelDirectLightNeedsItKeptApart) {
   const fs::path dir = freshDir("per_pixel_direct");
   const std::string out = (dir / "v.pfm").string();
-  const CliResult r = run({"render", "cornell", "--method", "voxel", "--voxels", "3000",
-                           "--sphere-radius", "4", "--iterations", "2", "--no-first-shot",
-                           "--width", "16", "--height", "16", "-o", out});
+  const CliResult r =
+      run({"render", "cornell", "--method", "voxel", "--voxels", "3000", "--sphere-radius", "4",
+           "--iterations", "2", "--no-first-shot", "--width", "16", "--height", "16", "-o", out});
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("--direct per-pixel"), std::string::npos) << r.err;
-  const CliResult quiet = run({"render", "cornell", "--method", "voxel", "--voxels", "3000",
-                               "--sphere-radius", "4", "--iterations", "2", "--no-first-shot",
-                               "--direct", "solution", "--width", "16", "--height", "16", "-o", out});
+  const CliResult quiet =
+      run({"render", "cornell", "--method", "voxel", "--voxels", "3000", "--sphere-radius", "4",
+           "--iterations", "2", "--no-first-shot", "--direct", "solution", "--width", "16",
+           "--height", "16", "-o", out});
   EXPECT_EQ(quiet.err.find("--direct per-pixel"), std::string::npos) << quiet.err;
   EXPECT_EQ(run({"render", "cornell", "--direct", "sometimes", "-o", out}).status, 2);
 }
@@ -467,14 +481,17 @@ TEST(Cli, PerPixelDirectLightNeedsItKeptApart) {
 // The scene's "solver" keys choose the same settings as the flags; a bad value names its key.
 TEST(Cli, SceneSolverKeysChooseSettings) {
   const fs::path dir = freshDir("patch_scene_keys");
-  const fs::path obj = writeFile(dir / "room.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  const fs::path obj =
+      writeFile(dir / "room.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   auto scene = [&](const std::string& solver) {
     return writeFile(dir / "s.json", R"({"geometry": [{"file": "room.obj"}],
       "materials": {"default": {"rho": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
-      "solver": )" + solver + "}").string();
+      "solver": )" + solver + "}")
+        .string();
   };
   const std::string stats = (dir / "s.stats.json").string();
-  CliResult r = run({"solve", scene(R"({"method": "patch", "patch_size": 0.25, "solver": "progressive",
+  CliResult r =
+      run({"solve", scene(R"({"method": "patch", "patch_size": 0.25, "solver": "progressive",
             "cache_dir": "none", "ff_rays": 16, "max_iterations": 50, "shading": "flat"})"),
            "--stats", stats, "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
@@ -488,8 +505,9 @@ TEST(Cli, SceneSolverKeysChooseSettings) {
   // The voxel keys, and a flag that wins over its key, on two glowing squares facing each other
   // (light goes back and forth: a tail to estimate). Digital spheres of R = 4, 3, 2 have 134, 90
   // and 26 directions (python3 brute-force counts).
-  writeFile(dir / "room.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\n"
-                              "v 0 1 1\nf 1 2 3 4\nf 8 7 6 5\n");
+  writeFile(dir / "room.obj",
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\n"
+            "v 0 1 1\nf 1 2 3 4\nf 8 7 6 5\n");
   const std::string voxel = scene(R"({"method": "voxel", "voxels": 500, "sphere_radius": 4,
       "later_sphere_radius": 3, "iterations": 3, "first_shot": false, "normalize": true,
       "jitter_lines": false, "tail_estimate": false})");
@@ -515,16 +533,16 @@ TEST(Cli, SceneSolverKeysChooseSettings) {
 TEST(Cli, SolveExportsLitMeshAsGlb) {
   const fs::path dir = freshDir("patch_glb");
   const std::string glb = (dir / "x.glb").string();
-  const CliResult r = run({"solve", "cornell", "--method", "patch", "--patches", "300",
-                           "--ff-rays", "16", "--export", glb, "--cache-dir", "none", "--quiet"});
+  const CliResult r = run({"solve", "cornell", "--method", "patch", "--patches", "300", "--ff-rays",
+                           "16", "--export", glb, "--cache-dir", "none", "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream in(glb, std::ios::binary);
   char magic[4] = {};
   in.read(magic, 4);
   EXPECT_EQ(std::string(magic, 4), "glTF");
-  const CliResult voxel = run({"solve", "cornell", "--method", "voxel", "--voxels", "5000",
-                               "--sphere-radius", "4", "--export", (dir / "v.glb").string(),
-                               "--quiet"});
+  const CliResult voxel =
+      run({"solve", "cornell", "--method", "voxel", "--voxels", "5000", "--sphere-radius", "4",
+           "--export", (dir / "v.glb").string(), "--quiet"});
   ASSERT_EQ(voxel.status, 0) << voxel.err;
   std::ifstream voxelIn(dir / "v.glb", std::ios::binary);
   voxelIn.read(magic, 4);
@@ -553,10 +571,11 @@ TEST(Cli, FlagsAndSceneKeysShareEachSettingsRange) {
   for (const rad::SettingDeclaration& d : rad::solverSettingDeclarations()) {
     if (d.type != rad::SettingType::Integer && d.type != rad::SettingType::Number) continue;
     const double below = d.minOpen ? d.min : d.min - 1.0;
-    const std::string text = fmt::format("{}", d.type == rad::SettingType::Integer ? int64_t(below) : below);
-    const std::string why = d.problem(d.type == rad::SettingType::Integer
-                                          ? rad::SettingValue(int64_t(below))
-                                          : rad::SettingValue(below));
+    const std::string text =
+        fmt::format("{}", d.type == rad::SettingType::Integer ? int64_t(below) : below);
+    const std::string why =
+        d.problem(d.type == rad::SettingType::Integer ? rad::SettingValue(int64_t(below))
+                                                      : rad::SettingValue(below));
     ASSERT_FALSE(why.empty()) << d.name;
     const fs::path scene = writeFile(dir / "s.json", R"({"geometry": [{"file": "room.obj"}],
       "materials": {"default": {"rho": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
@@ -564,7 +583,8 @@ TEST(Cli, FlagsAndSceneKeysShareEachSettingsRange) {
     const CliResult key = run({"info", scene.string()});
     EXPECT_EQ(key.status, 2) << d.name;
     EXPECT_NE(key.err.find("/solver/" + d.name + ": " + why), std::string::npos) << key.err;
-    const CliResult render = run({"render", "cornell", d.flag(), text, "-o", (dir / "x.png").string()});
+    const CliResult render =
+        run({"render", "cornell", d.flag(), text, "-o", (dir / "x.png").string()});
     EXPECT_EQ(render.status, 2) << d.name;
     EXPECT_NE(render.err.find(d.flag() + ": " + why), std::string::npos) << render.err;
     ++checked;
@@ -612,8 +632,48 @@ TEST(Cli, TimeEvaluatesTheLightsPath) {
   }
   // The Cornell data's red wall is at x = 550, the green one at x = 0; the ceiling light gives
   // both walls the same at either time, the spot a wall at one time only.
-  EXPECT_GT(meanIrradiance(at["0"], "left_wall_red"), 1.3 * meanIrradiance(at["1"], "left_wall_red"));
+  EXPECT_GT(meanIrradiance(at["0"], "left_wall_red"),
+            1.3 * meanIrradiance(at["1"], "left_wall_red"));
   EXPECT_GT(meanIrradiance(at["1"], "right_wall_green"),
             1.3 * meanIrradiance(at["0"], "right_wall_green"));
   EXPECT_EQ(run({"solve", scene.string(), "--time", "soon"}).status, 2);
+}
+
+// --group: the groups solved apart and combined at the scales asked; the stats give each group's
+// scale and power (the emitted energy is theirs) and its share of every object's light.
+TEST(Cli, GroupFlagsScaleLightGroupsAndTheStatsShareTheLight) {
+  const fs::path dir = freshDir("groups");
+  const std::string obj = std::string(RADIOSITY_TEST_DATA_DIR) + "/scene/cornell/cornell_box.obj";
+  const fs::path scene = writeFile(dir / "lamps.json", R"({"geometry": [{"file": ")" + obj + R"("}],
+    "lights": [{"type": "spot", "group": "spot", "position": [278, 400, 279.5],
+                "direction": [1, -0.3, 0], "intensity": [2e5, 1e5, 5e4],
+                "inner_angle_deg": 20, "outer_angle_deg": 30},
+               {"type": "point", "position": [420, 300, 150], "intensity": [1e4, 1e4, 2e4]}]})");
+  const std::string stats = (dir / "stats.json").string();
+  const CliResult r =
+      run({"solve", scene.string(), "--method", "patch", "--patches", "400", "--cache-dir", "none",
+           "--group", "spot=0", "--group", "light=0.5,1,1", "--stats", stats});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = readJson(stats);
+  ASSERT_EQ(j["light_groups"].size(), 3u);
+  EXPECT_EQ(j["light_groups"][0]["name"], "spot");
+  EXPECT_EQ(j["light_groups"][0]["power"][0].get<double>(), 0.0);
+  EXPECT_EQ(j["light_groups"][1]["name"], "light1");  // the point light: a group of its own
+  EXPECT_EQ(j["light_groups"][2]["name"], "light");   // the OBJ's emitting material
+  EXPECT_EQ(j["light_groups"][2]["scale"][0].get<double>(), 0.5);
+  // The point light's power, 4 pi I, and the lamp's at its scale make the emitted energy.
+  const double point = 4.0 * 3.14159265358979 * 1e4;
+  EXPECT_NEAR(j["light_groups"][1]["power"][0].get<double>(), point, 1e-6 * point);
+  const double emitted = j["energy"]["emitted"][0].get<double>();
+  EXPECT_NEAR(emitted, point + j["light_groups"][2]["power"][0].get<double>(), 1e-5 * emitted);
+  for (const auto& o : j["objects"]) {
+    const nlohmann::json& shares = o["group_shares"];
+    EXPECT_EQ(shares["spot"].get<double>(), 0.0) << o["name"];
+    EXPECT_NEAR(shares["light1"].get<double>() + shares["light"].get<double>(), 1.0, 1e-6);
+  }
+
+  const CliResult unknown = run({"solve", scene.string(), "--group", "lamp=0"});
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_NE(unknown.err.find("spot, light1, light"), std::string::npos) << unknown.err;
+  EXPECT_EQ(run({"solve", scene.string(), "--group", "spot=dim"}).status, 2);
 }

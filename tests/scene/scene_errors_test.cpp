@@ -1,10 +1,9 @@
 // Every kind of bad scene input throws InputError naming the file and the line or JSON path.
 
-#include "scene_summary.h"
-
+#include <gtest/gtest.h>
 #include <radiosity/scene_loader.h>
 
-#include <gtest/gtest.h>
+#include "scene_summary.h"
 
 namespace rad {
 namespace {
@@ -29,7 +28,8 @@ TEST(SceneErrors, MissingFileAndUnsupportedExtension) {
   expectMessage(errorOf([&] { loadScene((dir / "folder.obj").string()); }),
                 {"folder.obj", "is a directory"});
   // Upper-case extensions are accepted.
-  const std::string upper = test::writeFile(dir / "TRI.OBJ", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string upper =
+      test::writeFile(dir / "TRI.OBJ", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   EXPECT_EQ(loadScene(upper).triangles.size(), 1u);
 }
 
@@ -133,7 +133,8 @@ class JsonErrors : public testing::Test {
 
 TEST_F(JsonErrors, ParseErrorNamesLineAndColumn) {
   // The stray comma is on line 3, column 12 (after two blanks, "camera" and the colon).
-  expectMessage(load("{\n  \"lights\": [],\n  \"camera\":,\n}\n"), {"scene.json:3:", "invalid JSON"});
+  expectMessage(load("{\n  \"lights\": [],\n  \"camera\":,\n}\n"),
+                {"scene.json:3:", "invalid JSON"});
   expectMessage(load("{\n  \"lights\": [],\n  \"camera\":,\n}\n"), {"scene.json:3:12"});
   expectMessage(load("{ \"geometry\": ["), {"scene.json:1:"});
 }
@@ -152,9 +153,11 @@ TEST_F(JsonErrors, LightPathsNameTheirKeyframe) {
   const std::string spot = R"({"type": "spot", "position": [0,1,0], "direction": [0,-1,0],
       "intensity": [1,1,1], "inner_angle_deg": 10, "outer_angle_deg": 20, "path": )";
   expectMessage(load(withLight(spot + "[]}")), {"/lights/0/path", "non-empty array"});
-  expectMessage(load(withLight(spot + R"([{"t": 1, "position": [0,1,0]}, {"t": 1, "position": [1,1,0]}]})")),
-                {"/lights/0/path/1/t", "greater than the previous"});
-  expectMessage(load(withLight(spot + R"([{"position": [0,1,0]}]})")), {"/lights/0/path/0", "\"t\""});
+  expectMessage(
+      load(withLight(spot + R"([{"t": 1, "position": [0,1,0]}, {"t": 1, "position": [1,1,0]}]})")),
+      {"/lights/0/path/1/t", "greater than the previous"});
+  expectMessage(load(withLight(spot + R"([{"position": [0,1,0]}]})")),
+                {"/lights/0/path/0", "\"t\""});
   expectMessage(load(withLight(spot + R"([{"t": 0}]})")), {"/lights/0/path/0", "sets nothing"});
   expectMessage(load(withLight(spot + R"([{"t": 0, "direction": [0,0,0]}]})")),
                 {"/lights/0/path/0/direction", "zero length"});
@@ -163,8 +166,17 @@ TEST_F(JsonErrors, LightPathsNameTheirKeyframe) {
                 {"/lights/0/path/0/direction", "unknown key"});
 }
 
+TEST_F(JsonErrors, LightGroupNamesAreNonEmptyTextWithoutTheFlagsSeparators) {
+  const std::string point =
+      R"({"type": "point", "position": [0,1,0], "intensity": [1,1,1], "group": )";
+  expectMessage(load(withLight(point + "3}")), {"/lights/0/group", "string"});
+  expectMessage(load(withLight(point + "\"\"}")), {"/lights/0/group", "non-empty"});
+  expectMessage(load(withLight(point + "\"a=b\"}")), {"/lights/0/group", "'='"});
+}
+
 TEST_F(JsonErrors, WrongTypesAndRanges) {
-  expectMessage(load("{\"camera\": {\"fov_deg\": \"wide\"}}"), {"/camera/fov_deg", "expected a number"});
+  expectMessage(load("{\"camera\": {\"fov_deg\": \"wide\"}}"),
+                {"/camera/fov_deg", "expected a number"});
   expectMessage(load("{\"camera\": {\"fov_deg\": 180}}"), {"/camera/fov_deg", "(0, 180)"});
   expectMessage(load("{\"camera\": {\"fov_deg\": 0}}"), {"/camera/fov_deg", "(0, 180)"});
   expectMessage(load("{\"camera\": {\"width\": 0}}"), {"/camera/width", "out of range"});
@@ -180,7 +192,8 @@ TEST_F(JsonErrors, WrongTypesAndRanges) {
   expectMessage(load(withLight(R"({"type": "spot", "position": [0,1,0], "direction": [0,-1,0],
                     "intensity": [1,1,1], "inner_angle_deg": 30, "outer_angle_deg": 20})")),
                 {"/lights/0", "inner <= outer"});
-  expectMessage(load(withLight(R"({"type": "laser", "position": [0,1,0]})")), {"/lights/0/type", "laser"});
+  expectMessage(load(withLight(R"({"type": "laser", "position": [0,1,0]})")),
+                {"/lights/0/type", "laser"});
   expectMessage(load("{\"solver\": {\"method\": \"magic\"}}"), {"/solver/method", "patch, voxel"});
   expectMessage(load("{\"solver\": {\"spp\": 0}}"), {"/solver/spp", "out of range"});
   // The patch method's choices are checked against the names the library spells them by.
@@ -188,9 +201,11 @@ TEST_F(JsonErrors, WrongTypesAndRanges) {
                 {"/solver/solver", "'gauss'", "gauss-seidel, jacobi, progressive"});
   expectMessage(load("{\"solver\": {\"ff_estimator\": \"rays\"}}"),
                 {"/solver/ff_estimator", "hemisphere, pairwise, exact"});
-  expectMessage(load("{\"solver\": {\"shading\": \"gouraud\"}}"), {"/solver/shading", "smooth, flat"});
+  expectMessage(load("{\"solver\": {\"shading\": \"gouraud\"}}"),
+                {"/solver/shading", "smooth, flat"});
   expectMessage(load("{\"dynamic_objects\": []}"), {"/dynamic_objects", "not supported"});
-  expectMessage(load("{\"geometry\": [{\"file\": \"missing.obj\"}]}"), {"missing.obj", "cannot open"});
+  expectMessage(load("{\"geometry\": [{\"file\": \"missing.obj\"}]}"),
+                {"missing.obj", "cannot open"});
   expectMessage(load("{\"geometry\": [{\"file\": \"a.stl\"}]}"), {"/geometry/0/file", "'.stl'"});
   expectMessage(load(withLight(R"({"type": "ies", "file": "none.ies", "position": [0,1,0]})")),
                 {"none.ies", "cannot open"});
@@ -200,17 +215,22 @@ TEST_F(JsonErrors, MaterialOverridesAreChecked) {
   auto scene = [&](const std::string& material) {
     return "{\"geometry\": [{\"file\": " + obj_ + "}], \"materials\": {" + material + "}}";
   };
-  expectMessage(load(scene(R"("red": {"rho": [1.0, 0.5, 0.5]})")), {"/materials/red/rho", "[0, 1)"});
-  expectMessage(load(scene(R"("red": {"rho": [0.5, -0.1, 0.5]})")), {"/materials/red/rho", "[0, 1)"});
-  expectMessage(load(scene(R"("red": {"two_sided": 1})")), {"/materials/red/two_sided", "true or false"});
+  expectMessage(load(scene(R"("red": {"rho": [1.0, 0.5, 0.5]})")),
+                {"/materials/red/rho", "[0, 1)"});
+  expectMessage(load(scene(R"("red": {"rho": [0.5, -0.1, 0.5]})")),
+                {"/materials/red/rho", "[0, 1)"});
+  expectMessage(load(scene(R"("red": {"two_sided": 1})")),
+                {"/materials/red/two_sided", "true or false"});
   expectMessage(load(scene(R"("purple": {"rho": [0.5, 0.5, 0.5]})")), {"/materials/purple", "red"});
 }
 
 TEST(SceneErrors, RequireEmittersRejectsADarkScene) {
   const auto dir = test::scratchDir("dark");
-  const std::string path = test::writeFile(dir / "dark.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string path =
+      test::writeFile(dir / "dark.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   const Scene s = loadScene(path);
-  expectMessage(errorOf([&] { requireEmitters(s); }), {"dark.obj", "no emitting surface and no light"});
+  expectMessage(errorOf([&] { requireEmitters(s); }),
+                {"dark.obj", "no emitting surface and no light"});
   EXPECT_NO_THROW(requireEmitters(loadScene("cornell")));
 }
 

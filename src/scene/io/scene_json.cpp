@@ -230,17 +230,17 @@ Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
   const std::string type = r.string(j["type"], ptr + "/type");
   Light light;
   if (type == "point") {
-    r.checkKeys(j, ptr, {"type", "position", "intensity", "path"});
+    r.checkKeys(j, ptr, {"type", "position", "intensity", "path", "group"});
     light.type = LightType::Point;
   } else if (type == "spot") {
     r.checkKeys(j, ptr,
                 {"type", "position", "direction", "intensity", "inner_angle_deg", "outer_angle_deg",
-                 "spin_deg_per_s", "path"});
+                 "spin_deg_per_s", "path", "group"});
     light.type = LightType::Spot;
   } else if (type == "ies") {
-    r.checkKeys(
-        j, ptr,
-        {"type", "file", "position", "direction", "scale", "color", "spin_deg_per_s", "path"});
+    r.checkKeys(j, ptr,
+                {"type", "file", "position", "direction", "scale", "color", "spin_deg_per_s",
+                 "path", "group"});
     light.type = LightType::Ies;
   } else {
     r.fail(ptr + "/type",
@@ -256,6 +256,12 @@ Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
   if (j.contains("spin_deg_per_s"))
     light.spinDegPerS = r.vec3(j["spin_deg_per_s"], ptr + "/spin_deg_per_s");
   if (j.contains("path")) light.path = readPath(r, j["path"], ptr + "/path", light.type);
+  if (j.contains("group")) {
+    light.group = r.string(j["group"], ptr + "/group");
+    if (light.group.empty() || light.group.find_first_of("=,") != std::string::npos)
+      r.fail(ptr + "/group",
+             fmt::format("group name '{}' must be non-empty, without '=' or ','", light.group));
+  }
   if (light.type != LightType::Ies)
     light.intensity =
         r.color(required("intensity"), ptr + "/intensity", "intensity", 0.0, INFINITY);
