@@ -1,9 +1,8 @@
-#include "bench_workloads.h"
-
+#include <fmt/format.h>
 #include <radiosity/path_tracer.h>
 #include <radiosity/scene_loader.h>
 
-#include <fmt/format.h>
+#include "bench_workloads.h"
 
 namespace rad::cli {
 
@@ -26,8 +25,9 @@ nlohmann::json benchPathTracer(Console& console) {
           {"rays", s.rays},
           {"rays_per_s", raysPerSecond},
           {"paths_per_s", double(s.paths) / s.seconds},
-          {"summary", fmt::format("{:.2f} Mrays/s, {:.2f} Mpaths/s (cornell 128x128 at 32 spp, {:.2f} s)",
-                                  raysPerSecond * 1e-6, double(s.paths) / s.seconds * 1e-6, s.seconds)}};
+          {"summary",
+           fmt::format("{:.2f} Mrays/s, {:.2f} Mpaths/s (cornell 128x128 at 32 spp, {:.2f} s)",
+                       raysPerSecond * 1e-6, double(s.paths) / s.seconds * 1e-6, s.seconds)}};
 }
 
 }  // namespace rad::cli

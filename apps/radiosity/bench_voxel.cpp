@@ -1,23 +1,20 @@
-#include "bench_workloads.h"
-
+#include <fmt/format.h>
+#include <radiosity/error.h>
 #include <radiosity/scene.h>
 #include <radiosity/scene_loader.h>
 #include <radiosity/voxel_radiosity.h>
-
-#include <radiosity/error.h>
-
-#include "core/atomic_file.h"
-#include "voxel/direction_set.h"
-#include "voxel/discrete_line_sweep.h"
-#include "voxel/voxel_solver.h"
-#include "voxel/voxelizer.h"
-
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <vector>
+
+#include "bench_workloads.h"
+#include "core/atomic_file.h"
+#include "voxel/direction_set.h"
+#include "voxel/discrete_line_sweep.h"
+#include "voxel/voxel_solver.h"
+#include "voxel/voxelizer.h"
 
 namespace rad::cli {
 
@@ -130,31 +127,41 @@ std::string svgPlot(const std::vector<SweepMeasurement>& points, double slope) {
   // Log-log axes over the measured range, a polyline and a dot per measurement.
   double x0 = 1e300, x1 = 0, y0 = 1e300, y1 = 0;
   for (const auto& p : points) {
-    x0 = std::min(x0, std::log10(double(p.voxels))), x1 = std::max(x1, std::log10(double(p.voxels)));
-    y0 = std::min(y0, std::log10(p.secondsPerIteration)), y1 = std::max(y1, std::log10(p.secondsPerIteration));
+    x0 = std::min(x0, std::log10(double(p.voxels))),
+    x1 = std::max(x1, std::log10(double(p.voxels)));
+    y0 = std::min(y0, std::log10(p.secondsPerIteration)),
+    y1 = std::max(y1, std::log10(p.secondsPerIteration));
   }
   const double w = 640, h = 420, m = 60;
-  auto px = [&](double v) { return m + (std::log10(v) - x0) / std::max(x1 - x0, 1e-9) * (w - 2 * m); };
-  auto py = [&](double v) { return h - m - (std::log10(v) - y0) / std::max(y1 - y0, 1e-9) * (h - 2 * m); };
+  auto px = [&](double v) {
+    return m + (std::log10(v) - x0) / std::max(x1 - x0, 1e-9) * (w - 2 * m);
+  };
+  auto py = [&](double v) {
+    return h - m - (std::log10(v) - y0) / std::max(y1 - y0, 1e-9) * (h - 2 * m);
+  };
   std::string svg = fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" "
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" "
+      "font-family=\"sans-serif\" "
       "font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      "<text x=\"{}\" y=\"24\">Voxel sweep: seconds per iteration against voxels (log-log), slope {:.3f}</text>\n"
+      "<text x=\"{}\" y=\"24\">Voxel sweep: seconds per iteration against voxels (log-log), slope "
+      "{:.3f}</text>\n"
       "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n"
       "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n",
       w, h, m, slope, m, h - m, w - m, h - m, m, m, m, h - m);
   std::string line;
   for (const auto& p : points) {
     line += fmt::format("{:.1f},{:.1f} ", px(double(p.voxels)), py(p.secondsPerIteration));
-    svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"#c33\"/>\n"
-                       "<text x=\"{:.1f}\" y=\"{:.1f}\">{:.3g} s</text>\n"
-                       "<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{:.2g}</text>\n",
-                       px(double(p.voxels)), py(p.secondsPerIteration), px(double(p.voxels)) + 6,
-                       py(p.secondsPerIteration) - 6, p.secondsPerIteration, px(double(p.voxels)),
-                       h - m + 18, double(p.voxels));
+    svg += fmt::format(
+        "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"#c33\"/>\n"
+        "<text x=\"{:.1f}\" y=\"{:.1f}\">{:.3g} s</text>\n"
+        "<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{:.2g}</text>\n",
+        px(double(p.voxels)), py(p.secondsPerIteration), px(double(p.voxels)) + 6,
+        py(p.secondsPerIteration) - 6, p.secondsPerIteration, px(double(p.voxels)), h - m + 18,
+        double(p.voxels));
   }
   svg += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"#c33\"/>\n", line);
-  svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">voxels</text>\n</svg>\n", w / 2, h - 12);
+  svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">voxels</text>\n</svg>\n",
+                     w / 2, h - 12);
   return svg;
 }
 
@@ -214,8 +221,10 @@ nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxV
       if (r == 0 || m.secondsPerIteration < points[i].secondsPerIteration) points[i] = m;
     }
   if (points.empty())
-    throw InputError("--scaling-max-voxels", fmt::format("{} voxels is fewer than the smallest room "
-                                                         "(room:2) needs at 2.5 cm", maxVoxels));
+    throw InputError("--scaling-max-voxels",
+                     fmt::format("{} voxels is fewer than the smallest room "
+                                 "(room:2) needs at 2.5 cm",
+                                 maxVoxels));
   // Least-squares slope of log(time) against log(voxels).
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (const auto& p : points) {
@@ -225,30 +234,35 @@ nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxV
   const double k = double(points.size());
   const double slope = points.size() > 1 ? (k * sxy - sx * sy) / (k * sxx - sx * sx) : 0.0;
 
-  std::string csv = "scene,voxels,sides,directions,seconds_per_iteration,visits_per_s,bytes_per_side\n";
+  std::string csv =
+      "scene,voxels,sides,directions,seconds_per_iteration,visits_per_s,bytes_per_side\n";
   nlohmann::json rows = nlohmann::json::array();
   for (size_t i = 0; i < points.size(); ++i) {
     const SweepMeasurement& p = points[i];
     csv += fmt::format("room:{},{},{},{},{:.4f},{:.0f},{:.1f}\n", rooms[i], p.voxels, p.sides,
                        p.directions, p.secondsPerIteration, p.visitsPerSecond, p.bytesPerSide);
-    rows.push_back({{"scene", fmt::format("room:{}", rooms[i])}, {"voxels", p.voxels},
+    rows.push_back({{"scene", fmt::format("room:{}", rooms[i])},
+                    {"voxels", p.voxels},
                     {"seconds_per_iteration", p.secondsPerIteration},
-                    {"visits_per_s", p.visitsPerSecond}, {"bytes_per_side", p.bytesPerSide}});
+                    {"visits_per_s", p.visitsPerSecond},
+                    {"bytes_per_side", p.bytesPerSide}});
   }
   std::filesystem::create_directories(outputDirectory);
   const std::string table = (std::filesystem::path(outputDirectory) / "voxel_scaling.csv").string();
   const std::string plot = (std::filesystem::path(outputDirectory) / "voxel_scaling.svg").string();
   writeTextAtomically(table, csv);
   writeTextAtomically(plot, svgPlot(points, slope));
-  return {{"scene", "room:N at 2.5 cm voxels"},
-          {"sphere_radius", sphereRadius},
-          {"points", rows},
-          {"loglog_slope", slope},
-          {"table", table},
-          {"plot", plot},
-          {"summary", fmt::format("log-log slope {:.3f} over {} rooms ({} to {} voxels, R {}); table {}, plot {}",
-                                  slope, points.size(), points.front().voxels, points.back().voxels,
-                                  sphereRadius, table, plot)}};
+  return {
+      {"scene", "room:N at 2.5 cm voxels"},
+      {"sphere_radius", sphereRadius},
+      {"points", rows},
+      {"loglog_slope", slope},
+      {"table", table},
+      {"plot", plot},
+      {"summary",
+       fmt::format("log-log slope {:.3f} over {} rooms ({} to {} voxels, R {}); table {}, plot {}",
+                   slope, points.size(), points.front().voxels, points.back().voxels, sphereRadius,
+                   table, plot)}};
 }
 
 }  // namespace rad::cli

@@ -2,11 +2,10 @@
 // The fixed workloads of `radiosity bench`. Each returns its numbers as JSON, with a one-line
 // "summary" for the text output.
 
-#include "console.h"
-
 #include <nlohmann/json.hpp>
-
 #include <string>
+
+#include "console.h"
 
 namespace rad::cli {
 

@@ -1,23 +1,24 @@
 #include "cli.h"
 
-#include "command_support.h"
-#include "commands.h"
-#include "console.h"
-
 #include <radiosity/error.h>
 #include <radiosity/version.h>
-
-#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <iostream>
 #include <memory>
 #include <optional>
 
+#include "command_support.h"
+#include "commands.h"
+#include "console.h"
+
 namespace rad::cli {
 
-int runCli(const std::vector<std::string>& args) { return runCli(args, std::cout, std::cerr); }
+int runCli(const std::vector<std::string>& args) {
+  return runCli(args, std::cout, std::cerr);
+}
 
 int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   Console console(out, err);
@@ -35,6 +36,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   CommandAction action;
   addRenderCommand(app, console, action);
   addSolveCommand(app, console, action);
+  addAnimateCommand(app, console, action);
   addInfoCommand(app, console, action);
   addBenchCommand(app, console, action);
 
@@ -59,7 +61,8 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   console.setVerbose(verbose);
   console.detail("radiosity " RADIOSITY_VERSION " (" RADIOSITY_BUILD_TYPE " build)");
   std::optional<tbb::global_control> threadLimit;
-  if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  if (threads > 0)
+    threadLimit.emplace(tbb::global_control::max_allowed_parallelism, size_t(threads));
   try {
     return action();
   } catch (const InputError& e) {

@@ -1,13 +1,12 @@
 #pragma once
 // Steps shared by the commands that compute light transport (render, solve).
 
-#include "console.h"
-
 #include <radiosity/scene.h>
 
-#include "output/run_stats.h"
-
 #include <string>
+
+#include "console.h"
+#include "output/run_stats.h"
 
 namespace CLI {
 class App;

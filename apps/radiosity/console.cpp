@@ -1,6 +1,7 @@
 #include "console.h"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -10,7 +11,6 @@
 #include <memory>
 #include <optional>
 #include <ostream>
-#include <unistd.h>
 
 namespace rad::cli {
 
@@ -18,7 +18,9 @@ namespace {
 
 std::atomic<bool> gInterrupted{false};
 
-extern "C" void onInterrupt(int) { gInterrupted.store(true); }
+extern "C" void onInterrupt(int) {
+  gInterrupted.store(true);
+}
 
 }  // namespace
 
@@ -94,8 +96,12 @@ InterruptGuard::InterruptGuard() {
   std::signal(SIGINT, onInterrupt);
 }
 
-InterruptGuard::~InterruptGuard() { std::signal(SIGINT, SIG_DFL); }
+InterruptGuard::~InterruptGuard() {
+  std::signal(SIGINT, SIG_DFL);
+}
 
-bool InterruptGuard::interrupted() { return gInterrupted.load(); }
+bool InterruptGuard::interrupted() {
+  return gInterrupted.load();
+}
 
 }  // namespace rad::cli

@@ -1,14 +1,13 @@
 // `radiosity info SCENE`: what a scene holds, and what is wrong with it.
-#include "command_support.h"
-#include "commands.h"
-
+#include <fmt/format.h>
 #include <radiosity/scene_loader.h>
 
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
-
 #include <memory>
 #include <ostream>
+
+#include "command_support.h"
+#include "commands.h"
 
 namespace rad::cli {
 
@@ -16,9 +15,12 @@ namespace {
 
 const char* lightTypeName(LightType type) {
   switch (type) {
-    case LightType::Point: return "point";
-    case LightType::Spot: return "spot";
-    case LightType::Ies: return "ies";
+    case LightType::Point:
+      return "point";
+    case LightType::Spot:
+      return "spot";
+    case LightType::Ies:
+      return "ies";
   }
   return "?";
 }
@@ -48,7 +50,8 @@ int runInfo(const std::string& sceneName, Console& console) {
   for (const Face& f : scene.faces) area += f.area;
   out << fmt::format("area       {:.6g}\n", area);
   std::vector<std::string> warnings = scene.warnings;
-  if (!scene.hasEmitters()) warnings.push_back("no emitting surface and no light: renders will be black");
+  if (!scene.hasEmitters())
+    warnings.push_back("no emitting surface and no light: renders will be black");
   out << fmt::format("warnings   {}\n", warnings.size());
   for (const std::string& w : warnings) out << "  " << w << "\n";
   return 0;
@@ -58,7 +61,8 @@ int runInfo(const std::string& sceneName, Console& console) {
 
 void addInfoCommand(CLI::App& app, Console& console, CommandAction& action) {
   auto scene = std::make_shared<std::string>();
-  CLI::App* sub = app.add_subcommand("info", "Print what a scene holds: counts, bounds, power, warnings");
+  CLI::App* sub =
+      app.add_subcommand("info", "Print what a scene holds: counts, bounds, power, warnings");
   addSceneArgument(*sub, *scene);
   sub->callback([scene, &console, &action] {
     action = [scene, &console] { return runInfo(*scene, console); };

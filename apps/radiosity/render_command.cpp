@@ -17,24 +17,19 @@
 #include "command_support.h"
 #include "commands.h"
 #include "method_options.h"
+#include "picture_options.h"
 
 namespace rad::cli {
 
 namespace {
 
-constexpr long kMaxSide = 1l << 15;  ///< pixels along either side of a picture
-
 struct RenderOptions {
   explicit RenderOptions(CLI::App& command) : method(command, {"pathtrace", "voxel", "patch"}) {}
   MethodOptions method;
   double time = 0.0;
+  PictureOptions picture;
   std::string scene, output, stats;
-  int width = 0, height = 0;
-  float exposure = 0.0f;
-  bool exrFloat = false;
   int objectPoints = 64;
-  std::string direct = "per-pixel";
-  int emitterSamples = SurfaceRenderSettings{}.emitterSamples;
 };
 
 // Default output name: the scene's stem and the method, e.g. "cornell_pathtrace.png".
@@ -68,19 +63,10 @@ Image renderSolution(const Scene& scene, const RayCaster& caster, const Camera& 
                      const SurfaceRadiance& solution, const RenderOptions& o, Console& console,
                      RunStats& stats) {
   Stopwatch renderTime;
-  SurfaceRenderSettings settings;
-  settings.samplesPerPixel = o.method.pathTracer().samplesPerPixel;
-  settings.seed = o.method.pathTracer().seed;
-  settings.direct = o.direct == "solution" ? DirectLightMode::Solution : DirectLightMode::PerPixel;
-  settings.emitterSamples = o.emitterSamples;
-  if (settings.direct == DirectLightMode::PerPixel && !solution.hasIndirectIrradiance())
-    console.warn(
-        fmt::format("--direct per-pixel needs the direct light kept apart from the "
-                    "bounces, which this {} solution does not do: the picture shows the "
-                    "solution's own light",
-                    o.method.method()));
+  o.picture.warnIfDirectUnavailable(solution, o.method.method(), console);
   Image image =
-      renderSurfaceRadiance(scene, caster, camera, solution, settings, console.progress("render"));
+      renderSurfaceRadiance(scene, caster, camera, solution, o.picture.surfaceSettings(o.method),
+                            console.progress("render"));
   console.finishProgress();
   stats.timingsSeconds.render = renderTime.seconds();
   return image;
@@ -89,7 +75,7 @@ Image renderSolution(const Scene& scene, const RayCaster& caster, const Camera& 
 // A voxel picture with per-pixel direct light needs the first shot kept apart from the bounces.
 VoxelRadiositySettings voxelSettingsFor(const RenderOptions& o) {
   VoxelRadiositySettings settings = o.method.voxel();
-  settings.keepDirectLight = o.direct == "per-pixel";
+  settings.keepDirectLight = o.picture.direct == "per-pixel";
   return settings;
 }
 
@@ -102,14 +88,7 @@ int runRender(RenderOptions& o, Console& console) {
   if (!isSupportedImageFormat(o.output))
     throw InputError("-o " + o.output, "unsupported image format (supported: .png, .exr, .pfm)");
 
-  // A size given alone keeps the camera's aspect ratio, so the picture is not stretched.
-  Camera camera = scene.cameraOrDefault();
-  const double aspect = double(camera.width) / double(camera.height);
-  if (o.width > 0) camera.width = o.width;
-  if (o.height > 0) camera.height = o.height;
-  auto side = [](double pixels) { return int(std::clamp(std::lround(pixels), 1l, kMaxSide)); };
-  if (o.width > 0 && o.height == 0) camera.height = side(double(o.width) / aspect);
-  if (o.height > 0 && o.width == 0) camera.width = side(double(o.height) * aspect);
+  const Camera camera = o.picture.camera(scene);
   InterruptGuard interruptible;
   const RayCaster caster(scene);  // the run's one BVH
   const std::string& method = o.method.method();
@@ -127,10 +106,7 @@ int runRender(RenderOptions& o, Console& console) {
           : renderSolution(scene, caster, camera,
                            solveVoxels(scene, caster, voxelSettingsFor(o), groups, console, report),
                            o, console, stats);
-  ImageWriteOptions writeOptions;
-  writeOptions.exposureEV = o.exposure;
-  writeOptions.exrPixelType = o.exrFloat ? ExrPixelType::Float : ExrPixelType::Half;
-  writeImage(o.output, image, writeOptions);
+  writeImage(o.output, image, o.picture.writeOptions());
   if (!o.stats.empty()) {
     stats.settings = settingsOf(o.method.settings());
     writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
@@ -149,29 +125,12 @@ void addRenderCommand(CLI::App& app, Console& console, CommandAction& action) {
   addSceneArgument(*sub, o->scene);
   sub->add_option("-o,--output", o->output,
                   "Output image: .png (tone mapped), .exr or .pfm (linear radiance)");
-  sub->add_option("--width", o->width,
-                  "Image width in pixels (default: the scene camera's; given alone, the height "
-                  "keeps the camera's aspect ratio)")
-      ->check(CLI::Range(1l, kMaxSide));
-  sub->add_option("--height", o->height,
-                  "Image height in pixels (default: the scene camera's; given alone, the width "
-                  "keeps the camera's aspect ratio)")
-      ->check(CLI::Range(1l, kMaxSide));
-  sub->add_option("--exposure", o->exposure, "PNG exposure in EV (radiance x 2^EV)");
-  sub->add_flag("--exr-float", o->exrFloat, "Write 32-bit float EXR instead of half");
+  o->picture.addTo(*sub);
   addStatsOption(*sub, o->stats);
   addTimeOption(*sub, o->time);
   sub->add_option("--object-points", o->objectPoints,
                   "pathtrace: surface points per object for the stats' per-object means (0: skip)")
       ->check(nonNegativeNumber());
-  sub->add_option("--direct", o->direct,
-                  "patch, voxel: direct light by shadow rays at each pixel (per-pixel, default: "
-                  "sharp shadows and beam edges) or from the solution (solution)")
-      ->check(CLI::IsMember({"per-pixel", "solution"}));
-  sub->add_option("--emitter-samples", o->emitterSamples,
-                  "patch, voxel, per-pixel direct light: area samples of the emitting surfaces per "
-                  "camera ray (default 8)")
-      ->check(CLI::Range(1, 1 << 16));
   sub->callback(
       [o, &console, &action] { action = [o, &console] { return runRender(*o, console); }; });
 }

@@ -16,44 +16,18 @@
 #include <sstream>
 #include <tuple>
 
+#include "cli/cli_run.h"
 #include "core/address_space_limit.h"
 
 namespace fs = std::filesystem;
+using rad::test::CliResult;
+using rad::test::freshDir;
+using rad::test::readBytes;
+using rad::test::readJson;
+using rad::test::run;
+using rad::test::writeFile;
 
 namespace {
-
-struct CliResult {
-  int status;
-  std::string out, err;
-};
-
-CliResult run(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int status = rad::cli::runCli(args, out, err);
-  return {status, out.str(), err.str()};
-}
-
-fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("radiosity_cli_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-fs::path writeFile(const fs::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-  return path;
-}
-
-std::string readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
 
 // The data rows of an exported CSV, after checking its header: the documented columns
 // (docs/ARCHITECTURE.md), one row per voxel side or patch.

@@ -1,0 +1,77 @@
+#include "picture_options.h"
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+
+#include "console.h"
+#include "method_options.h"
+
+namespace rad::cli {
+
+namespace {
+
+constexpr long kMaxSide = 1l << 15;  ///< pixels along either side of a picture
+
+}  // namespace
+
+void PictureOptions::addTo(CLI::App& c) {
+  c.add_option("--width", width,
+               "Image width in pixels (default: the scene camera's; given alone, the height "
+               "keeps the camera's aspect ratio)")
+      ->check(CLI::Range(1l, kMaxSide));
+  c.add_option("--height", height,
+               "Image height in pixels (default: the scene camera's; given alone, the width "
+               "keeps the camera's aspect ratio)")
+      ->check(CLI::Range(1l, kMaxSide));
+  c.add_option("--exposure", exposure, "PNG exposure in EV (radiance x 2^EV)");
+  c.add_flag("--exr-float", exrFloat, "Write 32-bit float EXR instead of half");
+  c.add_option("--direct", direct,
+               "patch, voxel: direct light by shadow rays at each pixel (per-pixel, default: "
+               "sharp shadows and beam edges) or from the solution (solution)")
+      ->check(CLI::IsMember({"per-pixel", "solution"}));
+  c.add_option("--emitter-samples", emitterSamples,
+               "patch, voxel, per-pixel direct light: area samples of the emitting surfaces per "
+               "camera ray (default 8)")
+      ->check(CLI::Range(1, 1 << 16));
+}
+
+Camera PictureOptions::camera(const Scene& scene) const {
+  Camera camera = scene.cameraOrDefault();
+  const double aspect = double(camera.width) / double(camera.height);
+  if (width > 0) camera.width = width;
+  if (height > 0) camera.height = height;
+  auto side = [](double pixels) { return int(std::clamp(std::lround(pixels), 1l, kMaxSide)); };
+  if (width > 0 && height == 0) camera.height = side(double(width) / aspect);
+  if (height > 0 && width == 0) camera.width = side(double(height) * aspect);
+  return camera;
+}
+
+SurfaceRenderSettings PictureOptions::surfaceSettings(const MethodOptions& method) const {
+  SurfaceRenderSettings settings;
+  settings.samplesPerPixel = method.pathTracer().samplesPerPixel;
+  settings.seed = method.pathTracer().seed;
+  settings.direct = direct == "solution" ? DirectLightMode::Solution : DirectLightMode::PerPixel;
+  settings.emitterSamples = emitterSamples;
+  return settings;
+}
+
+ImageWriteOptions PictureOptions::writeOptions() const {
+  ImageWriteOptions options;
+  options.exposureEV = exposure;
+  options.exrPixelType = exrFloat ? ExrPixelType::Float : ExrPixelType::Half;
+  return options;
+}
+
+void PictureOptions::warnIfDirectUnavailable(const SurfaceRadiance& solution,
+                                             const std::string& method, Console& console) const {
+  if (direct != "per-pixel" || solution.hasIndirectIrradiance()) return;
+  console.warn(fmt::format(
+      "--direct per-pixel needs the direct light kept apart from the bounces, which this {} "
+      "solution does not do: the picture shows the solution's own light",
+      method));
+}
+
+}  // namespace rad::cli

@@ -1,0 +1,39 @@
+#pragma once
+// The options of the commands that make pictures (render, animate): the picture's size, how a
+// radiosity solution's direct light is drawn, and how the file is written.
+
+#include <radiosity/image.h>
+#include <radiosity/scene.h>
+#include <radiosity/surface_radiance.h>
+
+#include <string>
+
+namespace CLI {
+class App;
+}  // namespace CLI
+
+namespace rad::cli {
+
+class Console;
+class MethodOptions;
+
+struct PictureOptions {
+  int width = 0, height = 0;  ///< 0: the scene camera's (a side given alone keeps its aspect)
+  float exposure = 0.0f;
+  bool exrFloat = false;
+  std::string direct = "per-pixel";
+  int emitterSamples = SurfaceRenderSettings{}.emitterSamples;
+
+  /// Adds --width, --height, --exposure, --exr-float, --direct and --emitter-samples.
+  void addTo(CLI::App& command);
+  /// The scene's camera at the size asked.
+  Camera camera(const Scene& scene) const;
+  /// How a radiosity solution is drawn: camera rays and seed from the method's settings.
+  SurfaceRenderSettings surfaceSettings(const MethodOptions& method) const;
+  ImageWriteOptions writeOptions() const;
+  /// Warns when per-pixel direct light was asked of a solution that cannot give it.
+  void warnIfDirectUnavailable(const SurfaceRadiance& solution, const std::string& method,
+                               Console& console) const;
+};
+
+}  // namespace rad::cli
