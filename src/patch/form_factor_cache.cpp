@@ -1,6 +1,4 @@
-// The disk cache of form-factor tables. Hashes: FNV-1a (Fowler, Noll, Vo) for the key's high
-// word and a 64-bit multiply-xorshift (the SplitMix64 finalizer, Steele et al., OOPSLA 2014) for
-// its low word and for the file checksum.
+// The disk cache of form-factor tables (keys and checksums: core/binary_io.h).
 #include "patch/form_factor_cache.h"
 
 #include <fmt/format.h>
@@ -11,6 +9,8 @@
 #include <fstream>
 
 #include "core/atomic_file.h"
+#include "core/binary_io.h"
+#include "scene/scene_hash.h"
 
 namespace rad {
 
@@ -23,82 +23,6 @@ constexpr size_t kHeaderBytes = 8 + 4 + 4 + 16 + 16 + 32;
 // The master table's file: the rows of every node computed, by node address.
 constexpr char kMasterMagic[8] = {'R', 'A', 'D', 'M', 'F', 'F', 'R', 'W'};
 constexpr uint32_t kMasterVersion = 1;
-
-uint64_t mix(uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-class Hasher {
- public:
-  void bytes(const void* data, size_t size) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t k = 0; k < size; ++k) {
-      fnv_ = (fnv_ ^ p[k]) * 0x100000001b3ULL;
-      word_ |= uint64_t(p[k]) << (8 * (count_++ % 8));
-      if (count_ % 8 == 0) {
-        mixed_ = mix(mixed_ ^ word_);
-        word_ = 0;
-      }
-    }
-  }
-  template <typename T>
-  void value(const T& v) {
-    bytes(&v, sizeof(T));
-  }
-  FormFactorCacheKey key() const { return {fnv_, mix(mixed_ ^ word_ ^ count_)}; }
-
- private:
-  uint64_t fnv_ = 0xcbf29ce484222325ULL, mixed_ = 0x9e3779b97f4a7c15ULL, word_ = 0, count_ = 0;
-};
-
-// Checksum of a byte range, 8 bytes at a time.
-uint64_t checksum(const char* data, size_t size) {
-  uint64_t h = 0x2545f4914f6cdd1dULL ^ size;
-  size_t k = 0;
-  for (; k + 8 <= size; k += 8) {
-    uint64_t w;
-    std::memcpy(&w, data + k, 8);
-    h = mix(h ^ w) + k;
-  }
-  uint64_t tail = 0;
-  std::memcpy(&tail, data + k, size - k);
-  return mix(h ^ tail);
-}
-
-template <typename T>
-void put(std::string& out, const T& v) {
-  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
-}
-template <typename T>
-void putArray(std::string& out, std::span<const T> v) {
-  out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-}
-template <typename T>
-T get(const std::string& in, size_t& at) {
-  T v;
-  std::memcpy(&v, in.data() + at, sizeof(T));
-  at += sizeof(T);
-  return v;
-}
-template <typename T>
-std::vector<T> getArray(const std::string& in, size_t& at, size_t count) {
-  std::vector<T> v(count);
-  std::memcpy(v.data(), in.data() + at, count * sizeof(T));
-  at += count * sizeof(T);
-  return v;
-}
-
-// The whole file, if it exists (an unreadable one leaves `bytes` empty).
-bool readCacheFile(const std::filesystem::path& file, std::string& bytes) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) return false;
-  std::ifstream in(file, std::ios::binary);
-  bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) bytes.clear();
-  return true;
-}
 
 std::string notUsed(const std::filesystem::path& file, const std::string& why) {
   return fmt::format("form-factor cache {} not used ({}); recomputing", file.string(), why);
@@ -117,7 +41,7 @@ struct CacheFileStart {
 CacheFileStart readCacheFileStart(const std::filesystem::path& file, const char (&magic)[8],
                                   uint32_t version, size_t headerBytes) {
   CacheFileStart f;
-  f.exists = readCacheFile(file, f.bytes);
+  f.exists = readWholeFile(file, f.bytes);
   if (!f.exists) return f;
   if (f.bytes.empty()) {
     f.rejected = "unreadable";
@@ -135,13 +59,6 @@ CacheFileStart readCacheFileStart(const std::filesystem::path& file, const char 
       f.key = {get<uint64_t>(f.bytes, f.at), get<uint64_t>(f.bytes, f.at)};
   }
   return f;
-}
-
-// True if the file's last 8 bytes are the checksum of the rest.
-bool checksumMatches(const std::string& bytes) {
-  uint64_t sum;
-  std::memcpy(&sum, bytes.data() + bytes.size() - 8, 8);
-  return sum == checksum(bytes.data(), bytes.size() - 8);
 }
 
 // Appends the checksum and writes atomically; a warning if that failed.
@@ -169,30 +86,6 @@ std::string checkTable(const std::vector<uint64_t>& offsets, const std::vector<u
   for (float v : values)
     if (!(v >= 0.0f && std::isfinite(v))) return "form factor negative or not finite";
   return "";
-}
-
-}  // namespace
-
-std::string FormFactorCacheKey::hex() const {
-  return fmt::format("{:016x}{:016x}", high, low);
-}
-
-namespace {
-
-// The scene's geometry as the tables see it: positions, triangles, faces and sidedness.
-void hashGeometry(Hasher& h, const Scene& scene) {
-  h.value(uint64_t(scene.positions.size()));
-  h.bytes(scene.positions.data(), scene.positions.size() * sizeof(Vec3));
-  h.value(uint64_t(scene.triangles.size()));
-  h.bytes(scene.triangles.data(), scene.triangles.size() * sizeof(UVec3));
-  h.value(uint64_t(scene.faces.size()));
-  for (const Face& f : scene.faces) {
-    h.value(f.firstTriangle);
-    h.value(f.triangleCount);
-    h.value(uint8_t(scene.materials[f.material].twoSided));
-    h.value(uint64_t(f.corners.size()));
-    h.bytes(f.corners.data(), f.corners.size() * sizeof(uint32_t));
-  }
 }
 
 }  // namespace

@@ -13,16 +13,13 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/binary_io.h"
 #include "patch/form_factor_estimators.h"
 #include "patch/form_factor_table.h"
 
 namespace rad {
 
-struct FormFactorCacheKey {
-  uint64_t high = 0, low = 0;
-  std::string hex() const;
-  bool operator==(const FormFactorCacheKey&) const = default;
-};
+using FormFactorCacheKey = Key128;
 
 /// A hash of what the table depends on: the scene's positions, triangles, faces and sidedness,
 /// which faces emit, the mesh (its patch size and which quadtree nodes are its patches: adaptive

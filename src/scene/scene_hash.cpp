@@ -1,0 +1,43 @@
+#include "scene/scene_hash.h"
+
+namespace rad {
+
+void hashGeometry(Hasher& h, const Scene& scene) {
+  h.value(uint64_t(scene.positions.size()));
+  h.bytes(scene.positions.data(), scene.positions.size() * sizeof(Vec3));
+  h.value(uint64_t(scene.triangles.size()));
+  h.bytes(scene.triangles.data(), scene.triangles.size() * sizeof(UVec3));
+  h.value(uint64_t(scene.faces.size()));
+  for (const Face& f : scene.faces) {
+    h.value(f.firstTriangle);
+    h.value(f.triangleCount);
+    h.value(uint8_t(scene.materials[f.material].twoSided));
+    h.value(uint64_t(f.corners.size()));
+    h.bytes(f.corners.data(), f.corners.size() * sizeof(uint32_t));
+  }
+}
+
+void hashMaterials(Hasher& h, const Scene& scene) {
+  for (const Face& f : scene.faces) {
+    const Material& m = scene.materials[f.material];
+    h.value(m.rho);
+    h.value(m.emission);
+    h.text(m.name);  // emitting materials name light groups
+  }
+}
+
+void hashLights(Hasher& h, std::span<const Light> lights) {
+  h.value(uint64_t(lights.size()));
+  for (const Light& l : lights) {
+    h.value(l.type);
+    h.value(l.position);
+    h.value(l.direction);
+    h.value(l.intensity);
+    h.value(l.innerAngleDeg);
+    h.value(l.outerAngleDeg);
+    h.text(l.group);
+    h.text(l.iesFile);
+  }
+}
+
+}  // namespace rad
