@@ -28,7 +28,7 @@ struct AnimateOptions {
   explicit AnimateOptions(CLI::App& command) : method(command, {"patch"}) {}
   MethodOptions method;
   PictureOptions picture;
-  std::string scene, output = "frames/frame_%04d.png", video, stats;
+  std::string scene, output = "frames/frame_%04d.png", video, stats, solution;
   int frames = 48;
   double fps = 24.0, start = 0.0;
   RelightSettings relight;
@@ -75,7 +75,14 @@ int runAnimate(AnimateOptions& o, Console& console) {
   if (!o.video.empty()) checkVideoOutput(o.video, frameFiles);
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.start, console, stats);
-  o.method.resolve(scene);
+  if (o.solution.empty())
+    o.method.resolve(scene);
+  else
+    o.method.resolveFromSolution(scene, o.solution, console);
+  if (!o.solution.empty() && !o.method.groupScales().empty())
+    throw InputError("--group",
+                     "animate --solution relights the lights the solution was solved "
+                     "for; scale light groups when rendering or solving instead");
   const std::vector<LightGroup> groups = lightGroupsOf(scene, scene.lights);
   const std::vector<Color> scales = groupScalesFor(groups, o.method.groupScales());
   scaleEmitters(scene, groups, scales);  // the emitting materials; the lights per frame
@@ -88,8 +95,11 @@ int runAnimate(AnimateOptions& o, Console& console) {
   auto timeOf = [&](int frame) { return o.start + double(frame) / o.fps; };
   Stopwatch solveTime;
   const PatchModel model(scene, caster, o.method.patch());
-  Relighter relighter(model, lightsAt(scene, timeOf(0), groups, scales), o.relight,
-                      console.progress("patch solve"));
+  const std::vector<Light> first = lightsAt(scene, timeOf(0), groups, scales);
+  Relighter relighter = o.solution.empty()
+                            ? Relighter(model, first, o.relight, console.progress("patch solve"))
+                            : Relighter(model, model.load(o.solution, first), o.relight,
+                                        console.progress("form factors"));
   console.finishProgress();
   for (const std::string& w : relighter.solution().stats().warnings) console.warn(w);
   stats.timingsSeconds.solve = solveTime.seconds();
@@ -162,6 +172,9 @@ void addAnimateCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--video", o->video,
                   "Also encode the frames (PNG) into a video: .mp4, .mov or .mkv (H.264, by "
                   "ffmpeg, which must be installed)");
+  sub->add_option("--solution", o->solution,
+                  "Start from the solution a .rad file keeps (solve --save at --start) instead "
+                  "of solving");
   sub->add_option("--relight-threshold", o->relight.threshold,
                   "Bring a patch's direct light up to date when it changed by more than this "
                   "fraction of the brightest patch's (default 1e-4)")

@@ -1,8 +1,10 @@
 #include "command_support.h"
 
+#include <radiosity/error.h>
 #include <radiosity/scene_loader.h>
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 
 #include "core/memory_usage.h"
 
@@ -49,6 +51,15 @@ Scene loadSceneForCommand(const std::string& name, double seconds, Console& cons
   requireEmitters(scene);
   stats.counts.triangles = scene.triangles.size();
   return scene;
+}
+
+void checkSolutionOutput(const std::string& path) {
+  const std::filesystem::path file(path);
+  if (file.extension() != ".rad") throw InputError("--save " + path, "expected a .rad file");
+  const std::filesystem::path dir = file.parent_path();
+  std::error_code ec;
+  if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
+    throw InputError("--save " + path, "its directory " + dir.string() + " does not exist");
 }
 
 void writeStatsFile(const std::string& path, const Scene& scene, const std::string& sceneName,

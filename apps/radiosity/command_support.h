@@ -34,6 +34,10 @@ const CLI::Validator& nonNegativeNumber();
 Scene loadSceneForCommand(const std::string& name, double seconds, Console& console,
                           RunStats& stats);
 
+/// Refuses, before any work, a solution file name (--save) that is not .rad or whose directory
+/// does not exist.
+void checkSolutionOutput(const std::string& path);
+
 /// Completes the stats (scene, method, emitted power, total time, peak memory) and writes them.
 void writeStatsFile(const std::string& path, const Scene& scene, const std::string& sceneName,
                     const std::string& method, double totalSeconds, RunStats& stats);

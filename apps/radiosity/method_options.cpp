@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/solution_file.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -20,13 +21,19 @@ namespace {
 // cache file that could not be used).
 template <class Model, class Settings>
 auto solveShowingProgress(const Scene& scene, const RayCaster& caster, const Settings& settings,
-                          std::span<const GroupScale> groups, const std::string& label,
+                          const SolutionSource& source, const std::string& label,
                           Console& console) {
-  auto solution = Model(scene, caster, settings).solve(scene.lights, console.progress(label));
+  const Model model(scene, caster, settings);
+  auto solution = source.file.empty() ? model.solve(scene.lights, console.progress(label))
+                                      : model.load(source.file, scene.lights);
   console.finishProgress();
   for (const std::string& w : solution.stats().warnings) console.warn(w);
-  if (groups.empty()) return solution;
-  const std::vector<Color> scales = groupScalesFor(solution.lightGroups(), groups);
+  if (source.groups.empty()) return solution;
+  if (solution.lightGroups().empty())
+    throw InputError("--group", source.file +
+                                    ": its light groups were solved together (solve "
+                                    "it with --light-groups to scale them)");
+  const std::vector<Color> scales = groupScalesFor(solution.lightGroups(), source.groups);
   solution.setGroupScales(scales);
   if (std::all_of(scales.begin(), scales.end(), [](const Color& s) { return s == Color(0.0f); }))
     console.warn("--group switched every light group off: there is no light");
@@ -89,7 +96,7 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
       ->type_name("NAME=SCALE");
 }
 
-void MethodOptions::resolve(const Scene& scene) {
+SolverSettings MethodOptions::given() const {
   SolverSettings given;
   for (const SettingDeclaration& d : solverSettingDeclarations()) {
     if (!*options_.at(d.name)) continue;
@@ -102,9 +109,47 @@ void MethodOptions::resolve(const Scene& scene) {
     if (!v) throw InputError(d.flag(), why);  // checked by CLI11 already
     given.values[d.name] = *v;
   }
+  return given;
+}
+
+void MethodOptions::parseGroups(const Scene& scene) {
   groupScales_.clear();
   for (const std::string& text : groupText_) groupScales_.push_back(parseGroupScale(text));
   groupScalesFor(lightGroupsOf(scene, scene.lights), groupScales_);  // every name a group's
+}
+
+void MethodOptions::resolveFromSolution(const Scene& scene, const std::string& path,
+                                        Console& console) {
+  parseGroups(scene);
+  SolutionFileInfo file = readSolutionFileInfo(path);
+  SolverSettings run;  // the run's own: where the cache is, how pictures sample
+  for (const auto& [name, value] : given().values) {
+    if (name == "cache_dir" || name == "spp" || name == "seed")
+      run.values[name] = value;
+    else if (name != "method" || std::get<std::string>(value) != file.method)
+      console.warn(fmt::format("{} ignored: the solution in {} was solved with its own settings",
+                               findSolverSetting(name)->flag(), path));
+  }
+  file.settings.values.erase("cache_dir");
+  file.settings.values["method"] = file.method;
+  settings_ = resolveMethodSettings(file.settings, run, path);
+  if (std::find(methods_.begin(), methods_.end(), settings_.method) == methods_.end())
+    throw InputError(path, fmt::format("a {} solution; this command takes {}", settings_.method,
+                                       fmt::join(methods_, ", ")));
+}
+
+SolverSettings solvedWith(const MethodSettings& settings) {
+  SolverSettings out;
+  // Not a value that stands for "unset" (patch_size 0: from the patch count), which the
+  // settings' own check refuses: the default gives it back.
+  for (auto& [name, value] : settingsOf(settings))
+    if (findSolverSetting(name)->problem(value).empty()) out.values[name] = value;
+  return out;
+}
+
+void MethodOptions::resolve(const Scene& scene) {
+  SolverSettings given = this->given();
+  parseGroups(scene);
   if (!groupScales_.empty()) given.values["light_groups"] = true;
   if (!given.values.contains("method") && !scene.solver.values.contains("method"))
     given.values["method"] = methods_.front();
@@ -116,11 +161,10 @@ void MethodOptions::resolve(const Scene& scene) {
 }
 
 VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
-                           const VoxelRadiositySettings& settings,
-                           std::span<const GroupScale> groups, Console& console,
-                           const SolveReport& report) {
+                           const VoxelRadiositySettings& settings, const SolutionSource& source,
+                           Console& console, const SolveReport& report) {
   VoxelRadiosity solution =
-      solveShowingProgress<VoxelModel>(scene, caster, settings, groups, "voxel solve", console);
+      solveShowingProgress<VoxelModel>(scene, caster, settings, source, "voxel solve", console);
   RunStats& stats = report.stats;
   const VoxelRadiosityStats& v = solution.stats();
   stats.methodDetails = {
@@ -154,11 +198,10 @@ VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
 }
 
 PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
-                            const PatchRadiositySettings& settings,
-                            std::span<const GroupScale> groups, Console& console,
-                            const SolveReport& report) {
+                            const PatchRadiositySettings& settings, const SolutionSource& source,
+                            Console& console, const SolveReport& report) {
   PatchRadiosity solution =
-      solveShowingProgress<PatchModel>(scene, caster, settings, groups, "patch solve", console);
+      solveShowingProgress<PatchModel>(scene, caster, settings, source, "patch solve", console);
   RunStats& stats = report.stats;
   const PatchRadiosityStats& p = solution.stats();
   stats.methodDetails = {

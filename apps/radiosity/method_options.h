@@ -34,6 +34,10 @@ class MethodOptions {
   /// methods' defaults; any --group solves the light groups apart. Throws InputError for a
   /// method the command does not offer or a --group that names no group of the scene.
   void resolve(const Scene& scene);
+  /// Resolves the settings a solution file was solved with (the method's flags and the scene's
+  /// "solver" values are not for this run, and are warned of; --cache-dir, --spp and --seed,
+  /// which are the run's own, and --group still apply). Throws InputError for a bad file.
+  void resolveFromSolution(const Scene& scene, const std::string& path, Console& console);
 
   const std::string& method() const { return settings_.method; }
   const MethodSettings& settings() const { return settings_; }
@@ -44,6 +48,9 @@ class MethodOptions {
   const std::vector<GroupScale>& groupScales() const { return groupScales_; }
 
  private:
+  SolverSettings given() const;
+  void parseGroups(const Scene& scene);
+
   std::vector<std::string> methods_;
   std::vector<std::string> groupText_;
   std::vector<GroupScale> groupScales_;
@@ -62,17 +69,23 @@ struct SolveReport {
   bool objectMeans = false;
 };
 
+/// Where a command's solution comes from: a solve, or the solution file `file` when it is set.
+struct SolutionSource {
+  std::span<const GroupScale> groups;  ///< the --group scales, applied after
+  std::string file;
+};
+
 /// Solves `scene` (through `caster`, the run's one ray caster) by the voxel method with a
-/// progress bar, scales its light groups as `groups` asks, prints the method's warnings and
-/// reports its numbers. Throws what the solver throws.
+/// progress bar, or loads it from the source's file, scales its light groups as the source
+/// asks, prints the method's warnings and reports its numbers. Throws what the solver throws.
 VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
-                           const VoxelRadiositySettings& settings,
-                           std::span<const GroupScale> groups, Console& console,
-                           const SolveReport& report);
+                           const VoxelRadiositySettings& settings, const SolutionSource& source,
+                           Console& console, const SolveReport& report);
 /// The same for the patch method.
 PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
-                            const PatchRadiositySettings& settings,
-                            std::span<const GroupScale> groups, Console& console,
-                            const SolveReport& report);
+                            const PatchRadiositySettings& settings, const SolutionSource& source,
+                            Console& console, const SolveReport& report);
+/// The settings as a solution file records them: every one the method read, by name.
+SolverSettings solvedWith(const MethodSettings& settings);
 
 }  // namespace rad::cli

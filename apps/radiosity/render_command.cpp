@@ -28,7 +28,7 @@ struct RenderOptions {
   MethodOptions method;
   double time = 0.0;
   PictureOptions picture;
-  std::string scene, output, stats;
+  std::string scene, output, stats, solution;
   int objectPoints = 64;
 };
 
@@ -83,7 +83,10 @@ int runRender(RenderOptions& o, Console& console) {
   Stopwatch total;
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
-  o.method.resolve(scene);
+  if (o.solution.empty())
+    o.method.resolve(scene);
+  else
+    o.method.resolveFromSolution(scene, o.solution, console);
   if (o.output.empty()) o.output = defaultOutput(o.scene, o.method.method());
   if (!isSupportedImageFormat(o.output))
     throw InputError("-o " + o.output, "unsupported image format (supported: .png, .exr, .pfm)");
@@ -99,13 +102,14 @@ int runRender(RenderOptions& o, Console& console) {
                   groupScalesFor(lightGroupsOf(scene, scene.lights), groups));
   const Image image =
       method == "pathtrace" ? renderWithPathTracer(scene, caster, camera, o, console, stats)
-      : method == "patch"
-          ? renderSolution(scene, caster, camera,
-                           solvePatches(scene, caster, o.method.patch(), groups, console, report),
-                           o, console, stats)
-          : renderSolution(scene, caster, camera,
-                           solveVoxels(scene, caster, voxelSettingsFor(o), groups, console, report),
-                           o, console, stats);
+      : method == "patch"   ? renderSolution(scene, caster, camera,
+                                             solvePatches(scene, caster, o.method.patch(),
+                                                          {groups, o.solution}, console, report),
+                                             o, console, stats)
+                            : renderSolution(scene, caster, camera,
+                                             solveVoxels(scene, caster, voxelSettingsFor(o),
+                                                         {groups, o.solution}, console, report),
+                                             o, console, stats);
   writeImage(o.output, image, o.picture.writeOptions());
   if (!o.stats.empty()) {
     stats.settings = settingsOf(o.method.settings());
@@ -128,6 +132,10 @@ void addRenderCommand(CLI::App& app, Console& console, CommandAction& action) {
   o->picture.addTo(*sub);
   addStatsOption(*sub, o->stats);
   addTimeOption(*sub, o->time);
+  sub->add_option("--solution", o->solution,
+                  "Render the solution a .rad file keeps (solve --save) instead of solving: its "
+                  "method and settings; the scene and its lights at --time must be those it was "
+                  "solved for");
   sub->add_option("--object-points", o->objectPoints,
                   "pathtrace: surface points per object for the stats' per-object means (0: skip)")
       ->check(nonNegativeNumber());

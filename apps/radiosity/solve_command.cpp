@@ -25,7 +25,7 @@ struct SolveOptions {
   explicit SolveOptions(CLI::App& command) : method(command, {"voxel", "patch"}) {}
   MethodOptions method;
   double time = 0.0;
-  std::string scene, exportPath, stats;
+  std::string scene, exportPath, stats, save;
 };
 
 std::string lowerExtension(const std::string& path) {
@@ -76,13 +76,15 @@ int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solut
   if (ext == ".csv") solution.exportCsv(o.exportPath);
   if (ext == ".ply") solution.exportPly(o.exportPath);
   if (ext == ".glb") solution.exportGlb(o.exportPath);
+  if (!o.save.empty()) solution.save(o.save, solvedWith(o.method.settings()));
   if (!o.stats.empty()) {
     stats.settings = settingsOf(o.method.settings());
     writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
   }
-  console.info(fmt::format("solved {} with {}: {}{}{}", o.scene, o.method.method(),
+  console.info(fmt::format("solved {} with {}: {}{}{}{}", o.scene, o.method.method(),
                            describeRun(solution.stats(), total.seconds()),
                            o.exportPath.empty() ? "" : " -> " + o.exportPath,
+                           o.save.empty() ? "" : ", solution -> " + o.save,
                            o.stats.empty() ? "" : ", stats -> " + o.stats));
   return 0;
 }
@@ -93,19 +95,23 @@ int runSolve(SolveOptions& o, Console& console) {
   if (!o.exportPath.empty() && ext != ".csv" && ext != ".ply" && ext != ".glb")
     throw InputError("--export " + o.exportPath,
                      "unsupported export format (supported: .csv, .ply, .glb)");
+  if (!o.save.empty()) checkSolutionOutput(o.save);
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
   o.method.resolve(scene);
   InterruptGuard interruptible;
   const SolveReport report{stats, !o.stats.empty()};
+  // A saved voxel solution keeps the first shot apart, for pictures with per-pixel direct light.
+  VoxelRadiositySettings voxelSettings = o.method.voxel();
+  if (!o.save.empty()) voxelSettings.keepDirectLight = true;
   const RayCaster caster(scene);  // the run's one BVH
   const std::vector<GroupScale>& groups = o.method.groupScales();
   if (o.method.method() == "patch")
     return finishSolve(o, scene,
-                       solvePatches(scene, caster, o.method.patch(), groups, console, report), ext,
-                       total, stats, console);
+                       solvePatches(scene, caster, o.method.patch(), {groups, ""}, console, report),
+                       ext, total, stats, console);
   return finishSolve(o, scene,
-                     solveVoxels(scene, caster, o.method.voxel(), groups, console, report), ext,
+                     solveVoxels(scene, caster, voxelSettings, {groups, ""}, console, report), ext,
                      total, stats, console);
 }
 
@@ -119,6 +125,9 @@ void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
                   "Per-element results: .csv (a row per voxel side or patch), .ply (a point cloud) "
                   "or .glb (the lit mesh, vertex colours = radiance: the patches, or with --method "
                   "voxel the scene's triangles cut to the voxel size)");
+  sub->add_option("--save", o->save,
+                  "Save the solution (.rad) for render, solve and animate --solution: no solve "
+                  "again; its light groups too (--light-groups)");
   addStatsOption(*sub, o->stats);
   addTimeOption(*sub, o->time);
   sub->callback(

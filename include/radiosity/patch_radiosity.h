@@ -153,6 +153,12 @@ class PatchModel {
   /// computed), and the bounces. Thread-safe. Throws rad::Cancelled if `progress` returns false;
   /// a bad cache file is a warning.
   PatchRadiosity solve(std::span<const Light> lights, const ProgressCallback& progress = {}) const;
+  /// The solution a solution file (solution_file.h) keeps, saved from a model of this scene and
+  /// settings solved for `lights`, without solving: its patches, and its light per group when
+  /// they were solved apart (at the scales it was saved with). Throws InputError naming the file
+  /// for one that is truncated, corrupt, of another version, of another method, scene, lights
+  /// or patch settings.
+  PatchRadiosity load(const std::string& path, std::span<const Light> lights) const;
 
   struct State;
 
@@ -198,6 +204,10 @@ class PatchRadiosity : public SurfaceSolution {
   void setGroupScales(std::span<const Color> scales) override;
   Color groupRadiosity(size_t group, size_t patch) const override;
   const PatchRadiosityStats& stats() const;
+  /// Writes the solution file `path` (solution_file.h), atomically; `settings`: those it was
+  /// solved with, which the file records (resolveMethodSettings makes the model that loads it).
+  /// Throws std::runtime_error if it cannot be written.
+  void save(const std::string& path, const SolverSettings& settings) const;
 
  private:
   friend class PatchModel;

@@ -58,6 +58,11 @@ class Relighter {
   /// rad::Cancelled if `progress` returns false. The model must outlive the relighter.
   Relighter(const PatchModel& model, std::span<const Light> lights,
             const RelightSettings& settings = {}, const ProgressCallback& progress = {});
+  /// Continues from `solved`, a solution of `model` (one loaded from a solution file: nothing
+  /// is solved; the form factors of its patches come from the master table). Throws InputError
+  /// as above, and for a solution whose light groups are scaled (one state holds all lights).
+  Relighter(const PatchModel& model, PatchRadiosity solved, const RelightSettings& settings = {},
+            const ProgressCallback& progress = {});
   ~Relighter();
   Relighter(Relighter&&) noexcept;
   Relighter& operator=(Relighter&&) noexcept;
@@ -76,6 +81,7 @@ class Relighter {
 
  private:
   struct State;
+  void start(PatchRadiosity solved, const RelightSettings& settings);
   std::unique_ptr<State> state_;
 };
 

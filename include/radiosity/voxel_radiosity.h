@@ -86,6 +86,11 @@ class VoxelModel {
   /// them). Thread-safe. Throws InputError if memory would not hold the solve, rad::Cancelled if
   /// `progress` returns false.
   VoxelRadiosity solve(std::span<const Light> lights, const ProgressCallback& progress = {}) const;
+  /// The solution a solution file (solution_file.h) keeps, saved from a model of this scene and
+  /// settings solved for `lights`, without solving (its light per group when they were solved
+  /// apart, at the scales it was saved with). Throws InputError naming the file for one that is
+  /// truncated, corrupt, of another version, of another method, scene, lights or voxel grid.
+  VoxelRadiosity load(const std::string& path, std::span<const Light> lights) const;
 
   struct State;
 
@@ -126,12 +131,16 @@ class VoxelRadiosity : public SurfaceSolution {
   void setGroupScales(std::span<const Color> scales) override;
   Color groupRadiosity(size_t group, size_t side) const override;
   const VoxelRadiosityStats& stats() const;
+  /// Writes the solution file `path` (solution_file.h), atomically; `settings`: those it was
+  /// solved with, which the file records. Throws std::runtime_error if it cannot be written.
+  void save(const std::string& path, const SolverSettings& settings) const;
 
  private:
   friend class VoxelModel;
   VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model, std::span<const Light> lights,
                  const ProgressCallback& progress);
   struct Impl;
+  explicit VoxelRadiosity(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
 

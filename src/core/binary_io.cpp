@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 
@@ -54,6 +55,10 @@ bool checksumMatches(const std::string& bytes) {
   uint64_t sum;
   std::memcpy(&sum, bytes.data() + bytes.size() - 8, 8);
   return sum == checksum(bytes.data(), bytes.size() - 8);
+}
+
+void ByteReader::need(size_t size, uint64_t count) const {
+  if (count > (end_ - at_) / std::max<size_t>(size, 1)) throw std::out_of_range("truncated");
 }
 
 bool readWholeFile(const std::filesystem::path& file, std::string& bytes) {

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,44 @@ std::vector<T> getArray(const std::string& in, size_t& at, size_t count) {
   std::memcpy(v.data(), in.data() + at, count * sizeof(T));
   at += count * sizeof(T);
   return v;
+}
+
+/// Reads values from bytes[begin, end) in order, checking that each is there: what a file whose
+/// counts cannot be trusted is read with.
+class ByteReader {
+ public:
+  ByteReader(const std::string& bytes, size_t begin, size_t end)
+      : bytes_(bytes), at_(begin), end_(end) {}
+  /// Throws std::out_of_range ("truncated") where the value does not fit before the end.
+  template <typename T>
+  T get() {
+    need(sizeof(T), 1);
+    return rad::get<T>(bytes_, at_);
+  }
+  template <typename T>
+  std::vector<T> array(uint64_t count) {
+    need(sizeof(T), count);
+    return getArray<T>(bytes_, at_, size_t(count));
+  }
+  std::string text() {
+    const uint64_t size = get<uint64_t>();
+    need(1, size);
+    std::string s = bytes_.substr(at_, size_t(size));
+    at_ += size_t(size);
+    return s;
+  }
+  bool atEnd() const { return at_ == end_; }
+  size_t position() const { return at_; }
+
+ private:
+  void need(size_t size, uint64_t count) const;
+  const std::string& bytes_;
+  size_t at_, end_;
+};
+
+inline void putText(std::string& out, const std::string& s) {
+  put(out, uint64_t(s.size()));
+  out += s;
 }
 
 /// The whole file into `bytes`; false if it does not exist (an unreadable one leaves `bytes`

@@ -194,22 +194,56 @@ void Relighter::State::publish() {
   m.vertexIndirect = m.averageAtVertices(m.indirect);
 }
 
-Relighter::Relighter(const PatchModel& model, std::span<const Light> lights,
-                     const RelightSettings& settings, const ProgressCallback& progress) {
-  if (!model.state_->master)
+namespace {
+
+void requireMasterTable(const PatchModel::State& model) {
+  if (!model.master)
     throw InputError("relighting",
                      "needs the hemisphere form-factor estimator (its master table gives the rows "
                      "of the patches a moved light refines); the model uses another");
+}
+
+}  // namespace
+
+Relighter::Relighter(const PatchModel& model, std::span<const Light> lights,
+                     const RelightSettings& settings, const ProgressCallback& progress) {
+  requireMasterTable(*model.state_);
   auto impl = std::make_unique<PatchRadiosity::Impl>(model.state_, lights);
   impl->keepTable = true;
   impl->saveMaster = false;  // saved once, by saveFormFactors(), not at every quadtree change
   impl->settings.lightGroups = false;  // one state, shot as the lights change
   PatchLightCache cache;
   impl->build(cache, progress);
-  state_ = std::make_unique<State>(PatchRadiosity(std::move(impl)), settings);
+  start(PatchRadiosity(std::move(impl)), settings);
+  state_->cache = std::move(cache);
+}
+
+Relighter::Relighter(const PatchModel& model, PatchRadiosity solved,
+                     const RelightSettings& settings, const ProgressCallback& progress) {
+  requireMasterTable(*model.state_);
+  PatchRadiosity::Impl& m = *solved.impl_;
+  if (m.model != model.state_)
+    throw std::invalid_argument("relighting a solution of another model");
+  // One state for all the lights: groups kept apart fold into it only at their own scale.
+  for (const Color& scale : m.mix.scales())
+    if (scale != Color(1.0f))
+      throw InputError("relighting",
+                       "the solution's light groups are scaled (--group): relight "
+                       "a solution whose groups are at scale 1");
+  m.mix = LightGroupMix(*m.scene, m.lights, false);
+  m.groupIrradiance.clear();
+  m.groupIndirect.clear();
+  m.keepTable = true;
+  m.saveMaster = false;
+  m.chooseFormFactorSettings();
+  m.table = m.formFactors(*model.state_->caster, progress);
+  start(std::move(solved), settings);  // the light cache starts empty: the first relight fills it
+}
+
+void Relighter::start(PatchRadiosity solved, const RelightSettings& settings) {
+  state_ = std::make_unique<State>(std::move(solved), settings);
   State& s = *state_;
   s.unsavedRows = s.m.stats.rowsComputed;
-  s.cache = std::move(cache);
   s.system = s.m.system();
   s.anchor(s.m.solution.radiosity);
   s.stats.patches = s.system.size();

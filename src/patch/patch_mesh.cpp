@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
 
 #include "geometry/sampling.h"
 
@@ -147,6 +148,24 @@ void PatchMesh::addRoot(uint32_t face, bool back, std::span<const uint32_t> corn
   const int depth = depthFor(edge, patchSize_);
   roots_.back().baseDepth = uint8_t(depth);
   subdivide(roots_.back().node, depth, normal);
+}
+
+// Every split adds leaves, so a mesh with more patches than the leaves wanted has split a patch
+// that none of them lies below: the addresses are not a refinement of this mesh.
+bool PatchMesh::refineToLeaves(std::span<const uint64_t> addresses) {
+  const std::unordered_set<uint64_t> wanted(addresses.begin(), addresses.end());
+  if (wanted.size() != addresses.size()) return false;
+  std::vector<uint32_t> split;
+  while (size() <= wanted.size()) {
+    split.clear();
+    for (uint32_t p = 0; p < size(); ++p)
+      if (!wanted.contains(nodeAddress(patches_[p].node))) split.push_back(p);
+    if (split.empty()) return size() == wanted.size();
+    const size_t before = size();
+    refine(split);
+    if (size() == before) return false;
+  }
+  return false;
 }
 
 void PatchMesh::refine(std::span<const uint32_t> patches) {

@@ -117,6 +117,10 @@ class PatchMesh {
   /// indices change (the leaves in depth-first order, as the constructor numbers them); node
   /// ids do not.
   void refine(std::span<const uint32_t> patches);
+  /// Refines until the patches are the nodes at `addresses` (nodeAddress; a refined mesh's
+  /// patches, saved). False, part way, where they are not the leaves of a refinement of this
+  /// mesh: a patch would have to split without any of them below it.
+  bool refineToLeaves(std::span<const uint64_t> addresses);
   /// True if refine() has split any patch.
   bool refined() const { return refined_; }
   /// Every hanging vertex, coarser edges first, so that assigning each the mean of its edge's

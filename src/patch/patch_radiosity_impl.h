@@ -18,6 +18,9 @@
 
 namespace rad {
 
+class ByteReader;
+struct SolutionFile;
+
 struct PatchRadiosity::Impl {
   std::shared_ptr<const PatchModel::State> model;
   const Scene* scene = nullptr;
@@ -82,6 +85,8 @@ struct PatchRadiosity::Impl {
   std::optional<Color> interpolate(const SurfaceHit& hit, const std::vector<Color>& perPatch,
                                    const std::vector<Color>& perVertex) const;
   LitMesh litMesh() const;
+  /// A solution file's payload (patch_solution_file.cpp), into a solution of the base mesh.
+  void readSolution(const SolutionFile& file, ByteReader in);
 };
 
 }  // namespace rad

@@ -162,3 +162,30 @@ TEST(Animate, AnInterruptedRunLeavesOnlyWholeFrames) {
 
 }  // namespace
 }  // namespace rad
+
+namespace rad {
+namespace {
+
+// animate --solution starts from a saved solution instead of solving: its first frame is the
+// picture of the solution the file keeps, the one a solving animate starts from.
+TEST(Animate, StartsFromASavedSolution) {
+  const fs::path dir = freshDir("animate_solution");
+  const fs::path scene = spinningSpotScene(dir);
+  const std::string rad = (dir / "spin.rad").string();
+  const test::CliResult saved = run({"solve", scene.string(), "--method", "patch", "--patches",
+                                     "300", "--cache-dir", "none", "--save", rad});
+  ASSERT_EQ(saved.status, 0) << saved.err;
+  std::vector<std::string> solving = animateArgs(scene, (dir / "a_%d.pfm").string());
+  solving.insert(solving.end(), {"--frames", "2"});
+  ASSERT_EQ(run(solving).status, 0);
+  const test::CliResult loaded =
+      run({"animate", scene.string(), "--solution", rad, "-o", (dir / "b_%d.pfm").string(),
+           "--cache-dir", "none", "--width", "24", "--spp", "1", "--frames", "2"});
+  ASSERT_EQ(loaded.status, 0) << loaded.err;
+  EXPECT_EQ(test::readBytes((dir / "a_0.pfm").string()),
+            test::readBytes((dir / "b_0.pfm").string()));
+  EXPECT_TRUE(fs::exists(dir / "b_1.pfm"));
+}
+
+}  // namespace
+}  // namespace rad

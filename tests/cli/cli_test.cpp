@@ -651,3 +651,40 @@ TEST(Cli, GroupFlagsScaleLightGroupsAndTheStatsShareTheLight) {
   EXPECT_NE(unknown.err.find("spot, light1, light"), std::string::npos) << unknown.err;
   EXPECT_EQ(run({"solve", scene.string(), "--group", "spot=dim"}).status, 2);
 }
+
+// solve --save writes a solution that render --solution draws without solving: the same picture
+// bit for bit as a render that solves, with its light groups rescaled on the way; bad names and
+// files are refused.
+TEST(Cli, RenderFromASavedSolutionWithoutSolving) {
+  const fs::path dir = freshDir("solution");
+  const std::string rad = (dir / "box.rad").string();
+  const std::vector<std::string> method = {"--method",    "patch", "--patches",     "300",
+                                           "--cache-dir", "none",  "--light-groups"};
+  std::vector<std::string> solve = {"solve", "cornell-spot", "--save", rad};
+  solve.insert(solve.end(), method.begin(), method.end());
+  const CliResult saved = run(solve);
+  ASSERT_EQ(saved.status, 0) << saved.err;
+  std::vector<std::string> render = {"render",  "cornell-spot", "-o",    (dir / "a.pfm").string(),
+                                     "--width", "40",           "--spp", "1"};
+  render.insert(render.end(), method.begin(), method.end());
+  ASSERT_EQ(run(render).status, 0);
+  const CliResult loaded = run({"render", "cornell-spot", "--solution", rad, "-o",
+                                (dir / "b.pfm").string(), "--width", "40", "--spp", "1"});
+  ASSERT_EQ(loaded.status, 0) << loaded.err;
+  EXPECT_EQ(readBytes((dir / "a.pfm").string()), readBytes((dir / "b.pfm").string()));
+  const CliResult dimmed =
+      run({"render", "cornell-spot", "--solution", rad, "-o", (dir / "c.pfm").string(), "--width",
+           "40", "--group", "light0=0.5"});
+  ASSERT_EQ(dimmed.status, 0) << dimmed.err;
+  EXPECT_LT(meanRadiance(rad::readImage((dir / "c.pfm").string())),
+            0.6 * meanRadiance(rad::readImage((dir / "b.pfm").string())));
+
+  EXPECT_EQ(run({"solve", "cornell-spot", "--save", (dir / "box.bin").string()}).status, 2);
+  EXPECT_EQ(run({"solve", "cornell-spot", "--save", (dir / "no/box.rad").string()}).status, 2);
+  const CliResult missing = run({"render", "cornell-spot", "--solution", (dir / "x.rad").string()});
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.err.find("no such solution file"), std::string::npos) << missing.err;
+  const CliResult foreign = run({"render", "cornell", "--solution", rad});
+  EXPECT_EQ(foreign.status, 2);
+  EXPECT_NE(foreign.err.find("another scene"), std::string::npos) << foreign.err;
+}
