@@ -66,10 +66,14 @@ double percentile(std::vector<double> v, double q) {
 }
 
 nlohmann::json measure(const char* name, const Scene& scene, const PatchRadiositySettings& s,
-                       const LightsAt& lightsAt, Console& console) {
+                       const LightsAt& lightsAt, Console& console,
+                       const RelightSettings& relight = {}) {
   const PatchModel model(scene, s);
   console.detail(fmt::format("bench relight: {}, ~{} patches", name, s.targetPatches));
-  Relighter relighter(model, lightsAt(0));
+  const auto start = std::chrono::steady_clock::now();
+  Relighter relighter(model, lightsAt(0), relight);
+  const double startSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   size_t firstPeriodRows = 0;
   for (int f = 1; f <= kFramesPerPeriod; ++f)
     firstPeriodRows += relighter.relight(lightsAt(f)).rowsComputed;
@@ -110,6 +114,7 @@ nlohmann::json measure(const char* name, const Scene& scene, const PatchRadiosit
                            {"rows_hit_rate", rows > 0 ? double(rowsReused) / double(rows) : 1.0},
                            {"first_period_rows_computed", firstPeriodRows},
                            {"fresh_solves_compared", fresh},
+                           {"start_seconds", startSeconds},
                            {"max_rel_error_vs_fresh", worstError}};
   result["summary"] = fmt::format(
       "{}: {} patches, {:.1f} ms per relight (median; p90 {:.1f}; direct {:.1f}, form factors "
@@ -127,7 +132,8 @@ nlohmann::json measure(const char* name, const Scene& scene, const PatchRadiosit
 
 // The swinging spot with the quadtree following its beam (the default settings) comes first
 // and gives the top-level numbers; then the same with adaptive subdivision off (a fixed mesh),
-// and a dimmer on the spot.
+// a dimmer on the spot, and on a small fixed mesh delta shooting against the precomputed
+// transfer.
 nlohmann::json benchRelight(Console& console, size_t patches) {
   const Scene scene = roomWithSpot();
   PatchRadiositySettings s;
@@ -141,6 +147,15 @@ nlohmann::json benchRelight(Console& console, size_t patches) {
        measure("swinging spot, fixed mesh", scene, fixedMesh, swinging, console),
        measure(
            "dimmed spot", scene, s, [&](int f) { return dimmed(scene, f); }, console)});
+  PatchRadiositySettings small = fixedMesh;
+  small.targetPatches = std::min<size_t>(patches, 1500);
+  RelightSettings shooting, transfer;
+  shooting.transferPatches = 0;
+  transfer.transferPatches = 4000;
+  scenarios.push_back(
+      measure("small fixed mesh, delta shooting", scene, small, swinging, console, shooting));
+  scenarios.push_back(
+      measure("small fixed mesh, precomputed transfer", scene, small, swinging, console, transfer));
   nlohmann::json result = scenarios[0];
   std::string summary;
   for (const auto& r : scenarios)

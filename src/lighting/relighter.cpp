@@ -8,9 +8,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <tuple>
 
 #include "lighting/direct_lighting.h"
+#include "lighting/precomputed_transfer.h"
 #include "patch/light_refinement.h"
 #include "patch/patch_radiosity_impl.h"
 #include "patch/patch_solver_terms.h"
@@ -77,6 +79,8 @@ struct Relighter::State {
   ShootingState shooting;
   RelightStats stats;
   size_t unsavedRows = 0;  ///< master-table rows cast since the table was read or saved
+  /// The mesh's transfer, when the settings ask for it and the mesh never changes.
+  std::optional<PrecomputedTransfer> transfer;
 
   State(PatchRadiosity solved, const RelightSettings& s)
       : settings(s), current(std::move(solved)), m(*current.impl_) {}
@@ -125,6 +129,7 @@ LitPatches Relighter::State::lightPatches(std::span<const Light> lights) {
 void Relighter::State::changeMesh(LitPatches lit) {
   const std::vector<Color> guess =
       carryOver(*m.mesh, m.solution.radiosity, *lit.mesh, m.settings.refineLevels);
+  transfer.reset();  // made for the old patches
   m.mesh = std::move(lit.mesh);
   m.lightDirect = std::move(lit.direct);
   m.chooseFormFactorSettings();
@@ -172,7 +177,16 @@ void Relighter::State::applyDirect(const std::vector<Color>& direct) {
     stats.patchesSkipped = waiting.size();
 }
 
+// With the transfer, the unshot radiosity bounces out in one step: B += (T - I) U, H += F T U.
 void Relighter::State::shoot() {
+  if (transfer) {
+    transfer->propagate(shooting.unshot, table(), shooting.radiosity, shooting.irradiance);
+    stats.shots = size_t(std::count_if(shooting.unshot.begin(), shooting.unshot.end(),
+                                       [](const Color& u) { return u != Color(0.0f); }));
+    std::fill(shooting.unshot.begin(), shooting.unshot.end(), Color(0.0f));
+    stats.unshot = 0.0;
+    return;
+  }
   PatchSolution record;
   const double norm = sourceNorm(system);
   shootUnshotInSweeps(table(), system, shooting, norm,
@@ -247,6 +261,9 @@ void Relighter::start(PatchRadiosity solved, const RelightSettings& settings) {
   s.system = s.m.system();
   s.anchor(s.m.solution.radiosity);
   s.stats.patches = s.system.size();
+  // Only a mesh that no light refines stays the one the transfer was made for.
+  if (s.m.settings.refineLevels == 0 && s.system.size() <= settings.transferPatches)
+    s.transfer.emplace(s.table(), s.system);
 }
 
 Relighter::~Relighter() = default;

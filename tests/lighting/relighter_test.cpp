@@ -61,7 +61,8 @@ TEST(Relighter, HundredsOfSmallStepsDoNotDrift) {
   PatchRadiositySettings s = smallSettings();
   s.refineLevels = 0;  // the quadtree stays, so every change goes through the threshold
   const PatchModel model(scene, s);
-  Relighter relighter(model, scene.lights, {.threshold = 1e-3});
+  // Shooting, not the transfer a mesh this small would get by default.
+  Relighter relighter(model, scene.lights, {.threshold = 1e-3, .transferPatches = 0});
   size_t skipped = 0, reanchored = 0;
   for (int k = 1; k <= 200; ++k) {
     const RelightStats& stats = relighter.relight(swung(scene, 0.05f * float(k), 0.0f));
@@ -73,6 +74,23 @@ TEST(Relighter, HundredsOfSmallStepsDoNotDrift) {
   EXPECT_LE(
       largestRadiosityDifference(relighter.solution(), model.solve(swung(scene, 10.0f, 0.0f))),
       0.005);
+}
+
+// On a fixed mesh the precomputed transfer takes the place of shooting: each change bounces out
+// in one step, to the same answer as a fresh solve (and no unshot light left).
+TEST(Relighter, ThePrecomputedTransferMatchesFreshSolves) {
+  const Scene scene = loadScene("cornell-spot");
+  PatchRadiositySettings s = smallSettings();
+  s.refineLevels = 0;  // a mesh the transfer stays valid for
+  const PatchModel model(scene, s);
+  Relighter relighter(model, scene.lights, {.transferPatches = 5000});
+  for (int k = 1; k <= 6; ++k) {
+    const std::vector<Light> lights = swung(scene, 5.0f * float(k), 10.0f * float(k));
+    const RelightStats& stats = relighter.relight(lights);
+    EXPECT_EQ(stats.unshot, 0.0);
+    EXPECT_LE(largestRadiosityDifference(relighter.solution(), model.solve(lights)), 0.005)
+        << "move " << k;
+  }
 }
 
 // Dimming to a quarter changes no patch's place in the quadtree, and the answer is a quarter of
