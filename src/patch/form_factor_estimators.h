@@ -13,6 +13,7 @@
 #include <radiosity/progress.h>
 #include <radiosity/ray_caster.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -85,9 +86,13 @@ std::vector<HemisphereHit> hemisphereHits(const PatchMesh& mesh, const RayCaster
                                           const HitKey& keyOf);
 /// Sorts a row by column and adds up repeated columns: rows leave the estimators so.
 void mergeByColumn(std::vector<FormFactorEntry>& row);
-/// The row of `patch` from its rays' hits, each key mapped by `patchOf` to the patch it lies on
-/// (kNoPatch: none), with the exact columns `exact` (if any) in place of what the rays find
-/// there.
+/// Orders hits by key (stable: the same sums whatever the order they came in), which puts a
+/// row's entries in patch order (patches are numbered in key order), so that rows are merged
+/// without sorting.
+void sortByKey(std::vector<HemisphereHit>& hits);
+/// The row of `patch` from its rays' hits (sorted by key), each key mapped by `patchOf` to the
+/// patch it lies on (kNoPatch: none), with the exact columns `exact` (if any) in place of what the
+/// rays find there.
 template <class PatchOf>
 std::vector<FormFactorEntry> rowFromHits(std::span<const HemisphereHit> hits, uint32_t patch,
                                          const PatchOf& patchOf, const ExactColumns* exact) {
@@ -98,7 +103,13 @@ std::vector<FormFactorEntry> rowFromHits(std::span<const HemisphereHit> hits, ui
     // What lands on an exact column is left to its exact value.
     if (j != kNoPatch && j != patch && !(exact && exact->isExact[j])) row.push_back({j, h.weight});
   }
-  if (exact) row.insert(row.end(), exact->toExact[patch].begin(), exact->toExact[patch].end());
+  if (exact) {
+    const size_t fromHits = row.size();
+    row.insert(row.end(), exact->toExact[patch].begin(), exact->toExact[patch].end());
+    std::inplace_merge(
+        row.begin(), row.begin() + long(fromHits), row.end(),
+        [](const FormFactorEntry& a, const FormFactorEntry& b) { return a.column < b.column; });
+  }
   mergeByColumn(row);
   return row;
 }

@@ -18,8 +18,20 @@
 
 namespace rad {
 
+void sortByKey(std::vector<HemisphereHit>& hits) {
+  const auto byKey = [](const HemisphereHit& a, const HemisphereHit& b) {
+    return uint64_t{a.key} < uint64_t{b.key};
+  };
+  if (!std::is_sorted(hits.begin(), hits.end(), byKey))
+    std::stable_sort(hits.begin(), hits.end(), byKey);
+}
+
 void mergeByColumn(std::vector<FormFactorEntry>& row) {
-  std::sort(row.begin(), row.end(), [](auto& a, auto& b) { return a.column < b.column; });
+  const auto byColumn = [](const FormFactorEntry& a, const FormFactorEntry& b) {
+    return a.column < b.column;
+  };
+  if (!std::is_sorted(row.begin(), row.end(), byColumn))
+    std::sort(row.begin(), row.end(), byColumn);
   size_t out = 0;
   for (size_t k = 0; k < row.size();) {
     FormFactorEntry e = row[k++];
@@ -64,6 +76,7 @@ std::vector<HemisphereHit> hemisphereHits(const PatchMesh& mesh, const RayCaster
     const uint64_t key = keyOf(hits[k].triangle, hits[k].frontFace, at);
     if (key != kNoKey) out.push_back({key, weight[k] / float(n)});
   }
+  sortByKey(out);
   return out;
 }
 

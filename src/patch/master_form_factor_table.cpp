@@ -178,7 +178,10 @@ std::string MasterFormFactorTable::load(const std::filesystem::path& file,
   MasterRowsLoad loaded = loadMasterRows(file, key);
   if (loaded.rows) {
     std::lock_guard lock(mutex_);
-    for (auto& [address, row] : *loaded.rows) rows_.try_emplace(address, std::move(row));
+    for (auto& [address, row] : *loaded.rows) {
+      sortByKey(row.hits);  // a file from before rows were kept sorted
+      rows_.try_emplace(address, std::move(row));
+    }
   }
   return loaded.warning;
 }
