@@ -25,6 +25,7 @@ struct BenchOptions {
   size_t scalingMaxVoxels = 4000000;
   std::string output = "bench_out";
   size_t relightPatches = 10000;
+  int relightFrames = 0;  ///< 0: the default period
 };
 
 int runBench(const BenchOptions& o, Console& console) {
@@ -32,7 +33,8 @@ int runBench(const BenchOptions& o, Console& console) {
   const bool all = o.which == "all";
   if (all || o.which == "pathtrace") results["pathtrace"] = benchPathTracer(console);
   if (all || o.which == "patch") results["patch"] = benchPatch(console);
-  if (all || o.which == "relight") results["relight"] = benchRelight(console, o.relightPatches);
+  if (all || o.which == "relight")
+    results["relight"] = benchRelight(console, o.relightPatches, o.relightFrames);
   if (all || o.which == "voxel")
     results["voxel"] = benchVoxel(console, o.voxels, o.sphereRadius, o.pairStride);
   if (o.which == "voxel-scaling")
@@ -67,6 +69,10 @@ void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--relight-patches", o->relightPatches,
                   "relight: patches of the room (default 10000)")
       ->check(CLI::Range(size_t(100), size_t(1) << 24));
+  sub->add_option("--relight-frames", o->relightFrames,
+                  "relight: frames of warm-up and then measured (default: a swing's period of 240, "
+                  "then half of one); fewer for large meshes")
+      ->check(CLI::Range(1, 100000));
   sub->add_option("--scaling-radius", o->scalingRadius, "voxel-scaling: sphere radius (default 8)")
       ->check(CLI::Range(1, 200));
   sub->add_option("--scaling-max-voxels", o->scalingMaxVoxels,

@@ -65,8 +65,13 @@ double percentile(std::vector<double> v, double q) {
   return v[k];
 }
 
+// Frames of warm-up (0: a period) and measured (0: half a period).
+struct FrameCounts {
+  int warmUp = kFramesPerPeriod, measured = kFramesPerPeriod / 2;
+};
+
 nlohmann::json measure(const char* name, const Scene& scene, const PatchRadiositySettings& s,
-                       const LightsAt& lightsAt, Console& console,
+                       const LightsAt& lightsAt, const FrameCounts& frames, Console& console,
                        const RelightSettings& relight = {}) {
   const PatchModel model(scene, s);
   console.detail(fmt::format("bench relight: {}, ~{} patches", name, s.targetPatches));
@@ -75,13 +80,14 @@ nlohmann::json measure(const char* name, const Scene& scene, const PatchRadiosit
   const double startSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   size_t firstPeriodRows = 0;
-  for (int f = 1; f <= kFramesPerPeriod; ++f)
+  for (int f = 1; f <= frames.warmUp; ++f)
     firstPeriodRows += relighter.relight(lightsAt(f)).rowsComputed;
   std::vector<double> ms, directMs, formFactorMs, bounceMs;
   double updated = 0.0, worstError = 0.0;
   size_t rowsComputed = 0, rowsReused = 0, meshChanges = 0, fresh = 0;
-  // Half a period: the swing from one side to the other.
-  for (int f = kFramesPerPeriod + 1; f <= kFramesPerPeriod * 3 / 2; ++f) {
+  // By default half a period: the swing from one side to the other.
+  const int last = frames.warmUp + frames.measured;
+  for (int f = frames.warmUp + 1; f <= last; ++f) {
     const std::vector<Light> lights = lightsAt(f);
     const RelightStats& r = relighter.relight(lights);
     ms.push_back(r.milliseconds);
@@ -92,13 +98,13 @@ nlohmann::json measure(const char* name, const Scene& scene, const PatchRadiosit
     rowsComputed += r.rowsComputed;
     rowsReused += r.rowsReused;
     meshChanges += r.meshChanged;
-    if (f % 24 == 0) {
+    if (f % 24 == 0 || (f == last && fresh == 0)) {
       worstError = std::max(worstError,
                             largestRadiosityDifference(relighter.solution(), model.solve(lights)));
       ++fresh;
     }
   }
-  const double frames = double(ms.size());
+  const double measured = double(ms.size());
   const size_t rows = rowsComputed + rowsReused;
   nlohmann::json result = {{"scenario", name},
                            {"patches", relighter.solution().elementCount()},
@@ -109,8 +115,8 @@ nlohmann::json measure(const char* name, const Scene& scene, const PatchRadiosit
                            {"direct_ms", percentile(directMs, 0.5)},
                            {"form_factors_ms", percentile(formFactorMs, 0.5)},
                            {"bounce_ms", percentile(bounceMs, 0.5)},
-                           {"updated_fraction", updated / frames},
-                           {"mesh_change_fraction", double(meshChanges) / frames},
+                           {"updated_fraction", updated / measured},
+                           {"mesh_change_fraction", double(meshChanges) / measured},
                            {"rows_hit_rate", rows > 0 ? double(rowsReused) / double(rows) : 1.0},
                            {"first_period_rows_computed", firstPeriodRows},
                            {"fresh_solves_compared", fresh},
@@ -123,7 +129,7 @@ nlohmann::json measure(const char* name, const Scene& scene, const PatchRadiosit
       name, result["patches"].get<size_t>(), result["ms_per_relight"].get<double>(),
       result["ms_per_relight_p90"].get<double>(), result["direct_ms"].get<double>(),
       result["form_factors_ms"].get<double>(), result["bounce_ms"].get<double>(),
-      100.0 * updated / frames, 100.0 * double(meshChanges) / frames,
+      100.0 * updated / measured, 100.0 * double(meshChanges) / measured,
       100.0 * result["rows_hit_rate"].get<double>(), 100.0 * worstError);
   return result;
 }
@@ -134,7 +140,8 @@ nlohmann::json measure(const char* name, const Scene& scene, const PatchRadiosit
 // and gives the top-level numbers; then the same with adaptive subdivision off (a fixed mesh),
 // a dimmer on the spot, and on a small fixed mesh delta shooting against the precomputed
 // transfer.
-nlohmann::json benchRelight(Console& console, size_t patches) {
+nlohmann::json benchRelight(Console& console, size_t patches, int frameCount) {
+  const FrameCounts frames = frameCount > 0 ? FrameCounts{frameCount, frameCount} : FrameCounts{};
   const Scene scene = roomWithSpot();
   PatchRadiositySettings s;
   s.targetPatches = patches;
@@ -143,19 +150,19 @@ nlohmann::json benchRelight(Console& console, size_t patches) {
   fixedMesh.refineLevels = 0;
   const LightsAt swinging = [&](int f) { return swung(scene, f); };
   nlohmann::json scenarios = nlohmann::json::array(
-      {measure("swinging spot", scene, s, swinging, console),
-       measure("swinging spot, fixed mesh", scene, fixedMesh, swinging, console),
+      {measure("swinging spot", scene, s, swinging, frames, console),
+       measure("swinging spot, fixed mesh", scene, fixedMesh, swinging, frames, console),
        measure(
-           "dimmed spot", scene, s, [&](int f) { return dimmed(scene, f); }, console)});
+           "dimmed spot", scene, s, [&](int f) { return dimmed(scene, f); }, frames, console)});
   PatchRadiositySettings small = fixedMesh;
   small.targetPatches = std::min<size_t>(patches, 1500);
   RelightSettings shooting, transfer;
   shooting.transferPatches = 0;
   transfer.transferPatches = 4000;
-  scenarios.push_back(
-      measure("small fixed mesh, delta shooting", scene, small, swinging, console, shooting));
-  scenarios.push_back(
-      measure("small fixed mesh, precomputed transfer", scene, small, swinging, console, transfer));
+  scenarios.push_back(measure("small fixed mesh, delta shooting", scene, small, swinging, frames,
+                              console, shooting));
+  scenarios.push_back(measure("small fixed mesh, precomputed transfer", scene, small, swinging,
+                              frames, console, transfer));
   nlohmann::json result = scenarios[0];
   std::string summary;
   for (const auto& r : scenarios)

@@ -19,7 +19,7 @@ nlohmann::json benchPatch(Console& console);
 /// Relighting a spot swinging through a furnished room at about `patches` patches: ms per
 /// relight, the patches updated per frame, the master table's hit rate and the worst error
 /// against fresh solves (bench_relight.cpp says how).
-nlohmann::json benchRelight(Console& console, size_t patches);
+nlohmann::json benchRelight(Console& console, size_t patches, int frames = 0);
 
 /// The voxel sweep on a furnished room at `voxels` voxels (the paper's 2e6 by default): every
 /// `pairStride`-th direction pair of the sphere of radius R swept three times on all threads,
