@@ -96,12 +96,7 @@ int runAnimate(AnimateOptions& o, Console& console) {
   Stopwatch solveTime;
   const PatchModel model(scene, caster, o.method.patch());
   const std::vector<Light> first = lightsAt(scene, timeOf(0), groups, scales);
-  Relighter relighter = o.solution.empty()
-                            ? Relighter(model, first, o.relight, console.progress("patch solve"))
-                            : Relighter(model, model.load(o.solution, first), o.relight,
-                                        console.progress("form factors"));
-  console.finishProgress();
-  for (const std::string& w : relighter.solution().stats().warnings) console.warn(w);
+  Relighter relighter = startRelighter(model, first, o.solution, o.relight, console);
   stats.timingsSeconds.solve = solveTime.seconds();
 
   std::vector<FrameRecord> records;

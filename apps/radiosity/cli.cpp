@@ -37,6 +37,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   addRenderCommand(app, console, action);
   addSolveCommand(app, console, action);
   addAnimateCommand(app, console, action);
+  addServeCommand(app, console, action);
   addInfoCommand(app, console, action);
   addBenchCommand(app, console, action);
 

@@ -17,6 +17,7 @@ using CommandAction = std::function<int()>;
 void addRenderCommand(CLI::App& app, Console& console, CommandAction& action);
 void addSolveCommand(CLI::App& app, Console& console, CommandAction& action);
 void addAnimateCommand(CLI::App& app, Console& console, CommandAction& action);
+void addServeCommand(CLI::App& app, Console& console, CommandAction& action);
 void addInfoCommand(CLI::App& app, Console& console, CommandAction& action);
 void addBenchCommand(CLI::App& app, Console& console, CommandAction& action);
 

@@ -13,18 +13,6 @@ namespace rad::cli {
 
 namespace {
 
-const char* lightTypeName(LightType type) {
-  switch (type) {
-    case LightType::Point:
-      return "point";
-    case LightType::Spot:
-      return "spot";
-    case LightType::Ies:
-      return "ies";
-  }
-  return "?";
-}
-
 int runInfo(const std::string& sceneName, Console& console) {
   const Scene scene = loadScene(sceneName);
   std::ostream& out = console.out();

@@ -138,6 +138,18 @@ void MethodOptions::resolveFromSolution(const Scene& scene, const std::string& p
                                        fmt::join(methods_, ", ")));
 }
 
+Relighter startRelighter(const PatchModel& model, std::span<const Light> lights,
+                         const std::string& solutionFile, const RelightSettings& settings,
+                         Console& console) {
+  Relighter relighter = solutionFile.empty()
+                            ? Relighter(model, lights, settings, console.progress("patch solve"))
+                            : Relighter(model, model.load(solutionFile, lights), settings,
+                                        console.progress("form factors"));
+  console.finishProgress();
+  for (const std::string& w : relighter.solution().stats().warnings) console.warn(w);
+  return relighter;
+}
+
 SolverSettings solvedWith(const MethodSettings& settings) {
   SolverSettings out;
   // Not a value that stands for "unset" (patch_size 0: from the patch count), which the

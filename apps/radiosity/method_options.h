@@ -6,6 +6,7 @@
 #include <radiosity/light_groups.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
+#include <radiosity/relighter.h>
 #include <radiosity/scene.h>
 #include <radiosity/solver_settings.h>
 #include <radiosity/voxel_radiosity.h>
@@ -85,6 +86,11 @@ VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
 PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
                             const PatchRadiositySettings& settings, const SolutionSource& source,
                             Console& console, const SolveReport& report);
+/// A relighter of `model` for `lights`: solved with a progress bar, or started from the solution
+/// file `solutionFile` when it is set; prints the solution's warnings.
+Relighter startRelighter(const PatchModel& model, std::span<const Light> lights,
+                         const std::string& solutionFile, const RelightSettings& settings,
+                         Console& console);
 /// The settings as a solution file records them: every one the method read, by name.
 SolverSettings solvedWith(const MethodSettings& settings);
 

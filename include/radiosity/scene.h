@@ -44,6 +44,8 @@ struct Face {
 };
 
 enum class LightType { Point, Spot, Ies };
+/// "point", "spot" or "ies", as the scene file spells it.
+const char* lightTypeName(LightType type);
 
 /// A light's state at a time of its animation: the fields it sets (the others follow the
 /// keyframes around it that set them, or stay the light's own).

@@ -1,5 +1,7 @@
 #include "output/baked_mesh.h"
 
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -8,8 +10,6 @@
 #include <span>
 #include <stdexcept>
 #include <unordered_map>
-
-#include <fmt/format.h>
 
 namespace rad {
 
@@ -151,9 +151,10 @@ void checkPieceCount(const Scene& scene, std::span<const uint32_t> triangles, fl
 
 }  // namespace
 
-LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance, float maxEdge) {
+SurfaceBake cutSurfaces(const Scene& scene, float maxEdge) {
   if (!(maxEdge > 0.0f)) throw std::invalid_argument("bake: the longest edge must be positive");
-  LitMesh out;
+  SurfaceBake bake;
+  LitMesh& out = bake.mesh;
   const std::vector<uint32_t> order = trianglesByObject(scene, out.groups);
   checkPieceCount(scene, order, maxEdge);
   std::vector<TrianglePieces> pieces(order.size());
@@ -177,6 +178,7 @@ LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance,
   out.positions.resize(vertexStart.back());
   out.normals.resize(vertexStart.back());
   out.colors.resize(vertexStart.back());
+  bake.at.resize(vertexStart.back());
   out.indices.resize(3 * pieceStart.back());
   tbb::parallel_for(size_t(0), order.size(), [&](size_t i) {
     const uint32_t triangle = order[i];
@@ -190,7 +192,7 @@ LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance,
       for (size_t v = 0; v < p.positions.size(); ++v) {
         out.positions[base + v] = p.positions[v];
         out.normals[base + v] = front ? normal : -normal;
-        out.colors[base + v] = radiance.radiance({p.positions[v], normal, triangle, front});
+        bake.at[base + v] = {p.positions[v], normal, triangle, front};
       }
       // The back side is wound the other way round, so that it faces out of its own side.
       for (size_t k = 0; k < p.indices.size(); k += 3) {
@@ -201,7 +203,20 @@ LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance,
     }
     p = {};
   });
-  return out;
+  return bake;
+}
+
+void shadeSurfaces(SurfaceBake& bake, const SurfaceRadiance& radiance) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, bake.at.size(), 1024), [&](const auto& r) {
+    for (size_t v = r.begin(); v != r.end(); ++v)
+      bake.mesh.colors[v] = radiance.radiance(bake.at[v]);
+  });
+}
+
+LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance, float maxEdge) {
+  SurfaceBake bake = cutSurfaces(scene, maxEdge);
+  shadeSurfaces(bake, radiance);
+  return std::move(bake.mesh);
 }
 
 }  // namespace rad

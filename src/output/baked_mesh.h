@@ -19,6 +19,17 @@ namespace rad {
 /// before any work, when the cut would exceed kMaxBakedTriangles.
 LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance, float maxEdge);
 
+/// A bake in two steps: the cut triangles and where each vertex lies, then their colours, so
+/// that a viewer shades the same vertices again as the light changes.
+struct SurfaceBake {
+  LitMesh mesh;                ///< colours black until shaded
+  std::vector<SurfaceHit> at;  ///< per vertex: the point radiance() is asked at
+};
+/// The cut of bakeSurfaceRadiance, unshaded. Throws as it does.
+SurfaceBake cutSurfaces(const Scene& scene, float maxEdge);
+/// Sets every vertex colour to the radiance `radiance` gives there (in parallel).
+void shadeSurfaces(SurfaceBake& bake, const SurfaceRadiance& radiance);
+
 /// The most triangles a bake may make (about 1 GB of glTF).
 inline constexpr double kMaxBakedTriangles = 3e7;
 

@@ -6,19 +6,18 @@
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
-
-#include "core/atomic_file.h"
-
 #include <fmt/format.h>
-#include <glm/geometric.hpp>
+#include <tiny_gltf.h>
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <limits>
 #include <span>
 #include <sstream>
 #include <stdexcept>
+
+#include "core/atomic_file.h"
 
 namespace rad {
 
@@ -135,29 +134,47 @@ void validate(const LitMesh& mesh) {
       fail(fmt::format("group '{}' runs past the {} triangles", g.name, triangles));
 }
 
-// Each group becomes a mesh of its own vertices (so that a node stands alone, e.g. when Blender
-// splits the import into objects), one primitive.
-void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& group,
-              std::vector<uint32_t>& local) {
-  std::vector<Vec3> positions, normals, colors;
-  std::vector<uint32_t> indices;
-  std::vector<uint32_t> touched;
+// A group's own vertices (the mesh's, in order of first use) and its triangles over them.
+struct GroupVertices {
+  std::vector<uint32_t> vertices, indices;
+};
+GroupVertices groupVertices(const LitMesh& mesh, const LitMeshGroup& group,
+                            std::vector<uint32_t>& local) {
+  GroupVertices out;
   for (uint32_t t = group.firstTriangle; t < group.firstTriangle + group.triangleCount; ++t) {
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = mesh.indices[3 * size_t(t) + k];
       if (local[v] == ~0u) {
-        local[v] = uint32_t(positions.size());
-        touched.push_back(v);
-        positions.push_back(mesh.positions[v]);
-        normals.push_back(unitNormal(mesh.normals[v]));
-        const Color& c = mesh.colors[v];
-        colors.emplace_back(unitColor(c.r), unitColor(c.g), unitColor(c.b));
+        local[v] = uint32_t(out.vertices.size());
+        out.vertices.push_back(v);
       }
-      indices.push_back(local[v]);
+      out.indices.push_back(local[v]);
     }
   }
-  for (uint32_t v : touched) local[v] = ~0u;  // ready for the next group without an O(V) reset
-  if (positions.empty()) return;  // a glTF mesh needs at least one primitive
+  for (uint32_t v : out.vertices) local[v] = ~0u;  // ready for the next group, no O(V) reset
+  return out;
+}
+
+// The groups as written: all the triangles in one when the mesh names none.
+std::vector<LitMeshGroup> groupsOf(const LitMesh& mesh) {
+  if (!mesh.groups.empty()) return mesh.groups;
+  return {{"radiosity", 0, uint32_t(mesh.indices.size() / 3)}};
+}
+
+// Each group becomes a mesh of its own vertices (so that a node stands alone, e.g. when Blender
+// splits the import into objects), one primitive.
+void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& group,
+              std::vector<uint32_t>& local) {
+  GroupVertices own = groupVertices(mesh, group, local);
+  if (own.vertices.empty()) return;  // a glTF mesh needs at least one primitive
+  std::vector<Vec3> positions, normals, colors;
+  for (uint32_t v : own.vertices) {
+    positions.push_back(mesh.positions[v]);
+    normals.push_back(unitNormal(mesh.normals[v]));
+    const Color& c = mesh.colors[v];
+    colors.emplace_back(unitColor(c.r), unitColor(c.g), unitColor(c.b));
+  }
+  const std::vector<uint32_t>& indices = own.indices;
 
   tinygltf::Mesh gltfMesh;
   const int position = builder.positions(positions);
@@ -177,22 +194,36 @@ void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& gr
 
 }  // namespace
 
-void writeLitMeshGlb(const std::string& path, const LitMesh& mesh) {
+std::string litMeshGlb(const LitMesh& mesh) {
   validate(mesh);
   ModelBuilder builder;
   std::vector<uint32_t> local(mesh.positions.size(), ~0u);
-  if (mesh.groups.empty()) {
-    addGroup(builder, mesh, {"radiosity", 0, uint32_t(mesh.indices.size() / 3)}, local);
-  } else {
-    for (const LitMeshGroup& group : mesh.groups) addGroup(builder, mesh, group, local);
-  }
-  // Serialized in memory (the buffer as the .glb's BIN chunk, compact JSON), then written once:
-  // tinygltf's file writer does not check its stream, writeBytesAtomically does.
+  for (const LitMeshGroup& group : groupsOf(mesh)) addGroup(builder, mesh, group, local);
+  // Serialized in memory (the buffer as the .glb's BIN chunk, compact JSON): tinygltf's file
+  // writer does not check its stream, writeBytesAtomically does.
   std::ostringstream glb(std::ios::binary);
   tinygltf::TinyGLTF writer;
   if (!writer.WriteGltfSceneToStream(&builder.model(), glb, false, true))
-    throw std::runtime_error(fmt::format("{}: cannot serialize the glTF file", path));
-  const std::string bytes = std::move(glb).str();
+    throw std::runtime_error("cannot serialize the glTF file");
+  return std::move(glb).str();
+}
+
+std::vector<uint32_t> glbVertexOrder(const LitMesh& mesh) {
+  std::vector<uint32_t> order, local(mesh.positions.size(), ~0u);
+  for (const LitMeshGroup& group : groupsOf(mesh)) {
+    const GroupVertices own = groupVertices(mesh, group, local);
+    order.insert(order.end(), own.vertices.begin(), own.vertices.end());
+  }
+  return order;
+}
+
+void writeLitMeshGlb(const std::string& path, const LitMesh& mesh) {
+  std::string bytes;
+  try {
+    bytes = litMeshGlb(mesh);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(fmt::format("{}: {}", path, e.what()));
+  }
   writeBytesAtomically(path, std::span<const char>(bytes.data(), bytes.size()));
 }
 

@@ -6,7 +6,9 @@
 
 #include <radiosity/surface_solution.h>
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace rad {
 
@@ -15,5 +17,10 @@ namespace rad {
 /// triangles are left out). Throws std::invalid_argument for an inconsistent description and
 /// std::runtime_error naming `path` if the file cannot be written.
 void writeLitMeshGlb(const std::string& path, const LitMesh& mesh);
+/// The .glb's bytes, as writeLitMeshGlb writes them. Throws as it does.
+std::string litMeshGlb(const LitMesh& mesh);
+/// The mesh's vertex indices in the order the .glb holds its vertices, node after node (a vertex
+/// two groups share is in both): what a viewer's per-vertex arrays follow.
+std::vector<uint32_t> glbVertexOrder(const LitMesh& mesh);
 
 }  // namespace rad

@@ -1,10 +1,21 @@
 #include <radiosity/scene.h>
 
+#include <cmath>
 #include <glm/gtc/constants.hpp>
 
-#include <cmath>
-
 namespace rad {
+
+const char* lightTypeName(LightType type) {
+  switch (type) {
+    case LightType::Point:
+      return "point";
+    case LightType::Spot:
+      return "spot";
+    case LightType::Ies:
+      break;
+  }
+  return "ies";
+}
 
 namespace {
 
@@ -40,7 +51,8 @@ Color Light::intensityToward(const Vec3& toward) const {
       if (!ies) return Color(0.0f);
       Vec3 x, y, z;
       luminaireFrame(direction, x, y, z);
-      const double cd = ies->candelaToward(glm::dot(toward, x), glm::dot(toward, y), glm::dot(toward, z));
+      const double cd =
+          ies->candelaToward(glm::dot(toward, x), glm::dot(toward, y), glm::dot(toward, z));
       return intensity * float(cd);
     }
   }

@@ -1,0 +1,94 @@
+// `radiosity serve SCENE`: solves the scene by the patch method (or loads a saved solution) and
+// serves the browser viewer: the lit scene, its lights to move and dim, the bounce following
+// (src/server: ViewerSession, ViewerServer).
+#include <fmt/format.h>
+#include <radiosity/error.h>
+#include <radiosity/relighter.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <thread>
+
+#include "command_support.h"
+#include "commands.h"
+#include "method_options.h"
+#include "server/viewer_server.h"
+#include "server/viewer_session.h"
+
+#ifndef RADIOSITY_WEB_DIR
+#define RADIOSITY_WEB_DIR "web"
+#endif
+
+namespace rad::cli {
+
+namespace {
+
+struct ServeOptions {
+  explicit ServeOptions(CLI::App& command) : method(command, {"patch"}) {}
+  MethodOptions method;
+  std::string scene, solution, host = "127.0.0.1", webDir = RADIOSITY_WEB_DIR;
+  int port = 8080;
+  double time = 0.0;
+  float displayEdge = 0.0f;
+};
+
+int runServe(ServeOptions& o, Console& console) {
+  RunStats stats;
+  const Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
+  if (o.solution.empty())
+    o.method.resolve(scene);
+  else
+    o.method.resolveFromSolution(scene, o.solution, console);
+  if (!o.method.groupScales().empty())
+    throw InputError("--group", "serve: the page dims and switches the groups");
+  const RayCaster caster(scene);  // the relighter's, for as long as it serves
+  std::unique_ptr<ViewerSession> session;
+  {
+    InterruptGuard interruptible;
+    const PatchModel model(scene, caster, o.method.patch());
+    Relighter relighter = startRelighter(model, scene.lights, o.solution, {}, console);
+    const float edge =
+        o.displayEdge > 0.0f ? o.displayEdge : 0.5f * relighter.solution().stats().patchSize;
+    session = std::make_unique<ViewerSession>(scene, scene.lights, std::move(relighter), edge);
+  }
+  ViewerServer server(*session, o.webDir);
+  const int port = server.bind(o.host, o.port);
+  console.info(fmt::format("serving {} at http://{}:{}/ (Ctrl-C stops)", o.scene, o.host, port));
+  InterruptGuard interruptible;
+  std::atomic<bool> done = false;
+  std::thread watcher([&] {
+    while (!done && !InterruptGuard::interrupted())
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    server.stop();
+  });
+  server.run();
+  done = true;
+  watcher.join();
+  console.info("stopped");
+  return 0;
+}
+
+}  // namespace
+
+void addServeCommand(CLI::App& app, Console& console, CommandAction& action) {
+  CLI::App* sub = app.add_subcommand(
+      "serve", "Serve the lit scene to a browser: move and dim its lights, the bounce follows");
+  auto o = std::make_shared<ServeOptions>(*sub);
+  addSceneArgument(*sub, o->scene);
+  sub->add_option("--port", o->port, "TCP port (default 8080; 0: any free one)")
+      ->check(CLI::Range(0, 65535));
+  sub->add_option("--host", o->host, "Address to listen on (default 127.0.0.1: this machine only)");
+  sub->add_option("--solution", o->solution,
+                  "Start from the solution a .rad file keeps (solve --save) instead of solving");
+  sub->add_option("--display-edge", o->displayEdge,
+                  "Longest edge of the displayed triangles (default: half the patch size)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--web-dir", o->webDir, "The page's folder (default: the source tree's web/)");
+  addTimeOption(*sub, o->time);
+  sub->callback(
+      [o, &console, &action] { action = [o, &console] { return runServe(*o, console); }; });
+}
+
+}  // namespace rad::cli

@@ -1,0 +1,90 @@
+// The viewer's routes on cpp-httplib.
+#include "server/viewer_server.h"
+
+#include <fmt/format.h>
+#include <httplib.h>
+#include <radiosity/error.h>
+
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "server/viewer_session.h"
+
+namespace rad {
+
+namespace {
+
+void badRequest(httplib::Response& response, const std::string& message) {
+  response.status = 400;
+  response.set_content(nlohmann::json{{"error", message}}.dump(), "application/json");
+}
+
+void binary(httplib::Response& response, const std::string& bytes) {
+  response.set_content(bytes, "application/octet-stream");
+}
+
+}  // namespace
+
+ViewerServer::ViewerServer(ViewerSession& session, const std::filesystem::path& webRoot)
+    : http_(std::make_unique<httplib::Server>()) {
+  httplib::Server& http = *http_;
+  // Above the limit httplib itself answers 413 without reading it; up to it, a 400 below.
+  http.set_payload_max_length(4 * kMaxBody);
+  http.Get("/api/scene", [&session](const httplib::Request&, httplib::Response& response) {
+    response.set_content(session.summary().dump(), "application/json");
+  });
+  http.Get("/api/mesh.glb", [&session](const httplib::Request&, httplib::Response& response) {
+    response.set_content(session.meshGlb(), "model/gltf-binary");
+  });
+  http.Get("/api/colors", [&session](const httplib::Request&, httplib::Response& response) {
+    binary(response, session.colors());
+  });
+  http.Post(
+      "/api/lights", [&session](const httplib::Request& request, httplib::Response& response) {
+        if (request.body.size() > kMaxBody)
+          return badRequest(
+              response, fmt::format("body of {} bytes; at most {}", request.body.size(), kMaxBody));
+        const nlohmann::json body = nlohmann::json::parse(request.body, nullptr, false);
+        if (body.is_discarded()) return badRequest(response, "the body is not valid JSON");
+        try {
+          double ms = 0.0;
+          binary(response, session.applyLights(body, &ms));
+          response.set_header("X-Relight-Ms", fmt::format("{:.3f}", ms));
+        } catch (const InputError& e) {
+          badRequest(response, e.what());
+        }
+      });
+  std::error_code ec;
+  if (std::filesystem::is_directory(webRoot, ec)) http.set_mount_point("/", webRoot.string());
+  http.set_exception_handler(
+      [](const httplib::Request&, httplib::Response& response, std::exception_ptr error) {
+        response.status = 500;
+        try {
+          std::rethrow_exception(error);
+        } catch (const std::exception& e) {
+          response.set_content(nlohmann::json{{"error", e.what()}}.dump(), "application/json");
+        } catch (...) {
+          response.set_content(R"({"error": "unknown"})", "application/json");
+        }
+      });
+}
+
+ViewerServer::~ViewerServer() = default;
+
+int ViewerServer::bind(const std::string& host, int port) {
+  const int bound = port == 0                         ? http_->bind_to_any_port(host)
+                    : http_->bind_to_port(host, port) ? port
+                                                      : -1;
+  if (bound < 0) throw std::runtime_error(fmt::format("cannot listen on {}:{}", host, port));
+  return bound;
+}
+
+void ViewerServer::run() {
+  http_->listen_after_bind();
+}
+
+void ViewerServer::stop() {
+  http_->stop();
+}
+
+}  // namespace rad

@@ -1,0 +1,199 @@
+// The viewer's state: the lights the page asked for, the relighter that follows them, and the
+// display mesh's colours.
+#include "server/viewer_session.h"
+
+#include <fmt/format.h>
+#include <radiosity/error.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "output/gltf_export.h"
+
+namespace rad {
+
+namespace {
+
+using Json = nlohmann::json;
+
+[[noreturn]] void refuse(const std::string& where, const std::string& what) {
+  throw InputError("request " + where, what);
+}
+
+Vec3 vec3(const Json& j, const std::string& where) {
+  if (!j.is_array() || j.size() != 3) refuse(where, "expected an array of 3 numbers");
+  Vec3 v;
+  for (int k = 0; k < 3; ++k) {
+    if (!j[size_t(k)].is_number()) refuse(where, "expected an array of 3 numbers");
+    v[k] = j[size_t(k)].get<float>();
+    if (!std::isfinite(v[k])) refuse(where, "expected finite numbers");
+  }
+  return v;
+}
+
+Color nonNegative(const Json& j, const std::string& where) {
+  const Color c = j.is_number() ? Color(j.get<float>()) : vec3(j, where);
+  if (!(minComponent(c) >= 0.0f) || !std::isfinite(maxComponent(c)))
+    refuse(where, "expected finite numbers >= 0");
+  return c;
+}
+
+Json array(const Vec3& v) {
+  return Json::array({v.x, v.y, v.z});
+}
+
+}  // namespace
+
+ViewerSession::ViewerSession(const Scene& scene, std::vector<Light> lights, Relighter relighter,
+                             float displayEdge)
+    : scene_(scene),
+      groups_(lightGroupsOf(scene, lights)),
+      display_(cutSurfaces(scene, displayEdge)),
+      glbOrder_(glbVertexOrder(display_.mesh)),
+      lights_(std::move(lights)),
+      scales_(groups_.size(), Color(1.0f)),
+      relighter_(std::move(relighter)) {
+  shade();
+  meshGlb_ = litMeshGlb(display_.mesh);
+}
+
+void ViewerSession::shade() {
+  shadeSurfaces(display_, relighter_.solution());
+  colors_.resize(3 * glbOrder_.size());
+  for (size_t k = 0; k < glbOrder_.size(); ++k)
+    std::memcpy(&colors_[3 * k], &display_.mesh.colors[glbOrder_[k]], 3 * sizeof(float));
+}
+
+Json ViewerSession::summary() const {
+  std::lock_guard state(stateMutex_);
+  Json lights = Json::array();
+  for (size_t i = 0; i < lights_.size(); ++i) {
+    const Light& l = lights_[i];
+    Json light = {{"id", i},
+                  {"type", lightTypeName(l.type)},
+                  {"position", array(l.position)},
+                  {"direction", array(l.direction)},
+                  {"intensity", array(l.intensity)}};
+    if (l.type == LightType::Spot) {
+      light["inner_angle_deg"] = l.innerAngleDeg;
+      light["outer_angle_deg"] = l.outerAngleDeg;
+    }
+    for (const LightGroup& g : groups_)
+      for (uint32_t member : g.lights)
+        if (member == i) light["group"] = g.name;
+    lights.push_back(light);
+  }
+  Json groups = Json::array();
+  for (size_t g = 0; g < groups_.size(); ++g)
+    groups.push_back({{"name", groups_[g].name},
+                      {"scale", array(scales_[g])},
+                      {"lights", groups_[g].lights.size()},
+                      {"emitting_materials", groups_[g].materials.size()}});
+  const Camera camera = scene_.cameraOrDefault();
+  const Bounds bounds = scene_.bounds();
+  std::lock_guard relight(relightMutex_);
+  return {{"scene", scene_.name},
+          {"method", "patch"},
+          {"patches", relighter_.solution().elementCount()},
+          {"vertices", glbOrder_.size()},
+          {"lights", lights},
+          {"groups", groups},
+          {"camera",
+           {{"eye", array(camera.eye)},
+            {"target", array(camera.target)},
+            {"up", array(camera.up)},
+            {"fov_deg", camera.fovDeg}}},
+          {"bounds", {{"min", array(bounds.min)}, {"max", array(bounds.max)}}},
+          {"last_relight_ms", lastRelightMs_}};
+}
+
+std::string ViewerSession::colors() const {
+  std::lock_guard relight(relightMutex_);
+  return std::string(reinterpret_cast<const char*>(colors_.data()), colors_.size() * sizeof(float));
+}
+
+std::vector<Light> ViewerSession::effectiveLights() const {
+  std::vector<Light> lights = lights_;
+  for (size_t g = 0; g < groups_.size(); ++g)
+    for (uint32_t i : groups_[g].lights) lights[i].intensity *= scales_[g];
+  return lights;
+}
+
+std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
+  if (!request.is_object()) refuse("", "expected a JSON object with \"lights\" and/or \"groups\"");
+  for (const auto& [key, value] : request.items())
+    if (key != "lights" && key != "groups")
+      refuse("/" + key, "unknown key (expected \"lights\" or \"groups\")");
+  uint64_t mine = 0;
+  {
+    std::lock_guard state(stateMutex_);
+    std::vector<Light> lights = lights_;
+    std::vector<Color> scales = scales_;
+    if (request.contains("lights")) {
+      const Json& list = request["lights"];
+      if (!list.is_array()) refuse("/lights", "expected an array");
+      for (size_t k = 0; k < list.size(); ++k) {
+        const std::string at = fmt::format("/lights/{}", k);
+        const Json& edit = list[k];
+        if (!edit.is_object() || !edit.contains("id") || !edit["id"].is_number_integer())
+          refuse(at, "expected an object with an integer \"id\"");
+        const int64_t id = edit["id"].get<int64_t>();
+        if (id < 0 || size_t(id) >= lights.size())
+          refuse(at + "/id", fmt::format("no light {} (ids 0 to {})", id, lights.size() - 1));
+        Light& light = lights[size_t(id)];
+        for (const auto& [key, value] : edit.items()) {
+          if (key == "id") continue;
+          if (key == "position") {
+            light.position = vec3(value, at + "/position");
+          } else if (key == "direction") {
+            const Vec3 d = vec3(value, at + "/direction");
+            if (!(glm::length(d) > 0.0f)) refuse(at + "/direction", "zero length");
+            light.direction = glm::normalize(d);
+          } else if (key == "intensity") {
+            light.intensity = nonNegative(value, at + "/intensity");
+          } else {
+            refuse(at + "/" + key, "unknown key (expected id, position, direction, intensity)");
+          }
+        }
+      }
+    }
+    if (request.contains("groups")) {
+      const Json& map = request["groups"];
+      if (!map.is_object()) refuse("/groups", "expected an object of group name: scale");
+      for (const auto& [name, value] : map.items()) {
+        size_t g = 0;
+        while (g < groups_.size() && groups_[g].name != name) ++g;
+        if (g == groups_.size()) refuse("/groups/" + name, "no such light group");
+        if (!groups_[g].materials.empty())
+          refuse("/groups/" + name,
+                 "a group of emitting surfaces cannot be dimmed live yet (only point, spot and "
+                 "IES light groups)");
+        scales[g] = nonNegative(value, "/groups/" + name);
+      }
+    }
+    lights_ = std::move(lights);
+    scales_ = std::move(scales);
+    mine = ++asked_;
+  }
+  std::lock_guard relight(relightMutex_);
+  if (reached_ < mine) {  // else a later request's relight already covered this one
+    std::vector<Light> lights;
+    uint64_t newest = 0;
+    {
+      std::lock_guard state(stateMutex_);
+      lights = effectiveLights();
+      newest = asked_;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    relighter_.relight(lights);
+    shade();
+    lastRelightMs_ =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    reached_ = newest;
+  }
+  if (relightMs) *relightMs = lastRelightMs_;
+  return std::string(reinterpret_cast<const char*>(colors_.data()), colors_.size() * sizeof(float));
+}
+
+}  // namespace rad

@@ -1,0 +1,66 @@
+#pragma once
+// What the browser viewer shows and changes (radiosity serve): a patch solution kept up to date
+// by a Relighter as the page moves, aims, dims and switches lights, and the display mesh it is
+// drawn on (the scene's triangles cut to a viewing size, the same vertices whatever the patches
+// become) with each vertex's radiance. Thread-safe: the HTTP server calls it from many threads.
+// Relight requests that arrive while one runs are coalesced: the newest state wins, and every
+// waiting request is answered with the colours of that state.
+
+#include <radiosity/light_groups.h>
+#include <radiosity/patch_radiosity.h>
+#include <radiosity/relighter.h>
+
+#include <cstdint>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "output/baked_mesh.h"
+
+namespace rad {
+
+class ViewerSession {
+ public:
+  /// Takes the relighter (solved for `lights`) of a model of `scene`, which must outlive the
+  /// session; the display mesh's edges are at most `displayEdge` (scene units).
+  ViewerSession(const Scene& scene, std::vector<Light> lights, Relighter relighter,
+                float displayEdge);
+
+  /// The scene, its lights (with ids, groups, and the state now) and the light groups, the
+  /// camera and the mesh's size, as the page and scripts read them.
+  nlohmann::json summary() const;
+  /// The display mesh as binary glTF (colours clamped to [0, 1], as an export).
+  const std::string& meshGlb() const { return meshGlb_; }
+  /// Per display vertex in the .glb's vertex order: the linear radiance (3 little-endian float32).
+  std::string colors() const;
+
+  /// Applies a light state: {"lights": [{"id": i, "position": [x, y, z], "direction": [...],
+  /// "intensity": [...]}], "groups": {"name": scale or [r, g, b]}}, every field optional but
+  /// the id. Checks all of it first and throws InputError (naming the field) without changing
+  /// anything; then relights (coalesced) and returns the colours of the state it reached.
+  std::string applyLights(const nlohmann::json& request, double* relightMs = nullptr);
+
+ private:
+  std::vector<Light> effectiveLights() const;  // with the groups' scales; under stateMutex_
+  void shade();                                // under relightMutex_
+
+  const Scene& scene_;
+  std::vector<LightGroup> groups_;
+  SurfaceBake display_;
+  std::vector<uint32_t> glbOrder_;
+  std::string meshGlb_;
+
+  mutable std::mutex stateMutex_;  ///< the asked state: lights_, scales_, asked_
+  std::vector<Light> lights_;
+  std::vector<Color> scales_;
+  uint64_t asked_ = 0;  ///< generation of the newest asked state
+
+  mutable std::mutex relightMutex_;  ///< the relighter and what it shows
+  Relighter relighter_;
+  uint64_t reached_ = 0;  ///< generation the relighter and the colours are at
+  double lastRelightMs_ = 0.0;
+  std::vector<float> colors_;  ///< in .glb order
+};
+
+}  // namespace rad

@@ -1,0 +1,211 @@
+// The viewer's API over HTTP: the scene, mesh and colours it serves; a light move answered with
+// the colours the library's relighter gives for the same lights; bad requests refused with 400
+// and nothing changed; no file served from outside the page's folder.
+#include "server/viewer_server.h"
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <radiosity/relighter.h>
+#include <radiosity/scene_loader.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "output/baked_mesh.h"
+#include "output/gltf_export.h"
+#include "server/viewer_session.h"
+
+namespace rad {
+namespace {
+
+namespace fs = std::filesystem;
+
+PatchRadiositySettings smallSettings() {
+  PatchRadiositySettings s;
+  s.targetPatches = 600;
+  s.formFactorRays = 64;
+  return s;
+}
+
+constexpr float kDisplayEdge = 60.0f;
+
+// A server on a free port of 127.0.0.1 over a session of cornell-spot, in a thread of its own.
+class ViewerServerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    web_ = fs::path(::testing::TempDir()) / "viewer_web";
+    fs::create_directories(web_);
+    std::ofstream(web_ / "index.html") << "<!doctype html><title>viewer</title>";
+    session_ = std::make_unique<ViewerSession>(scene_, scene_.lights,
+                                               Relighter(model_, scene_.lights), kDisplayEdge);
+    server_ = std::make_unique<ViewerServer>(*session_, web_);
+    port_ = server_->bind("127.0.0.1", 0);
+    thread_ = std::thread([this] { server_->run(); });
+    client_ = std::make_unique<httplib::Client>("127.0.0.1", port_);
+  }
+  void TearDown() override {
+    server_->stop();
+    thread_.join();
+  }
+
+  // The colours a relighter of our own gives on the same display mesh, in the .glb's vertex
+  // order, after a relight to `lights` (none: as it starts): what the server must answer.
+  std::string expectedColors(const std::vector<Light>* lights) const {
+    Relighter relighter(model_, scene_.lights);
+    if (lights) relighter.relight(*lights);
+    SurfaceBake bake = cutSurfaces(scene_, kDisplayEdge);
+    shadeSurfaces(bake, relighter.solution());
+    std::string bytes;
+    for (uint32_t v : glbVertexOrder(bake.mesh))
+      bytes.append(reinterpret_cast<const char*>(&bake.mesh.colors[v]), 3 * sizeof(float));
+    return bytes;
+  }
+
+  httplib::Result post(const std::string& body) {
+    return client_->Post("/api/lights", body, "application/json");
+  }
+
+  const Scene scene_ = loadScene("cornell-spot");
+  const PatchModel model_{scene_, smallSettings()};
+  fs::path web_;
+  std::unique_ptr<ViewerSession> session_;
+  std::unique_ptr<ViewerServer> server_;
+  int port_ = 0;
+  std::thread thread_;
+  std::unique_ptr<httplib::Client> client_;
+};
+
+TEST_F(ViewerServerTest, ServesTheSceneMeshAndColours) {
+  const auto scene = client_->Get("/api/scene");
+  ASSERT_TRUE(scene);
+  ASSERT_EQ(scene->status, 200);
+  const nlohmann::json j = nlohmann::json::parse(scene->body);
+  EXPECT_EQ(j["scene"], "cornell-spot");
+  ASSERT_EQ(j["lights"].size(), 1u);
+  EXPECT_EQ(j["lights"][0]["type"], "spot");
+  const auto mesh = client_->Get("/api/mesh.glb");
+  ASSERT_TRUE(mesh);
+  EXPECT_EQ(mesh->body.substr(0, 4), "glTF");
+  const auto colors = client_->Get("/api/colors");
+  ASSERT_TRUE(colors);
+  EXPECT_EQ(colors->body.size(), 12 * j["vertices"].get<size_t>());
+  EXPECT_TRUE(colors->body == expectedColors(nullptr));  // (no dump of binary bodies)
+}
+
+TEST_F(ViewerServerTest, ALightMoveAnswersTheRelightersColours) {
+  std::vector<Light> lights = scene_.lights;
+  lights[0].direction = glm::normalize(Vec3(0.4f, -1.0f, 0.0f));
+  lights[0].position.x += 30.0f;
+  const nlohmann::json body = {
+      {"lights",
+       {{{"id", 0},
+         {"position", {lights[0].position.x, lights[0].position.y, lights[0].position.z}},
+         {"direction", {0.4, -1.0, 0.0}}}}}};
+  const auto moved = post(body.dump());
+  ASSERT_TRUE(moved);
+  ASSERT_EQ(moved->status, 200) << moved->body;
+  EXPECT_TRUE(moved->has_header("X-Relight-Ms"));
+  EXPECT_TRUE(moved->body == expectedColors(&lights));
+  EXPECT_FALSE(moved->body == expectedColors(nullptr));  // the beam moved
+  // A dimmer on the spot's group: the colours the relighter gives at that intensity.
+  const auto dimmed = post(R"({"groups": {"light0": 0.5}})");
+  ASSERT_TRUE(dimmed);
+  ASSERT_EQ(dimmed->status, 200) << dimmed->body;
+  lights[0].intensity *= 0.5f;
+  // The server relit twice, our relighter once: equal within the relighter's tolerance.
+  const std::string expected = expectedColors(&lights);
+  ASSERT_EQ(dimmed->body.size(), expected.size());
+  const float* got = reinterpret_cast<const float*>(dimmed->body.data());
+  const float* want = reinterpret_cast<const float*>(expected.data());
+  double worst = 0.0, mean = 0.0;
+  for (size_t k = 0; k < expected.size() / 4; ++k) {
+    worst = std::max(worst, double(std::abs(got[k] - want[k])));
+    mean += want[k] / double(expected.size() / 4);
+  }
+  EXPECT_LE(worst, 0.01 * mean);
+}
+
+TEST_F(ViewerServerTest, BadRequestsAre400AndChangeNothing) {
+  const auto before = client_->Get("/api/scene")->body;
+  const auto colorsBefore = client_->Get("/api/colors")->body;
+  for (const std::string bad :
+       {"not json", "[]", R"({"lihgts": []})", R"({"lights": [{"id": 3}]})",
+        R"({"lights": [{"id": 0, "position": [1, 2]}]})",
+        R"({"lights": [{"id": 0, "direction": [0, 0, 0]}]})",
+        R"({"lights": [{"id": 0, "intensity": [-1, 0, 0]}]})",
+        R"({"lights": [{"id": 0, "position": [1, 2, 3]}, {"id": 0, "colour": 1}]})",
+        R"({"groups": {"nope": 1}})", R"({"groups": {"light0": "dim"}})"}) {
+    const auto r = post(bad);
+    ASSERT_TRUE(r) << bad;
+    EXPECT_EQ(r->status, 400) << bad;
+    EXPECT_NE(nlohmann::json::parse(r->body)["error"].get<std::string>(), "") << bad;
+  }
+  const auto big = post(std::string(ViewerServer::kMaxBody + 1, ' '));
+  ASSERT_TRUE(big);
+  EXPECT_EQ(big->status, 400);
+  EXPECT_EQ(client_->Get("/api/scene")->body, before);
+  EXPECT_TRUE(client_->Get("/api/colors")->body == colorsBefore);
+}
+
+TEST_F(ViewerServerTest, ServesThePageButNothingOutsideItsFolder) {
+  const auto page = client_->Get("/index.html");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  std::ofstream(web_.parent_path() / "secret.txt") << "secret";
+  for (const std::string path : {"/../secret.txt", "/%2e%2e/secret.txt", "/..%2fsecret.txt"}) {
+    const auto r = client_->Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_NE(r->status, 200) << path;
+    EXPECT_EQ(r->body.find("secret"), std::string::npos) << path;
+  }
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+// `radiosity serve` itself: it prints where it listens, answers there, and Ctrl-C (SIGINT) stops
+// it cleanly (status 0).
+TEST(Serve, ListensWhereItSaysAndStopsOnCtrlC) {
+  const fs::path log = fs::path(::testing::TempDir()) / "serve.log";
+  fs::remove(log);
+  const std::string command = std::string(RADIOSITY_BINARY_DIR) +
+                              "/radiosity serve cornell-spot --port 0 --patches 300 "
+                              "--cache-dir none > " +
+                              log.string() + " 2>&1";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), nullptr);
+    ::_exit(127);
+  }
+  int port = 0;
+  for (int tries = 0; tries < 600 && port == 0; ++tries) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    const size_t at = text.find("http://127.0.0.1:");
+    if (at != std::string::npos) port = std::atoi(text.c_str() + at + 17);
+  }
+  ASSERT_GT(port, 0) << "no URL printed";
+  httplib::Client client("127.0.0.1", port);
+  const auto scene = client.Get("/api/scene");
+  ASSERT_TRUE(scene);
+  EXPECT_EQ(scene->status, 200);
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
+}  // namespace
+}  // namespace rad
