@@ -1,0 +1,99 @@
+// The viewer page in a real headless Chromium (Debian's chromium, driven by puppeteer-core): it
+// loads and draws the lit scene, a spot moved through the page's own controls relights it, and
+// the picture changes where the beam moved and hardly elsewhere; the page logs no errors.
+// Usage: node viewer_test.mjs BINARY WEB_DIR OUT_DIR   (screenshots go to OUT_DIR)
+import { spawn } from 'node:child_process';
+import { mkdirSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import path from 'node:path';
+
+const [binary, webDir, outDir] = process.argv.slice(2);
+const require = createRequire(path.join(webDir, 'package.json'));
+const puppeteer = require('puppeteer-core');
+mkdirSync(outDir, { recursive: true });
+
+function fail(message) {
+  console.error(`FAIL: ${message}`);
+  process.exitCode = 1;
+}
+
+// The server on a free port; its URL from what it prints.
+const server = spawn(binary, ['serve', 'cornell-spot', '--port', '0', '--patches', '600', '--cache-dir',
+  'none', '--web-dir', webDir], { stdio: ['ignore', 'pipe', 'pipe'] });
+const url = await new Promise((resolve, reject) => {
+  let text = '';
+  const timer = setTimeout(() => reject(new Error(`no URL printed: ${text}`)), 60000);
+  const read = (chunk) => {
+    text += chunk;
+    const match = text.match(/http:\/\/127\.0\.0\.1:\d+\//);
+    if (match) { clearTimeout(timer); resolve(match[0]); }
+  };
+  server.stdout.on('data', read);
+  server.stderr.on('data', read);
+  server.on('exit', (code) => reject(new Error(`server exited (${code}): ${text}`)));
+});
+
+const browser = await puppeteer.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  headless: true,
+  args: ['--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader'],
+});
+try {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 900, height: 600 });
+  const errors = [];
+  page.on('console', (message) => { if (message.type() === 'error') errors.push(message.text()); });
+  page.on('pageerror', (error) => errors.push(error.message));
+  await page.goto(url);
+  await page.waitForFunction(() => window.viewerState && window.viewerState.frames > 3, { timeout: 60000 });
+
+  // Mean luminance of the drawn picture in 12 x 12 blocks, read back from the WebGL canvas.
+  const blocks = () => page.evaluate(() => {
+    const view = document.getElementById('view');
+    const copy = document.createElement('canvas');
+    copy.width = view.width; copy.height = view.height;
+    const context = copy.getContext('2d');
+    context.drawImage(view, 0, 0);
+    const pixels = context.getImageData(0, 0, copy.width, copy.height).data;
+    const n = 12, out = new Array(n * n).fill(0), count = new Array(n * n).fill(0);
+    for (let y = 0; y < copy.height; ++y)
+      for (let x = 0; x < copy.width; ++x) {
+        const k = 4 * (y * copy.width + x);
+        const b = Math.floor((y * n) / copy.height) * n + Math.floor((x * n) / copy.width);
+        out[b] += (0.2126 * pixels[k] + 0.7152 * pixels[k + 1] + 0.0722 * pixels[k + 2]) / 255;
+        count[b] += 1;
+      }
+    return out.map((v, b) => v / count[b]);
+  });
+  const before = await blocks();
+  await page.screenshot({ path: path.join(outDir, 'viewer_before.png') });
+
+  // Swing the spot toward the green wall through the direction fields of the lights panel.
+  const relights = await page.evaluate(() => window.viewerState.relights);
+  await page.evaluate(() => {
+    const inputs = document.querySelectorAll('#light-0 .direction input');
+    inputs[0].value = '-0.8';
+    inputs[0].dispatchEvent(new Event('change'));
+  });
+  await page.waitForFunction((n) => window.viewerState.relights > n, { timeout: 60000 }, relights);
+  const frames = await page.evaluate(() => window.viewerState.frames);
+  await page.waitForFunction((n) => window.viewerState.frames > n + 3, { timeout: 60000 }, frames);
+  const after = await blocks();
+  await page.screenshot({ path: path.join(outDir, 'viewer_after.png') });
+
+  const change = before.map((v, b) => Math.abs(after[b] - v));
+  const largest = Math.max(...change);
+  const changed = change.filter((c) => c > 0.1).length;
+  console.log(`largest block change ${largest.toFixed(3)}, ${changed} of ${change.length} blocks changed by > 0.1`);
+  if (!(largest > 0.1)) fail('the picture did not change where the beam moved');
+  if (!(changed < change.length / 3)) fail('the picture changed nearly everywhere, not where the beam moved');
+  if (errors.length) fail(`the page logged errors: ${errors.join('; ')}`);
+  const state = await page.evaluate(() => window.viewerState);
+  console.log(`relight ${state.lastRelightMs} ms, ${state.frames} frames, ${state.errors} errors`);
+  if (state.errors) fail('the page reported errors');
+} catch (error) {
+  fail(error.stack || String(error));
+} finally {
+  await browser.close();
+  server.kill('SIGINT');
+}

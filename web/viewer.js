@@ -1,0 +1,243 @@
+// The viewer page of `radiosity serve`: the lit scene drawn from the server's display mesh and
+// per-vertex radiance (README, "serve" API), orbit controls, the lights to drag or edit by number
+// and the light groups to dim; every change goes to the server, which relights and answers the
+// new colours. One request at a time: changes made meanwhile go in the next one, so dragging
+// never queues a backlog.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { TransformControls } from 'three/addons/controls/TransformControls.js';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+
+const statusLine = document.getElementById('status');
+// What the browser test waits on: frames drawn, relights answered, requests failed.
+window.viewerState = { frames: 0, relights: 0, errors: 0, lastRelightMs: 0 };
+
+function report(text, isError = false) {
+  statusLine.textContent = text;
+  statusLine.classList.toggle('error', isError);
+  if (isError) {
+    window.viewerState.errors += 1;
+    console.error(text);
+  }
+}
+
+async function fetchOk(path, options) {
+  const response = await fetch(path, options);
+  if (!response.ok) {
+    let message = `${path}: HTTP ${response.status}`;
+    try { message += `: ${(await response.json()).error}`; } catch (_) { /* not JSON */ }
+    throw new Error(message);
+  }
+  return response;
+}
+
+const canvas = document.getElementById('view');
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio);
+// The colours are linear radiance: times 2^EV, clamped, sRGB-encoded, as the CLI's PNGs.
+renderer.toneMapping = THREE.LinearToneMapping;
+renderer.outputColorSpace = THREE.SRGBColorSpace;
+const scene3d = new THREE.Scene();
+scene3d.background = new THREE.Color(0x000000);
+const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+const orbit = new OrbitControls(camera, canvas);
+const gizmo = new TransformControls(camera, canvas);
+gizmo.addEventListener('dragging-changed', (event) => { orbit.enabled = !event.value; });
+scene3d.add(gizmo.getHelper());
+
+let summary = null;
+const meshes = [];      // the display mesh's parts, in the .glb's vertex order
+const lights = [];      // the lights' state as the page has it
+const groupScales = {}; // light group name -> scale
+const markers = [];     // a marker per light, for the gizmo
+
+function resize() {
+  const width = canvas.clientWidth, height = canvas.clientHeight;
+  renderer.setSize(width, height, false);
+  camera.aspect = width / height;
+  camera.updateProjectionMatrix();
+}
+
+function applyColors(buffer) {
+  const colors = new Float32Array(buffer);
+  let at = 0;
+  for (const mesh of meshes) {
+    const attribute = mesh.geometry.getAttribute('color');
+    attribute.array.set(colors.subarray(at, at + attribute.array.length));
+    attribute.needsUpdate = true;
+    at += attribute.array.length;
+  }
+  if (at !== colors.length) report(`colours for ${colors.length / 3} vertices, mesh has ${at / 3}`, true);
+}
+
+// --- talking to the server -------------------------------------------------------------------
+let inFlight = false, pending = false;
+
+function lightState() {
+  return {
+    lights: lights.map((l) => ({ id: l.id, position: l.position, direction: l.direction, intensity: l.intensity })),
+    groups: { ...groupScales },
+  };
+}
+
+async function sendState() {
+  if (inFlight) { pending = true; return; }
+  inFlight = true;
+  try {
+    const response = await fetchOk('api/lights', {
+      method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(lightState()),
+    });
+    const ms = Number(response.headers.get('X-Relight-Ms'));
+    applyColors(await response.arrayBuffer());
+    window.viewerState.relights += 1;
+    window.viewerState.lastRelightMs = ms;
+    report(`relit in ${ms.toFixed(1)} ms`);
+  } catch (error) {
+    report(error.message, true);
+  } finally {
+    inFlight = false;
+    if (pending) { pending = false; sendState(); }
+  }
+}
+
+// --- the panel -------------------------------------------------------------------------------
+function numberInputs(label, values, onChange) {
+  const row = document.createElement('label');
+  row.textContent = label + ' ';
+  values.forEach((value, k) => {
+    const input = document.createElement('input');
+    input.type = 'number';
+    input.step = 'any';
+    input.value = Number(value.toPrecision(6));
+    input.dataset.component = String(k);
+    input.addEventListener('change', () => {
+      const v = Number(input.value);
+      if (Number.isFinite(v)) onChange(k, v);
+    });
+    row.appendChild(input);
+  });
+  return row;
+}
+
+function lightPanel(light) {
+  const box = document.createElement('div');
+  box.className = 'light';
+  box.id = `light-${light.id}`;
+  const name = document.createElement('div');
+  name.className = 'name';
+  name.textContent = `#${light.id} ${light.type}` + (light.group ? ` (group ${light.group})` : '');
+  box.appendChild(name);
+  const update = () => { markers[light.id].position.fromArray(light.position); sendState(); };
+  const position = numberInputs('position', light.position, (k, v) => { light.position[k] = v; update(); });
+  position.classList.add('position');
+  box.appendChild(position);
+  if (light.type !== 'point') {
+    const direction = numberInputs('direction', light.direction, (k, v) => { light.direction[k] = v; sendState(); });
+    direction.classList.add('direction');
+    box.appendChild(direction);
+  }
+  const intensity = numberInputs('W/sr', light.intensity, (k, v) => { light.intensity[k] = Math.max(0, v); sendState(); });
+  intensity.classList.add('intensity');
+  box.appendChild(intensity);
+  light.positionInputs = position.querySelectorAll('input');
+  return box;
+}
+
+function groupPanel(group) {
+  const row = document.createElement('label');
+  row.id = `group-${group.name}`;
+  const live = group.emitting_materials === 0;
+  const on = document.createElement('input');
+  on.type = 'checkbox';
+  on.checked = true;
+  const dimmer = document.createElement('input');
+  dimmer.type = 'range';
+  dimmer.min = '0'; dimmer.max = '2'; dimmer.step = '0.01'; dimmer.value = '1';
+  const apply = () => { groupScales[group.name] = on.checked ? Number(dimmer.value) : 0; sendState(); };
+  on.addEventListener('change', apply);
+  dimmer.addEventListener('input', apply);
+  on.disabled = dimmer.disabled = !live;
+  row.append(on, ` ${group.name} `, dimmer);
+  if (!live) row.title = 'glowing surfaces cannot be dimmed live yet';
+  return row;
+}
+
+// --- start -----------------------------------------------------------------------------------
+async function start() {
+  summary = await (await fetchOk('api/scene')).json();
+  document.getElementById('title').textContent = summary.scene;
+  const gltf = await new GLTFLoader().parseAsync(await (await fetchOk('api/mesh.glb')).arrayBuffer(), '');
+  gltf.scene.traverse((object) => {
+    if (!object.isMesh) return;
+    object.material = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.FrontSide });
+    meshes.push(object);
+  });
+  scene3d.add(gltf.scene);
+  applyColors(await (await fetchOk('api/colors')).arrayBuffer());
+
+  const c = summary.camera;
+  camera.fov = c.fov_deg;
+  camera.position.fromArray(c.eye);
+  camera.up.fromArray(c.up);
+  orbit.target.fromArray(c.target);
+  const size = new THREE.Vector3().fromArray(summary.bounds.max).sub(new THREE.Vector3().fromArray(summary.bounds.min));
+  const diagonal = size.length();
+  camera.near = diagonal * 1e-3;
+  camera.far = diagonal * 20;
+  orbit.update();
+
+  const markerGeometry = new THREE.SphereGeometry(diagonal * 0.012, 16, 8);
+  for (const light of summary.lights) {
+    lights.push(light);
+    const marker = new THREE.Mesh(markerGeometry, new THREE.MeshBasicMaterial({ color: 0xffdd55 }));
+    marker.position.fromArray(light.position);
+    marker.userData.light = light;
+    markers[light.id] = marker;
+    scene3d.add(marker);
+    document.getElementById('lights').appendChild(lightPanel(light));
+  }
+  for (const group of summary.groups) {
+    groupScales[group.name] = group.scale[0];
+    document.getElementById('groups').appendChild(groupPanel(group));
+  }
+  gizmo.addEventListener('objectChange', () => {
+    const marker = gizmo.object;
+    const light = marker.userData.light;
+    light.position = marker.position.toArray();
+    light.positionInputs.forEach((input, k) => { input.value = Number(light.position[k].toPrecision(6)); });
+    sendState();
+  });
+  const pointer = new THREE.Vector2(), raycaster = new THREE.Raycaster();
+  canvas.addEventListener('pointerdown', (event) => {
+    if (gizmo.dragging) return;
+    const rect = canvas.getBoundingClientRect();
+    pointer.set(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
+    raycaster.setFromCamera(pointer, camera);
+    const hit = raycaster.intersectObjects(markers.filter(Boolean))[0];
+    if (hit) gizmo.attach(hit.object);
+  });
+
+  const exposure = document.getElementById('exposure');
+  const showExposure = () => {
+    renderer.toneMappingExposure = Math.pow(2, Number(exposure.value));
+    document.getElementById('exposure-value').textContent = `${exposure.value} EV`;
+  };
+  exposure.addEventListener('input', showExposure);
+  showExposure();
+  document.getElementById('download-png').addEventListener('click', () => {
+    const link = document.createElement('a');
+    link.href = canvas.toDataURL('image/png');
+    link.download = `${summary.scene.replace(/[^A-Za-z0-9_-]/g, '_')}.png`;
+    link.click();
+  });
+  window.addEventListener('resize', resize);
+  resize();
+  report(`${summary.patches} patches, ${summary.vertices} vertices`);
+  renderer.setAnimationLoop(() => {
+    orbit.update();
+    renderer.render(scene3d, camera);
+    window.viewerState.frames += 1;
+  });
+}
+
+start().catch((error) => report(error.message, true));
