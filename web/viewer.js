@@ -146,7 +146,6 @@ function lightPanel(light) {
 function groupPanel(group) {
   const row = document.createElement('label');
   row.id = `group-${group.name}`;
-  const live = group.emitting_materials === 0;
   const on = document.createElement('input');
   on.type = 'checkbox';
   on.checked = true;
@@ -156,9 +155,7 @@ function groupPanel(group) {
   const apply = () => { groupScales[group.name] = on.checked ? Number(dimmer.value) : 0; sendState(); };
   on.addEventListener('change', apply);
   dimmer.addEventListener('input', apply);
-  on.disabled = dimmer.disabled = !live;
   row.append(on, ` ${group.name} `, dimmer);
-  if (!live) row.title = 'glowing surfaces cannot be dimmed live yet';
   return row;
 }
 

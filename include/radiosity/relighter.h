@@ -75,7 +75,11 @@ class Relighter {
 
   /// Brings the solution to `lights` and says what it did. A light is matched to the one at its
   /// place in the last list; with another count every light counts as changed.
-  const RelightStats& relight(std::span<const Light> lights);
+  /// `emissionScales`: per scene material, a factor on its emission (a dimmer on glowing
+  /// surfaces; empty: the scene's own), shot as a change like the lights'. Throws
+  /// std::invalid_argument for a count that is not the scene's materials'.
+  const RelightStats& relight(std::span<const Light> lights,
+                              std::span<const Color> emissionScales = {});
   /// The solution for the last lights: the ambient term of progressive refinement stands in
   /// for what is left unshot. Valid until the next relight.
   const PatchRadiosity& solution() const;

@@ -49,6 +49,11 @@ void LightGroupMix::setScales(std::span<const Color> scales) {
   }
 }
 
+void LightGroupMix::setEmissionScales(std::span<const Color> scales) {
+  if (apart()) throw std::invalid_argument("emission scales of groups kept apart come from them");
+  materialScales_.assign(scales.begin(), scales.end());
+}
+
 Color LightGroupMix::emission(const Scene& scene, uint32_t material) const {
   const Color ke = scene.materials[material].emission;
   return materialScales_.empty() ? ke : ke * materialScales_[material];

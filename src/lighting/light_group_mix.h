@@ -35,6 +35,9 @@ class LightGroupMix {
   std::span<const Color> scales() const { return scales_; }
   /// The lights solved with, each times its group's scale: what the renderer adds per pixel.
   std::span<const Light> lights() const { return scaledLights_; }
+  /// A factor per scene material on the emission shown, for a solution solved together whose
+  /// emitters were dimmed another way (a relighter's); empty: none. Not for groups kept apart.
+  void setEmissionScales(std::span<const Color> scales);
   /// Per scene material, its group's scale (empty when not apart: the scene's own emission).
   std::span<const Color> emissionScales() const { return materialScales_; }
   /// Material m's emission as the solution shows it (Ke times its group's scale).

@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <glm/gtc/constants.hpp>
 #include <optional>
+#include <stdexcept>
 #include <tuple>
 
 #include "lighting/direct_lighting.h"
@@ -81,6 +83,8 @@ struct Relighter::State {
   size_t unsavedRows = 0;  ///< master-table rows cast since the table was read or saved
   /// The mesh's transfer, when the settings ask for it and the mesh never changes.
   std::optional<PrecomputedTransfer> transfer;
+  /// Per scene material, the factor on its emission the state holds (empty: none).
+  std::vector<Color> emissionScales;
 
   State(PatchRadiosity solved, const RelightSettings& s)
       : settings(s), current(std::move(solved)), m(*current.impl_) {}
@@ -90,6 +94,10 @@ struct Relighter::State {
   LitPatches lightPatches(std::span<const Light> lights);
   void changeMesh(LitPatches lit);
   void applyDirect(const std::vector<Color>& direct);
+  /// E of every patch as the emission scales make it (after m.system(), which has the scene's).
+  void scaleEmission();
+  /// A change of the emission scales, as more (or less) light to shoot.
+  void applyEmission(std::span<const Color> scales);
   void shoot();
   void publish();
 };
@@ -139,6 +147,7 @@ void Relighter::State::changeMesh(LitPatches lit) {
   stats.rowsReused = m.stats.rowsReused;
   unsavedRows += stats.rowsComputed;
   system = m.system();
+  scaleEmission();
   stats.patchesUpdated = m.mesh->size();
   anchor(guess);
 }
@@ -177,6 +186,34 @@ void Relighter::State::applyDirect(const std::vector<Color>& direct) {
     stats.patchesSkipped = waiting.size();
 }
 
+void Relighter::State::scaleEmission() {
+  if (emissionScales.empty()) return;
+  for (uint32_t p = 0; p < m.mesh->size(); ++p)
+    system.emitted[p] *= emissionScales[m.mesh->patches()[p].material];
+}
+
+void Relighter::State::applyEmission(std::span<const Color> scales) {
+  const size_t materials = m.scene->materials.size();
+  std::vector<Color> next(scales.begin(), scales.end());
+  if (next.empty()) next.assign(materials, Color(1.0f));
+  if (next.size() != materials)
+    throw std::invalid_argument("relight: one emission scale per scene material");
+  if (emissionScales.empty()) emissionScales.assign(materials, Color(1.0f));
+  if (next == emissionScales) return;
+  emissionScales = std::move(next);
+  for (uint32_t p = 0; p < m.mesh->size(); ++p) {
+    const uint32_t material = m.mesh->patches()[p].material;
+    const Color emitted =
+        glm::pi<float>() * m.scene->materials[material].emission * emissionScales[material];
+    const Color change = emitted - system.emitted[p];
+    if (change == Color(0.0f)) continue;
+    system.emitted[p] = emitted;
+    shooting.radiosity[p] += change;
+    shooting.unshot[p] += change;
+    ++stats.patchesUpdated;
+  }
+}
+
 // With the transfer, the unshot radiosity bounces out in one step: B += (T - I) U, H += F T U.
 void Relighter::State::shoot() {
   if (transfer) {
@@ -198,6 +235,7 @@ void Relighter::State::shoot() {
 // The solution the renderers see: the state plus the ambient term for what is left unshot.
 void Relighter::State::publish() {
   solutionOf(system, shooting, m.solution);
+  m.mix.setEmissionScales(emissionScales);  // what radiance() shows of the emitters
   m.lightDirect = system.direct;
   m.indirect = m.indirectOf(m.solution, rowsOf(table()), system);
   if (stats.meshChanged) {
@@ -270,10 +308,12 @@ Relighter::~Relighter() = default;
 Relighter::Relighter(Relighter&&) noexcept = default;
 Relighter& Relighter::operator=(Relighter&&) noexcept = default;
 
-const RelightStats& Relighter::relight(std::span<const Light> lights) {
+const RelightStats& Relighter::relight(std::span<const Light> lights,
+                                       std::span<const Color> emissionScales) {
   State& s = *state_;
   const auto start = std::chrono::steady_clock::now();
   s.stats = {};
+  s.applyEmission(emissionScales);
   LitPatches lit = s.lightPatches(lights);
   s.stats.directMs = msSince(start);
   s.stats.meshChanged = !samePatches(*lit.mesh, *s.m.mesh);

@@ -165,10 +165,6 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
         size_t g = 0;
         while (g < groups_.size() && groups_[g].name != name) ++g;
         if (g == groups_.size()) refuse("/groups/" + name, "no such light group");
-        if (!groups_[g].materials.empty())
-          refuse("/groups/" + name,
-                 "a group of emitting surfaces cannot be dimmed live yet (only point, spot and "
-                 "IES light groups)");
         scales[g] = nonNegative(value, "/groups/" + name);
       }
     }
@@ -179,14 +175,17 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
   std::lock_guard relight(relightMutex_);
   if (reached_ < mine) {  // else a later request's relight already covered this one
     std::vector<Light> lights;
+    std::vector<Color> emission(scene_.materials.size(), Color(1.0f));
     uint64_t newest = 0;
     {
       std::lock_guard state(stateMutex_);
       lights = effectiveLights();
+      for (size_t g = 0; g < groups_.size(); ++g)
+        for (uint32_t m : groups_[g].materials) emission[m] = scales_[g];
       newest = asked_;
     }
     const auto start = std::chrono::steady_clock::now();
-    relighter_.relight(lights);
+    relighter_.relight(lights, emission);
     shade();
     lastRelightMs_ =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -3,7 +3,8 @@
 // by a Relighter as the page moves, aims, dims and switches lights, and the display mesh it is
 // drawn on (the scene's triangles cut to a viewing size, the same vertices whatever the patches
 // become) with each vertex's radiance. Thread-safe: the HTTP server calls it from many threads.
-// Relight requests that arrive while one runs are coalesced: the newest state wins, and every
+// A light group's scale dims its lights and its glowing surfaces alike. Relight requests that
+// arrive while one runs are coalesced: the newest state wins, and every
 // waiting request is answered with the colours of that state.
 
 #include <radiosity/light_groups.h>

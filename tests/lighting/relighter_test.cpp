@@ -93,6 +93,27 @@ TEST(Relighter, ThePrecomputedTransferMatchesFreshSolves) {
   }
 }
 
+// A dimmer on glowing surfaces: the Cornell box's lamp (its emitting material) at 30% relit
+// equals a fresh solve of the box with the lamp's emission at 30%, and its own patches show it.
+TEST(Relighter, DimmingAGlowingSurfaceMatchesAFreshSolve) {
+  const Scene scene = loadScene("cornell");
+  const PatchModel model(scene, smallSettings());
+  Relighter relighter(model, scene.lights);
+  std::vector<Color> scales(scene.materials.size(), Color(1.0f));
+  uint32_t lamp = 0;
+  while (!scene.materials[lamp].emits()) ++lamp;
+  scales[lamp] = Color(0.3f);
+  const RelightStats& stats = relighter.relight(scene.lights, scales);
+  EXPECT_GT(stats.patchesUpdated, 0u);
+  Scene dimmed = scene;
+  dimmed.materials[lamp].emission *= 0.3f;
+  const PatchRadiosity fresh = PatchModel(dimmed, smallSettings()).solve(dimmed.lights);
+  EXPECT_LE(largestRadiosityDifference(relighter.solution(), fresh), 0.005);
+  EXPECT_EQ(relighter.solution().emissionScales()[lamp], Color(0.3f));
+  EXPECT_THROW(relighter.relight(scene.lights, std::vector<Color>(1, Color(1.0f))),
+               std::invalid_argument);
+}
+
 // Dimming to a quarter changes no patch's place in the quadtree, and the answer is a quarter of
 // the spot's light plus nothing else (the scene has no other light).
 TEST(Relighter, DimmingScalesTheSolutionWithoutNewPatches) {

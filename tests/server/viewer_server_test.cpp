@@ -209,3 +209,26 @@ TEST(Serve, ListensWhereItSaysAndStopsOnCtrlC) {
 
 }  // namespace
 }  // namespace rad
+
+namespace rad {
+namespace {
+
+// The Cornell box's only light is its glowing lamp (group "light"): its dimmer darkens every
+// vertex by its scale (all the light is the lamp's), within the relighter's tolerance.
+TEST(ViewerSession, DimsAGroupOfGlowingSurfaces) {
+  const Scene scene = loadScene("cornell");
+  const PatchModel model(scene, smallSettings());
+  ViewerSession session(scene, scene.lights, Relighter(model, scene.lights), kDisplayEdge);
+  const std::string before = session.colors();
+  const std::string after =
+      session.applyLights(nlohmann::json::parse(R"({"groups": {"light": 0.25}})"));
+  ASSERT_EQ(before.size(), after.size());
+  const float* a = reinterpret_cast<const float*>(before.data());
+  const float* b = reinterpret_cast<const float*>(after.data());
+  double sumBefore = 0.0, sumAfter = 0.0;
+  for (size_t k = 0; k < before.size() / 4; ++k) sumBefore += a[k], sumAfter += b[k];
+  EXPECT_NEAR(sumAfter / sumBefore, 0.25, 0.005);
+}
+
+}  // namespace
+}  // namespace rad
