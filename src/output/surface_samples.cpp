@@ -1,13 +1,12 @@
 #include "output/surface_samples.h"
 
+#include <fmt/format.h>
 #include <radiosity/image.h>
 
-#include "core/atomic_file.h"
-
-#include <fmt/format.h>
+#include <cstring>
 #include <glm/gtc/constants.hpp>
 
-#include <cstring>
+#include "core/atomic_file.h"
 
 namespace rad {
 
@@ -30,7 +29,8 @@ void append(std::string& out, const T& value) {
 
 }  // namespace
 
-std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, std::span<const SurfaceElement> samples) {
+std::vector<ObjectRadiometry> meanPerObject(const Scene& scene,
+                                            std::span<const SurfaceElement> samples) {
   return meanPerObject(scene, samples.size(), [&](size_t i) { return samples[i]; });
 }
 
@@ -54,19 +54,29 @@ std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, size_t count,
   return objects;
 }
 
+std::string objectRadiometryCsv(std::span<const ObjectRadiometry> objects) {
+  std::string text = "object,area,H_r,H_g,H_b,B_r,B_g,B_b\n";
+  for (const ObjectRadiometry& o : objects)
+    text += fmt::format("{},{:g},{:g},{:g},{:g},{:g},{:g},{:g}\n", csvField(o.name), o.area,
+                        o.meanIrradiance.r, o.meanIrradiance.g, o.meanIrradiance.b,
+                        o.meanRadiosity.r, o.meanRadiosity.g, o.meanRadiosity.b);
+  return text;
+}
+
 void writeSurfaceElementsCsv(const std::string& path, const Scene& scene,
-                            std::span<const SurfaceElement> samples) {
+                             std::span<const SurfaceElement> samples) {
   std::string text =
       "id,object,area,cx,cy,cz,nx,ny,nz,E_r,E_g,E_b,rho_r,rho_g,rho_b,H_r,H_g,H_b,B_r,B_g,B_b\n";
   for (size_t i = 0; i < samples.size(); ++i) {
     const SurfaceElement& s = samples[i];
     const std::string object = s.object < scene.objects.size() ? scene.objects[s.object].name : "";
-    text += fmt::format("{},{},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},"
-                        "{:g},{:g},{:g},{:g},{:g}\n",
-                        i, csvField(object), s.area, s.position.x, s.position.y, s.position.z,
-                        s.normal.x, s.normal.y, s.normal.z, s.emitted.r, s.emitted.g, s.emitted.b,
-                        s.rho.r, s.rho.g, s.rho.b, s.irradiance.r, s.irradiance.g, s.irradiance.b,
-                        s.radiosity.r, s.radiosity.g, s.radiosity.b);
+    text += fmt::format(
+        "{},{},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},{:g},"
+        "{:g},{:g},{:g},{:g},{:g}\n",
+        i, csvField(object), s.area, s.position.x, s.position.y, s.position.z, s.normal.x,
+        s.normal.y, s.normal.z, s.emitted.r, s.emitted.g, s.emitted.b, s.rho.r, s.rho.g, s.rho.b,
+        s.irradiance.r, s.irradiance.g, s.irradiance.b, s.radiosity.r, s.radiosity.g,
+        s.radiosity.b);
   }
   writeTextAtomically(path, text);
 }

@@ -24,6 +24,9 @@ std::vector<ObjectRadiometry> meanPerObject(const Scene& scene, size_t count,
                                             const std::function<SurfaceElement(size_t)>& sampleAt);
 
 /// Writes `id,object,area,cx,cy,cz,nx,ny,nz,E_r,...,B_b` rows; object names from `scene`.
+/// The per-object means as CSV: object,area,H_r,H_g,H_b,B_r,B_g,B_b (a header line first).
+std::string objectRadiometryCsv(std::span<const ObjectRadiometry> objects);
+
 void writeSurfaceElementsCsv(const std::string& path, const Scene& scene,
                              std::span<const SurfaceElement> samples);
 /// Writes a binary little-endian PLY: x y z nx ny nz (float), red green blue (uchar: the sRGB

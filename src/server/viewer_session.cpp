@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "output/gltf_export.h"
+#include "output/surface_samples.h"
 
 namespace rad {
 
@@ -111,6 +112,11 @@ Json ViewerSession::summary() const {
 std::string ViewerSession::colors() const {
   std::lock_guard relight(relightMutex_);
   return std::string(reinterpret_cast<const char*>(colors_.data()), colors_.size() * sizeof(float));
+}
+
+std::string ViewerSession::objectsCsv() const {
+  std::lock_guard relight(relightMutex_);
+  return objectRadiometryCsv(relighter_.solution().objectRadiometry());
 }
 
 std::vector<Light> ViewerSession::effectiveLights() const {

@@ -36,6 +36,9 @@ class ViewerSession {
   /// Per display vertex in the .glb's vertex order: the linear radiance (3 little-endian float32).
   std::string colors() const;
 
+  /// Each scene object's mean irradiance and radiosity now, as CSV (objectRadiometryCsv).
+  std::string objectsCsv() const;
+
   /// Applies a light state: {"lights": [{"id": i, "position": [x, y, z], "direction": [...],
   /// "intensity": [...]}], "groups": {"name": scale or [r, g, b]}}, every field optional but
   /// the id. Checks all of it first and throws InputError (naming the field) without changing

@@ -2,10 +2,11 @@
 // loads and draws the lit scene, a spot moved through the page's own controls relights it, and
 // the picture changes where the beam moved and hardly elsewhere; the page logs no errors.
 // Usage: node viewer_test.mjs BINARY WEB_DIR OUT_DIR   (screenshots go to OUT_DIR)
-import { spawn } from 'node:child_process';
 import { mkdirSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
+
+import { startServer } from './serve_process.mjs';
 
 const [binary, webDir, outDir] = process.argv.slice(2);
 const require = createRequire(path.join(webDir, 'package.json'));
@@ -17,21 +18,9 @@ function fail(message) {
   process.exitCode = 1;
 }
 
-// The server on a free port; its URL from what it prints.
-const server = spawn(binary, ['serve', 'cornell-spot', '--port', '0', '--patches', '600', '--cache-dir',
-  'none', '--web-dir', webDir], { stdio: ['ignore', 'pipe', 'pipe'] });
-const url = await new Promise((resolve, reject) => {
-  let text = '';
-  const timer = setTimeout(() => reject(new Error(`no URL printed: ${text}`)), 60000);
-  const read = (chunk) => {
-    text += chunk;
-    const match = text.match(/http:\/\/127\.0\.0\.1:\d+\//);
-    if (match) { clearTimeout(timer); resolve(match[0]); }
-  };
-  server.stdout.on('data', read);
-  server.stderr.on('data', read);
-  server.on('exit', (code) => reject(new Error(`server exited (${code}): ${text}`)));
-});
+const server = await startServer(binary, ['cornell-spot', '--patches', '600', '--cache-dir', 'none',
+  '--web-dir', webDir]);
+const url = server.url;
 
 const browser = await puppeteer.launch({
   executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
@@ -95,5 +84,5 @@ try {
   fail(error.stack || String(error));
 } finally {
   await browser.close();
-  server.kill('SIGINT');
+  server.stop();
 }

@@ -96,6 +96,10 @@ TEST_F(ViewerServerTest, ServesTheSceneMeshAndColours) {
   ASSERT_TRUE(colors);
   EXPECT_EQ(colors->body.size(), 12 * j["vertices"].get<size_t>());
   EXPECT_TRUE(colors->body == expectedColors(nullptr));  // (no dump of binary bodies)
+  const auto objects = client_->Get("/api/objects.csv");
+  ASSERT_TRUE(objects);
+  EXPECT_EQ(objects->body.rfind("object,area,H_r,H_g,H_b,B_r,B_g,B_b\n", 0), 0u);
+  EXPECT_NE(objects->body.find("\nfloor,"), std::string::npos);
 }
 
 TEST_F(ViewerServerTest, ALightMoveAnswersTheRelightersColours) {
