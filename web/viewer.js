@@ -58,6 +58,44 @@ function resize() {
   camera.updateProjectionMatrix();
 }
 
+// The false-colour ramp (after Google's Turbo), 0 to 1, and the legend's stops.
+const ramp = ['#30123b', '#4686fb', '#1ae4b6', '#a2fc3c', '#faba39', '#e4460a', '#7a0403']
+  .map((hex) => new THREE.Color(hex).convertSRGBToLinear());
+function rampColor(t) {
+  const x = Math.min(Math.max(t, 0), 1) * (ramp.length - 1);
+  const k = Math.min(Math.floor(x), ramp.length - 2);
+  return ramp[k].clone().lerp(ramp[k + 1], x - k);
+}
+let radiance = null;   // the last colours from the server (linear radiance)
+let falseColour = false;
+
+// Irradiance per vertex as the legend's unit: W/m^2 from W per square scene unit, lux at
+// 683 lm/W of its luminance (photopic peak efficacy: an approximation for RGB light).
+async function falseColours() {
+  const h = new Float32Array(await (await fetchOk('api/irradiance')).arrayBuffer());
+  const metres = Number(document.getElementById('unit-metres').value) || 1;
+  const lux = document.getElementById('false-unit').value === 'lux';
+  const values = new Float32Array(h.length / 3);
+  for (let v = 0; v < values.length; ++v) {
+    const wm2 = (0.2126 * h[3 * v] + 0.7152 * h[3 * v + 1] + 0.0722 * h[3 * v + 2]) / (metres * metres);
+    values[v] = lux ? 683 * wm2 : wm2;
+  }
+  const sorted = Float32Array.from(values).sort();
+  const top = sorted[Math.floor(0.98 * (sorted.length - 1))] || 1;
+  const out = new Float32Array(h.length);
+  values.forEach((value, v) => { rampColor(value / top).toArray(out, 3 * v); });
+  document.getElementById('legend-max').textContent = `${top.toPrecision(3)} ${lux ? 'lx' : 'W/m²'}`;
+  return out.buffer;
+}
+
+async function showColours() {
+  const falseMode = falseColour;
+  renderer.toneMapping = falseMode ? THREE.NoToneMapping : THREE.LinearToneMapping;
+  document.getElementById('legend').hidden = !falseMode;
+  for (const mesh of meshes) mesh.material.needsUpdate = true;
+  applyColors(falseMode ? await falseColours() : radiance);
+}
+
 function applyColors(buffer) {
   const colors = new Float32Array(buffer);
   let at = 0;
@@ -88,7 +126,8 @@ async function sendState() {
       method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(lightState()),
     });
     const ms = Number(response.headers.get('X-Relight-Ms'));
-    applyColors(await response.arrayBuffer());
+    radiance = await response.arrayBuffer();
+    await showColours();
     window.viewerState.relights += 1;
     window.viewerState.lastRelightMs = ms;
     report(`relit in ${ms.toFixed(1)} ms`);
@@ -170,7 +209,8 @@ async function start() {
     meshes.push(object);
   });
   scene3d.add(gltf.scene);
-  applyColors(await (await fetchOk('api/colors')).arrayBuffer());
+  radiance = await (await fetchOk('api/colors')).arrayBuffer();
+  applyColors(radiance);
 
   const c = summary.camera;
   camera.fov = c.fov_deg;
@@ -221,6 +261,10 @@ async function start() {
   };
   exposure.addEventListener('input', showExposure);
   showExposure();
+  const toggle = document.getElementById('false-colour');
+  const refresh = () => { falseColour = toggle.checked; showColours().catch((e) => report(e.message, true)); };
+  for (const id of ['false-colour', 'false-unit', 'unit-metres'])
+    document.getElementById(id).addEventListener('change', refresh);
   document.getElementById('download-png').addEventListener('click', () => {
     const link = document.createElement('a');
     link.href = canvas.toDataURL('image/png');

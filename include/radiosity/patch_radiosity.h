@@ -187,6 +187,7 @@ class PatchRadiosity : public SurfaceSolution {
   /// The lights it was solved with (with light groups, each times its group's scale).
   std::span<const Light> directLights() const override;
   std::span<const Color> emissionScales() const override;
+  Color irradiance(const SurfaceHit& hit) const override;
   /// H less the lights' D and what the emitting patches send directly, interpolated as
   /// radiance() interpolates H.
   Color indirectIrradiance(const SurfaceHit& hit) const override;

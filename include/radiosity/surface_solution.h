@@ -56,6 +56,10 @@ class SurfaceSolution : public SurfaceRadiance {
   virtual SurfaceElement element(size_t index) const = 0;
   /// The mesh that shows it: vertex colours the radiance radiance() gives there.
   virtual LitMesh litMesh() const = 0;
+  /// The irradiance H at `hit` (power per area arriving, W per square scene unit), interpolated
+  /// as radiance() interpolates it: what a lighting designer's false-colour view shows. 0 on the
+  /// back of a one-sided face.
+  virtual Color irradiance(const SurfaceHit& hit) const = 0;
 
   /// The light groups it solved apart (empty: its emitters were solved together).
   virtual std::span<const LightGroup> lightGroups() const { return {}; }

@@ -112,6 +112,7 @@ class VoxelRadiosity : public SurfaceSolution {
 
   /// Ke + rho H / pi at the hit, with H interpolated from the voxel sides facing the hit's way.
   Color radiance(const SurfaceHit& hit) const override;
+  Color irradiance(const SurfaceHit& hit) const override;
   /// With keepDirectLight and the first shot: the bounces' irradiance, interpolated as H is.
   bool hasIndirectIrradiance() const override;
   Color indirectIrradiance(const SurfaceHit& hit) const override;

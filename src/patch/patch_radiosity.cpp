@@ -454,6 +454,13 @@ Color PatchRadiosity::radiance(const SurfaceHit& hit) const {
          m.rho * *h / glm::pi<float>();
 }
 
+Color PatchRadiosity::irradiance(const SurfaceHit& hit) const {
+  const Material& m = impl_->scene->materialOf(hit.triangle);
+  if (!hit.frontFace && !m.twoSided) return Color(0.0f);
+  return impl_->interpolate(hit, impl_->solution.irradiance, impl_->vertexIrradiance)
+      .value_or(Color(0.0f));
+}
+
 Color PatchRadiosity::indirectIrradiance(const SurfaceHit& hit) const {
   const Material& m = impl_->scene->materialOf(hit.triangle);
   if (!hit.frontFace && !m.twoSided) return Color(0.0f);

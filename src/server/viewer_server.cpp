@@ -39,6 +39,9 @@ ViewerServer::ViewerServer(ViewerSession& session, const std::filesystem::path& 
   http.Get("/api/colors", [&session](const httplib::Request&, httplib::Response& response) {
     binary(response, session.colors());
   });
+  http.Get("/api/irradiance", [&session](const httplib::Request&, httplib::Response& response) {
+    binary(response, session.irradiance());
+  });
   http.Get("/api/objects.csv", [&session](const httplib::Request&, httplib::Response& response) {
     response.set_content(session.objectsCsv(), "text/csv");
   });

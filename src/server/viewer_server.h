@@ -4,6 +4,7 @@
 //   GET  /api/scene     the session's summary (JSON)
 //   GET  /api/mesh.glb  the display mesh (binary glTF)
 //   GET  /api/colors    its vertices' linear radiance, float32 RGB in the .glb's vertex order
+//   GET  /api/irradiance  its vertices' irradiance H (W per square scene unit), as the colours
 //   GET  /api/objects.csv  each object's mean irradiance and radiosity
 //   POST /api/lights    a light state (JSON, see ViewerSession::applyLights); answers the new
 //                       colours as /api/colors does, with the relight's time in X-Relight-Ms

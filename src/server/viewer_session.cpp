@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <tbb/parallel_for.h>
 
 #include <chrono>
 #include <cmath>
@@ -60,10 +61,16 @@ ViewerSession::ViewerSession(const Scene& scene, std::vector<Light> lights, Reli
 }
 
 void ViewerSession::shade() {
-  shadeSurfaces(display_, relighter_.solution());
+  const PatchRadiosity& solution = relighter_.solution();
+  shadeSurfaces(display_, solution);
   colors_.resize(3 * glbOrder_.size());
-  for (size_t k = 0; k < glbOrder_.size(); ++k)
-    std::memcpy(&colors_[3 * k], &display_.mesh.colors[glbOrder_[k]], 3 * sizeof(float));
+  irradiance_.resize(3 * glbOrder_.size());
+  tbb::parallel_for(size_t(0), glbOrder_.size(), [&](size_t k) {
+    const uint32_t v = glbOrder_[k];
+    std::memcpy(&colors_[3 * k], &display_.mesh.colors[v], 3 * sizeof(float));
+    const Color h = solution.irradiance(display_.at[v]);
+    std::memcpy(&irradiance_[3 * k], &h, 3 * sizeof(float));
+  });
 }
 
 Json ViewerSession::summary() const {
@@ -112,6 +119,12 @@ Json ViewerSession::summary() const {
 std::string ViewerSession::colors() const {
   std::lock_guard relight(relightMutex_);
   return std::string(reinterpret_cast<const char*>(colors_.data()), colors_.size() * sizeof(float));
+}
+
+std::string ViewerSession::irradiance() const {
+  std::lock_guard relight(relightMutex_);
+  return std::string(reinterpret_cast<const char*>(irradiance_.data()),
+                     irradiance_.size() * sizeof(float));
 }
 
 std::string ViewerSession::objectsCsv() const {

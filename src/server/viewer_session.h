@@ -36,6 +36,9 @@ class ViewerSession {
   /// Per display vertex in the .glb's vertex order: the linear radiance (3 little-endian float32).
   std::string colors() const;
 
+  /// Per display vertex in the .glb's vertex order: the irradiance H (W per square scene unit,
+  /// 3 little-endian float32), for the page's false-colour view.
+  std::string irradiance() const;
   /// Each scene object's mean irradiance and radiosity now, as CSV (objectRadiometryCsv).
   std::string objectsCsv() const;
 
@@ -64,7 +67,7 @@ class ViewerSession {
   Relighter relighter_;
   uint64_t reached_ = 0;  ///< generation the relighter and the colours are at
   double lastRelightMs_ = 0.0;
-  std::vector<float> colors_;  ///< in .glb order
+  std::vector<float> colors_, irradiance_;  ///< in .glb order
 };
 
 }  // namespace rad

@@ -200,6 +200,12 @@ Color VoxelRadiosity::radiance(const SurfaceHit& hit) const {
          m.rho * impl_->field().at(hit.point, n) / glm::pi<float>();
 }
 
+Color VoxelRadiosity::irradiance(const SurfaceHit& hit) const {
+  const Material& m = impl_->scene->materialOf(hit.triangle);
+  if (!hit.frontFace && !m.twoSided) return Color(0.0f);
+  return impl_->field().at(hit.point, hit.frontFace ? hit.normal : -hit.normal);
+}
+
 std::span<const Light> VoxelRadiosity::directLights() const {
   return impl_->mix.lights();
 }

@@ -76,6 +76,21 @@ try {
   console.log(`largest block change ${largest.toFixed(3)}, ${changed} of ${change.length} blocks changed by > 0.1`);
   if (!(largest > 0.1)) fail('the picture did not change where the beam moved');
   if (!(changed < change.length / 3)) fail('the picture changed nearly everywhere, not where the beam moved');
+  // The false-colour view: irradiance in lux over the Cornell data's millimetres, with its legend.
+  await page.evaluate(() => {
+    document.getElementById('unit-metres').value = '0.001';
+    const toggle = document.getElementById('false-colour');
+    toggle.checked = true;
+    toggle.dispatchEvent(new Event('change'));
+  });
+  await page.waitForFunction(() => document.getElementById('legend-max').textContent.endsWith('lx'),
+    { timeout: 60000 });
+  const falseFrames = await page.evaluate(() => window.viewerState.frames);
+  await page.waitForFunction((n) => window.viewerState.frames > n + 3, { timeout: 60000 }, falseFrames);
+  await page.screenshot({ path: path.join(outDir, 'viewer_false_colour.png') });
+  const legend = await page.evaluate(() => document.getElementById('legend-max').textContent);
+  console.log(`false colour up to ${legend}`);
+  if (!(parseFloat(legend) > 0)) fail(`false-colour legend '${legend}'`);
   if (errors.length) fail(`the page logged errors: ${errors.join('; ')}`);
   const state = await page.evaluate(() => window.viewerState);
   console.log(`relight ${state.lastRelightMs} ms, ${state.frames} frames, ${state.errors} errors`);

@@ -96,6 +96,24 @@ TEST_F(ViewerServerTest, ServesTheSceneMeshAndColours) {
   ASSERT_TRUE(colors);
   EXPECT_EQ(colors->body.size(), 12 * j["vertices"].get<size_t>());
   EXPECT_TRUE(colors->body == expectedColors(nullptr));  // (no dump of binary bodies)
+  // The irradiance per vertex is the H the colours were made of: L = rho H / pi off the lamp.
+  const auto irradiance = client_->Get("/api/irradiance");
+  ASSERT_TRUE(irradiance);
+  ASSERT_EQ(irradiance->body.size(), colors->body.size());
+  const SurfaceBake bake = cutSurfaces(scene_, kDisplayEdge);
+  const std::vector<uint32_t> order = glbVertexOrder(bake.mesh);
+  const float* l = reinterpret_cast<const float*>(colors->body.data());
+  const float* h = reinterpret_cast<const float*>(irradiance->body.data());
+  size_t checked = 0;
+  for (size_t k = 0; k < order.size(); ++k) {
+    const Material& m = scene_.materialOf(bake.at[order[k]].triangle);
+    if (m.emits() || !bake.at[order[k]].frontFace) continue;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(l[3 * k + size_t(c)], m.rho[c] * h[3 * k + size_t(c)] / 3.14159265f,
+                  1e-5f + 1e-5f * l[3 * k + size_t(c)]);
+    ++checked;
+  }
+  EXPECT_GT(checked, order.size() / 2);
   const auto objects = client_->Get("/api/objects.csv");
   ASSERT_TRUE(objects);
   EXPECT_EQ(objects->body.rfind("object,area,H_r,H_g,H_b,B_r,B_g,B_b\n", 0), 0u);
