@@ -166,12 +166,25 @@ function lightPanel(light) {
   name.className = 'name';
   name.textContent = `#${light.id} ${light.type}` + (light.group ? ` (group ${light.group})` : '');
   box.appendChild(name);
-  const update = () => { markers[light.id].position.fromArray(light.position); sendState(); };
+  const update = () => {
+    markers[light.id].position.fromArray(light.position);
+    markers[light.id].userData.arrow?.position.fromArray(light.position);
+    sendState();
+  };
+  light.showDirection = () => {
+    const inputs = box.querySelectorAll('.direction input');
+    inputs.forEach((input, k) => { input.value = Number(light.direction[k].toPrecision(6)); });
+    markers[light.id].userData.arrow?.setDirection(new THREE.Vector3().fromArray(light.direction).normalize());
+  };
   const position = numberInputs('position', light.position, (k, v) => { light.position[k] = v; update(); });
   position.classList.add('position');
   box.appendChild(position);
   if (light.type !== 'point') {
-    const direction = numberInputs('direction', light.direction, (k, v) => { light.direction[k] = v; sendState(); });
+    const direction = numberInputs('direction', light.direction, (k, v) => {
+      light.direction[k] = v;
+      light.showDirection();
+      sendState();
+    });
     direction.classList.add('direction');
     box.appendChild(direction);
   }
@@ -229,6 +242,13 @@ async function start() {
     const marker = new THREE.Mesh(markerGeometry, new THREE.MeshBasicMaterial({ color: 0xffdd55 }));
     marker.position.fromArray(light.position);
     marker.userData.light = light;
+    if (light.type !== 'point') {  // the axis a spot or IES light points along
+      const arrow = new THREE.ArrowHelper(new THREE.Vector3().fromArray(light.direction).normalize(),
+        new THREE.Vector3(), diagonal * 0.08, 0xffdd55);
+      scene3d.add(arrow);
+      arrow.position.copy(marker.position);
+      marker.userData.arrow = arrow;
+    }
     markers[light.id] = marker;
     scene3d.add(marker);
     document.getElementById('lights').appendChild(lightPanel(light));
@@ -237,12 +257,35 @@ async function start() {
     groupScales[group.name] = group.scale[0];
     document.getElementById('groups').appendChild(groupPanel(group));
   }
+  // Move drags the marker; Aim turns it, and the light's axis turns with it from where it
+  // pointed when the turn began.
+  gizmo.addEventListener('mouseDown', () => {
+    const marker = gizmo.object;
+    marker.userData.startDirection = new THREE.Vector3().fromArray(marker.userData.light.direction);
+    marker.userData.startTurn = marker.quaternion.clone().invert();
+  });
   gizmo.addEventListener('objectChange', () => {
     const marker = gizmo.object;
     const light = marker.userData.light;
-    light.position = marker.position.toArray();
-    light.positionInputs.forEach((input, k) => { input.value = Number(light.position[k].toPrecision(6)); });
+    if (gizmo.getMode() === 'rotate') {
+      if (light.type === 'point' || !marker.userData.startDirection) return;
+      const turn = marker.quaternion.clone().multiply(marker.userData.startTurn);
+      light.direction = marker.userData.startDirection.clone().applyQuaternion(turn).normalize().toArray();
+      light.showDirection();
+    } else {
+      light.position = marker.position.toArray();
+      light.positionInputs.forEach((input, k) => { input.value = Number(light.position[k].toPrecision(6)); });
+      marker.userData.arrow?.position.copy(marker.position);
+    }
     sendState();
+  });
+  const setMode = (mode) => gizmo.setMode(mode);
+  document.getElementById('mode-move').addEventListener('click', () => setMode('translate'));
+  document.getElementById('mode-aim').addEventListener('click', () => setMode('rotate'));
+  window.addEventListener('keydown', (event) => {
+    if (event.target.tagName === 'INPUT') return;
+    if (event.key === 't') setMode('translate');
+    if (event.key === 'r') setMode('rotate');
   });
   const pointer = new THREE.Vector2(), raycaster = new THREE.Raycaster();
   canvas.addEventListener('pointerdown', (event) => {
