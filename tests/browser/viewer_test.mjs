@@ -57,6 +57,34 @@ try {
   const before = await blocks();
   await page.screenshot({ path: path.join(outDir, 'viewer_before.png') });
 
+  // Frames a second on this machine's software WebGL while the light changes, for the notes.
+  const fps = await page.evaluate(async () => {
+    const inputs = document.querySelectorAll('#light-0 .intensity input');
+    const start = performance.now(), frames = window.viewerState.frames;
+    for (let k = 0; k < 10; ++k) {
+      inputs[0].value = String(200000 + 10000 * k);
+      inputs[0].dispatchEvent(new Event('change'));
+      await new Promise((resolve) => setTimeout(resolve, 100));
+    }
+    return (window.viewerState.frames - frames) / ((performance.now() - start) / 1000);
+  });
+  console.log(`${fps.toFixed(1)} frames a second while relighting`);
+  const resetFrom = await page.evaluate(() => {  // back to the spot's own intensity
+    const inputs = document.querySelectorAll('#light-0 .intensity input');
+    inputs[0].value = '268360';
+    inputs[0].dispatchEvent(new Event('change'));
+    return window.viewerState.relights;
+  });
+  // Settled: the reset answered, and no relight for half a second since.
+  let seen = -1;
+  for (;;) {
+    await new Promise((resolve) => setTimeout(resolve, 500));
+    const now = await page.evaluate(() => window.viewerState.relights);
+    if (now > resetFrom && now === seen) break;
+    seen = now;
+  }
+  const settled = await blocks();
+
   // Swing the spot toward the green wall through the direction fields of the lights panel.
   const relights = await page.evaluate(() => window.viewerState.relights);
   await page.evaluate(() => {
@@ -70,7 +98,7 @@ try {
   const after = await blocks();
   await page.screenshot({ path: path.join(outDir, 'viewer_after.png') });
 
-  const change = before.map((v, b) => Math.abs(after[b] - v));
+  const change = settled.map((v, b) => Math.abs(after[b] - v));
   const largest = Math.max(...change);
   const changed = change.filter((c) => c > 0.1).length;
   console.log(`largest block change ${largest.toFixed(3)}, ${changed} of ${change.length} blocks changed by > 0.1`);
