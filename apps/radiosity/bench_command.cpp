@@ -25,7 +25,8 @@ struct BenchOptions {
   size_t scalingMaxVoxels = 4000000;
   std::string output = "bench_out";
   size_t relightPatches = 10000;
-  int relightFrames = 0;  ///< 0: the default period
+  int relightFrames = 0;
+  int probeResolution = 16;  ///< 0: the default period
 };
 
 int runBench(const BenchOptions& o, Console& console) {
@@ -35,6 +36,7 @@ int runBench(const BenchOptions& o, Console& console) {
   if (all || o.which == "patch") results["patch"] = benchPatch(console);
   if (all || o.which == "relight")
     results["relight"] = benchRelight(console, o.relightPatches, o.relightFrames);
+  if (all || o.which == "probe") results["probe"] = benchProbe(console, o.probeResolution);
   if (all || o.which == "voxel")
     results["voxel"] = benchVoxel(console, o.voxels, o.sphereRadius, o.pairStride);
   if (o.which == "voxel-scaling")
@@ -55,9 +57,10 @@ void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* sub = app.add_subcommand("bench", "Measure throughput on fixed workloads");
   sub->add_option("which", o->which,
-                  "What to measure: pathtrace, patch, relight, voxel, all (those four), "
+                  "What to measure: pathtrace, patch, relight, probe, voxel, all (those five), "
                   "voxel-scaling (minutes)")
-      ->check(CLI::IsMember({"pathtrace", "patch", "relight", "voxel", "voxel-scaling", "all"}));
+      ->check(CLI::IsMember(
+          {"pathtrace", "patch", "relight", "probe", "voxel", "voxel-scaling", "all"}));
   sub->add_option("--voxels", o->voxels,
                   "voxel: surface voxels of the room (default 2000000, the paper's)")
       ->check(CLI::Range(size_t(1000), size_t(1) << 30));
@@ -73,6 +76,8 @@ void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
                   "relight: frames of warm-up and then measured (default: a swing's period of 240, "
                   "then half of one); fewer for large meshes")
       ->check(CLI::Range(1, 100000));
+  sub->add_option("--probe-res", o->probeResolution, "probe: texels a cube face (default 16)")
+      ->check(CLI::Range(1, 1024));
   sub->add_option("--scaling-radius", o->scalingRadius, "voxel-scaling: sphere radius (default 8)")
       ->check(CLI::Range(1, 200));
   sub->add_option("--scaling-max-voxels", o->scalingMaxVoxels,

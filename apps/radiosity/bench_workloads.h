@@ -21,6 +21,10 @@ nlohmann::json benchPatch(Console& console);
 /// against fresh solves (bench_relight.cpp says how).
 nlohmann::json benchRelight(Console& console, size_t patches, int frames = 0);
 
+/// Probes: a cube view of `resolution` texels a face captured in the Cornell box's patch
+/// solution, and a 10k-vertex object's irradiance from it by each way (bench_probe.cpp).
+nlohmann::json benchProbe(Console& console, int resolution);
+
 /// The voxel sweep on a furnished room at `voxels` voxels (the paper's 2e6 by default): every
 /// `pairStride`-th direction pair of the sphere of radius R swept three times on all threads,
 /// voxel-direction visits per second (the median and the fastest round), the bytes per voxel a
