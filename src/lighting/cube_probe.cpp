@@ -71,10 +71,13 @@ Vec3 foldedDirection(int face, float u, float v) {
 
 }  // namespace
 
-CubeProbe::CubeProbe(int resolution)
-    : resolution_(resolution), texels_(size_t(6) * resolution * resolution, Color(0.0f)) {
+CubeProbe::CubeProbe(int resolution, int samples)
+    : resolution_(resolution),
+      samples_(samples),
+      texels_(size_t(6) * resolution * resolution, Color(0.0f)) {
   if (resolution < 1 || resolution > 1024)
     throw InputError("probe", "resolution must be 1 to 1024 texels a face");
+  if (samples < 1 || samples > 16) throw InputError("probe", "samples must be 1 to 16 a side");
   const double step = 2.0 / resolution;
   solidAngle_.resize(size_t(resolution) * resolution);
   for (int j = 0; j < resolution; ++j)
@@ -132,13 +135,22 @@ void CubeProbe::capture(const RayCaster& caster, const SurfaceRadiance& radiance
   tbb::parallel_for(tbb::blocked_range<int>(0, 6 * n), [&](const auto& rows) {
     for (int row = rows.begin(); row != rows.end(); ++row) {
       const int face = row / n, j = row % n;
+      const FaceAxes a = axesOf(face);
       for (int i = 0; i < n; ++i) {
-        const Ray ray{centre, direction(face, i, j)};
-        const Hit hit = caster.intersect(ray);
-        texel(face, i, j) =
-            hit.valid() ? radiance.radiance({centre + hit.distance * ray.direction,
-                                             hit.geometricNormal, hit.triangle, hit.frontFace})
-                        : Color(0.0f);
+        Color sum(0.0f);
+        for (int sj = 0; sj < samples_; ++sj)
+          for (int si = 0; si < samples_; ++si) {
+            Vec3 d(0.0f);
+            d[a.axis] = a.sign;
+            d[a.b] = -1.0f + (float(i) + (float(si) + 0.5f) / float(samples_)) * 2.0f / float(n);
+            d[a.c] = -1.0f + (float(j) + (float(sj) + 0.5f) / float(samples_)) * 2.0f / float(n);
+            const Ray ray{centre, glm::normalize(d)};
+            const Hit hit = caster.intersect(ray);
+            if (hit.valid())
+              sum += radiance.radiance({centre + hit.distance * ray.direction, hit.geometricNormal,
+                                        hit.triangle, hit.frontFace});
+          }
+        texel(face, i, j) = sum / float(samples_ * samples_);
       }
     }
   });

@@ -23,11 +23,14 @@ enum class ProbeIrradiance { Exact, Harmonic, Pattern };
 
 class CubeProbe {
  public:
-  /// A probe of `resolution` x `resolution` texels a face (1 to 1024).
-  explicit CubeProbe(int resolution);
+  /// A probe of `resolution` x `resolution` texels a face (1 to 1024), each the mean of
+  /// `samples` x `samples` rays through it (1 to 16; more keeps a small bright emitter's edge
+  /// from aliasing).
+  explicit CubeProbe(int resolution, int samples = 1);
 
-  /// Looks from `centre` at what `caster` finds, each texel the radiance `radiance` gives toward
-  /// the centre at the hit through the texel's centre (black where a ray escapes). In parallel.
+  /// Looks from `centre` at what `caster` finds, each texel the mean radiance `radiance` gives
+  /// toward the centre at the hits of its rays (a square grid over the texel; black where a ray
+  /// escapes). In parallel.
   void capture(const RayCaster& caster, const SurfaceRadiance& radiance, const Vec3& centre);
 
   /// The irradiance a surface with unit normal `n` at the centre receives from the view.
@@ -52,7 +55,7 @@ class CubeProbe {
   /// The texel a unit direction falls in.
   size_t texelOf(const Vec3& d) const;
 
-  int resolution_;
+  int resolution_, samples_;
   Vec3 centre_{0.0f};
   std::vector<Color> texels_;
   std::vector<double> solidAngle_;          ///< per texel of a face (the same on every face)

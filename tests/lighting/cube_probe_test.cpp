@@ -5,10 +5,15 @@
 #include "lighting/cube_probe.h"
 
 #include <gtest/gtest.h>
+#include <radiosity/patch_radiosity.h>
 #include <radiosity/scene_builder.h>
+#include <radiosity/scene_loader.h>
+#include <radiosity/voxel_radiosity.h>
 
 #include <glm/gtc/constants.hpp>
 
+#include "core/rng.h"
+#include "render/path_integrator.h"
 #include "render/test_scenes.h"
 
 namespace rad {
@@ -103,6 +108,50 @@ TEST(CubeProbe, AVertexFacingARedWallGetsMoreRed) {
     EXPECT_GT(toward.r, toward.g) << int(way);
     EXPECT_GT(away.g, away.r) << int(way);
     EXPECT_GT(toward.r, 2.0f * away.r) << int(way);
+  }
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+// The probe at the Cornell box's centre, facing up (the lamp above), against the reference path
+// tracer's irradiance at that point (200k samples): the exact way within 3% for the patch and
+// voxel solutions' views (measured -0.8% and -0.5% with 3 x 3 rays a texel; +2.7% and +3.0%
+// with one, the lamp's edge texels aliasing). The harmonics ring around the small bright lamp
+// that gives most of this irradiance: +4.4% and +4.7%, bound 6%; they are meant for the smooth
+// bounce light, where they are exact (the linear-sky test).
+TEST(CubeProbe, CornellCentreMatchesThePathTracer) {
+  const Scene scene = loadScene("cornell");
+  const RayCaster caster(scene);
+  const Bounds b = scene.bounds();
+  const Vec3 centre = 0.5f * (b.min + b.max), up(0.0f, 1.0f, 0.0f);
+  const PathIntegrator integrator(scene, caster, 64);
+  Vec3d sum(0.0);
+  constexpr int kSamples = 200000;  // its noise ~0.3%
+  for (int s = 0; s < kSamples; ++s) {
+    Rng rng(7, uint64_t(s));
+    sum += Vec3d(integrator.irradiance(centre, up, rng));
+  }
+  const Color reference(sum / double(kSamples));
+  PatchRadiositySettings patch;
+  patch.targetPatches = 3000;
+  VoxelRadiositySettings voxel;
+  voxel.targetVoxels = 30000;
+  voxel.sphereRadius = 12;
+  const PatchRadiosity patchSolution(scene, patch);
+  const VoxelRadiosity voxelSolution(scene, voxel);
+  for (const SurfaceRadiance* solution : {static_cast<const SurfaceRadiance*>(&patchSolution),
+                                          static_cast<const SurfaceRadiance*>(&voxelSolution)}) {
+    CubeProbe probe(64, 3);
+    probe.capture(caster, *solution, centre);
+    for (ProbeIrradiance way : {ProbeIrradiance::Exact, ProbeIrradiance::Harmonic}) {
+      const Color e = probe.irradiance(up, way);
+      const float bound = way == ProbeIrradiance::Exact ? 0.03f : 0.06f;
+      EXPECT_NEAR(luminance(e), luminance(reference), bound * luminance(reference)) << int(way);
+    }
   }
 }
 
