@@ -16,6 +16,7 @@
 
 #include "command_support.h"
 #include "commands.h"
+#include "lighting/dynamic_objects.h"
 #include "method_options.h"
 #include "picture_options.h"
 
@@ -59,14 +60,29 @@ Image renderWithPathTracer(const Scene& scene, const RayCaster& caster, const Ca
   return std::move(result.image);
 }
 
+// The solution's picture; with dynamic objects, of the scene with them placed at --time, each lit
+// by a probe of the solution (lighting/dynamic_objects.h).
 Image renderSolution(const Scene& scene, const RayCaster& caster, const Camera& camera,
-                     const SurfaceRadiance& solution, const RenderOptions& o, Console& console,
+                     const SurfaceSolution& solution, const RenderOptions& o, Console& console,
                      RunStats& stats) {
   Stopwatch renderTime;
   o.picture.warnIfDirectUnavailable(solution, o.method.method(), console);
-  Image image =
-      renderSurfaceRadiance(scene, caster, camera, solution, o.picture.surfaceSettings(o.method),
-                            console.progress("render"));
+  const SurfaceRenderSettings settings = o.picture.surfaceSettings(o.method);
+  Image image;
+  if (scene.dynamicObjects.empty()) {
+    image = renderSurfaceRadiance(scene, caster, camera, solution, settings,
+                                  console.progress("render"));
+  } else {
+    console.warn(fmt::format(
+        "{} dynamic object(s) lit by probes of the {} solution; the light they reflect onto the "
+        "scene is not in it yet (their shadows from point, spot and IES lights are, per pixel)",
+        scene.dynamicObjects.size(), o.method.method()));
+    const Scene placed = scene.withDynamicObjectsAt(o.time);
+    const RayCaster placedCaster(placed);
+    const DynamicObjectLighting lighting(placed, solution, caster, placedCaster);
+    image = renderSurfaceRadiance(placed, placedCaster, camera, lighting, settings,
+                                  console.progress("render"));
+  }
   console.finishProgress();
   stats.timingsSeconds.render = renderTime.seconds();
   return image;
@@ -93,6 +109,9 @@ int runRender(RenderOptions& o, Console& console) {
 
   const Camera camera = o.picture.camera(scene);
   InterruptGuard interruptible;
+  // The path tracer takes the objects as they are at --time: the reference, their light included.
+  if (o.method.method() == "pathtrace" && !scene.dynamicObjects.empty())
+    scene = scene.withDynamicObjectsAt(o.time);
   const RayCaster caster(scene);  // the run's one BVH
   const std::string& method = o.method.method();
   const SolveReport report{stats, !o.stats.empty()};

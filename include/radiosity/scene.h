@@ -6,6 +6,8 @@
 #include <radiosity/ies_profile.h>
 #include <radiosity/types.h>
 
+#include <glm/mat4x4.hpp>
+
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -91,6 +93,29 @@ struct Light {
   bool operator==(const Light&) const = default;
 };
 
+struct Scene;
+
+/// A moving object's placement at a time of its path: the fields it sets (the others follow the
+/// keyframes around it that set them).
+struct ObjectKeyframe {
+  double t = 0.0;  ///< seconds
+  std::optional<Vec3> position;     ///< where its own origin goes, scene units
+  std::optional<Vec3> rotationDeg;  ///< about its origin: x, then y, then z (degrees)
+  bool operator==(const ObjectKeyframe&) const = default;
+};
+
+/// An object that moves: it takes no part in the static solve (form factors, voxels); it is lit
+/// by probes of the static solution and drawn in pictures (lighting/dynamic_objects.h).
+struct DynamicObject {
+  std::string name;
+  std::shared_ptr<const Scene> mesh;  ///< its triangles and materials, in its own frame
+  std::optional<Color> rho;           ///< a reflectance for all of it, in place of its materials'
+  /// Keyframes by increasing t, interpolated linearly (rotation per angle); empty: it stays.
+  std::vector<ObjectKeyframe> path;
+  /// Its frame in the scene at `seconds`: rotation about its origin, then the move.
+  glm::mat4 placementAt(double seconds) const;
+};
+
 /// A pinhole camera; fovDeg is the vertical field of view.
 struct Camera {
   Vec3 eye{0.0f, 0.0f, 1.0f};
@@ -120,6 +145,7 @@ struct Scene {
   std::vector<SceneObject> objects;
   std::vector<Material> materials;
   std::vector<Light> lights;
+  std::vector<DynamicObject> dynamicObjects;
   std::optional<Camera> camera;  ///< none: the renderer frames the scene's bounds
   SolverSettings solver;
   std::vector<std::string> warnings;  ///< non-fatal problems found while loading
@@ -138,6 +164,12 @@ struct Scene {
   Camera cameraOrDefault() const;
   /// The lights at `seconds` into their animation (Light::at).
   std::vector<Light> lightsAt(double seconds) const;
+  /// The scene with its dynamic objects placed as at `seconds`, their triangles after its own
+  /// (its own triangles, faces, objects and materials keep their indices), and no dynamic
+  /// objects: what a picture casts camera and shadow rays against.
+  Scene withDynamicObjectsAt(double seconds) const;
+  /// Triangles of the scene's own (the static ones), in a scene withDynamicObjectsAt made.
+  uint32_t staticTriangles = UINT32_MAX;
 };
 
 }  // namespace rad

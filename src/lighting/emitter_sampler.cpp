@@ -28,7 +28,7 @@ EmitterSampler::EmitterSampler(const Scene& scene, std::span<const Color> emissi
 
 Color EmitterSampler::emissionOf(uint32_t material) const {
   const Color ke = scene_->materials[material].emission;
-  return emissionScales_.empty() ? ke : ke * emissionScales_[material];
+  return material < emissionScales_.size() ? ke * emissionScales_[material] : ke;
 }
 
 EmitterSample EmitterSampler::sample(float choose, Vec2 position) const {

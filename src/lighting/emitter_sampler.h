@@ -24,7 +24,8 @@ struct EmitterSample {
 class EmitterSampler {
  public:
   /// Keeps a pointer to `scene`, which must outlive the sampler. `emissionScales`: a factor on
-  /// each material's emission (empty: none; a material scaled to 0 is never chosen).
+  /// each material's emission (empty: none; materials past its end: 1; a material scaled to 0
+  /// is never chosen).
   explicit EmitterSampler(const Scene& scene, std::span<const Color> emissionScales = {});
 
   bool empty() const { return triangles_.empty(); }

@@ -39,8 +39,9 @@ class PerPixelDirectShading {
       h += emitted / float(emitterSamples_);
     }
     const std::span<const Color> scales = radiance_.emissionScales();
-    const Color ke =
-        scales.empty() ? m.emission : m.emission * scales[scene_.faceOf(hit.triangle).material];
+    // (the scales cover the solution's own materials; a scene with objects placed has more)
+    const uint32_t material = scene_.faceOf(hit.triangle).material;
+    const Color ke = material < scales.size() ? m.emission * scales[material] : m.emission;
     return ke + m.rho * h * glm::one_over_pi<float>();
   }
 

@@ -688,3 +688,36 @@ TEST(Cli, RenderFromASavedSolutionWithoutSolving) {
   EXPECT_EQ(foreign.status, 2);
   EXPECT_NE(foreign.err.find("another scene"), std::string::npos) << foreign.err;
 }
+
+// A dynamic object moves along its path between --time values, lit by a probe in patch pictures
+// (with a warning of what is not computed yet) and taken as it is by the path tracer.
+TEST(Cli, RendersDynamicObjectsWhereTheirPathPutsThem) {
+  const fs::path dir = freshDir("dynamic");
+  writeFile(dir / "cube.obj",
+            "o cube\nv -40 -40 -40\nv 40 -40 -40\nv 40 40 -40\nv -40 40 -40\n"
+            "v -40 -40 40\nv 40 -40 40\nv 40 40 40\nv -40 40 40\n"
+            "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n");
+  const std::string obj = std::string(RADIOSITY_TEST_DATA_DIR) + "/scene/cornell/cornell_box.obj";
+  const fs::path scene =
+      writeFile(dir / "moving.json", R"({"geometry": [{"file": ")" + obj + R"("}],
+    "dynamic_objects": [{"name": "box", "file": "cube.obj", "rho": [0.8, 0.8, 0.8],
+      "path": [{"t": 0, "position": [150, 250, 250]}, {"t": 1, "position": [400, 250, 250]}]}],
+    "camera": {"eye": [278, 273, -800], "target": [278, 273, 0], "fov_deg": 39}})");
+  std::map<std::string, rad::Image> at;
+  for (const std::string t : {"0", "1"}) {
+    const std::string png = (dir / ("p" + t + ".pfm")).string();
+    const CliResult r =
+        run({"render", scene.string(), "--method", "patch", "--patches", "400", "--cache-dir",
+             "none", "--width", "64", "--spp", "1", "--time", t, "-o", png});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("dynamic object(s) lit by probes"), std::string::npos) << r.err;
+    at[t] = rad::readImage(png);
+  }
+  size_t differing = 0;
+  for (size_t k = 0; k < at["0"].pixels.size(); ++k)
+    differing += rad::maxComponent(glm::abs(at["0"].pixels[k] - at["1"].pixels[k])) > 0.05f;
+  EXPECT_GT(differing, 40u);  // the cube left one place for another
+  const CliResult traced = run({"render", scene.string(), "--method", "pathtrace", "--width", "32",
+                                "--spp", "4", "-o", (dir / "t.pfm").string()});
+  EXPECT_EQ(traced.status, 0) << traced.err;
+}

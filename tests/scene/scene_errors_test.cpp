@@ -174,6 +174,20 @@ TEST_F(JsonErrors, LightGroupNamesAreNonEmptyTextWithoutTheFlagsSeparators) {
   expectMessage(load(withLight(point + "\"a=b\"}")), {"/lights/0/group", "'='"});
 }
 
+TEST_F(JsonErrors, DynamicObjectsNameTheirField) {
+  expectMessage(load("{\"dynamic_objects\": {}}"), {"/dynamic_objects", "expected an array"});
+  expectMessage(load("{\"dynamic_objects\": [{\"name\": \"ball\"}]}"),
+                {"/dynamic_objects/0", "missing key \"file\""});
+  expectMessage(load("{\"dynamic_objects\": [{\"file\": " + obj_ + ", \"speed\": 1}]}"),
+                {"/dynamic_objects/0/speed", "unknown key"});
+  expectMessage(load("{\"dynamic_objects\": [{\"file\": " + obj_ +
+                     ", \"path\": [{\"t\": 1, \"position\": [0,0,0]}, {\"t\": 0, "
+                     "\"position\": [1,0,0]}]}]}"),
+                {"/dynamic_objects/0/path/1/t", "greater than the previous"});
+  expectMessage(load("{\"dynamic_objects\": [{\"file\": " + obj_ + ", \"rho\": [2,0,0]}]}"),
+                {"/dynamic_objects/0/rho"});
+}
+
 TEST_F(JsonErrors, WrongTypesAndRanges) {
   expectMessage(load("{\"camera\": {\"fov_deg\": \"wide\"}}"),
                 {"/camera/fov_deg", "expected a number"});
@@ -203,7 +217,6 @@ TEST_F(JsonErrors, WrongTypesAndRanges) {
                 {"/solver/ff_estimator", "hemisphere, pairwise, exact"});
   expectMessage(load("{\"solver\": {\"shading\": \"gouraud\"}}"),
                 {"/solver/shading", "smooth, flat"});
-  expectMessage(load("{\"dynamic_objects\": []}"), {"/dynamic_objects", "not supported"});
   expectMessage(load("{\"geometry\": [{\"file\": \"missing.obj\"}]}"),
                 {"missing.obj", "cannot open"});
   expectMessage(load("{\"geometry\": [{\"file\": \"a.stl\"}]}"), {"/geometry/0/file", "'.stl'"});

@@ -135,28 +135,76 @@ glm::mat4 readTransform(const JsonReader& r, const Json& j, const std::string& p
   return m;
 }
 
+// A mesh file ("file", optional "transform") of the entry at `ptr` into `builder`.
+void readMeshFile(const JsonReader& r, const Json& g, const std::string& ptr,
+                  SceneBuilder& builder) {
+  if (!g.contains("file")) r.fail(ptr, "missing key \"file\"");
+  const std::string file =
+      resolvePath(parentDirectory(r.path()), r.string(g["file"], ptr + "/file"));
+  const glm::mat4 m = g.contains("transform") ? readTransform(r, g["transform"], ptr + "/transform")
+                                              : glm::mat4(1.0f);
+  const std::string ext = lowerExtension(file);
+  if (ext == ".obj")
+    loadObj(builder, file, m);
+  else if (ext == ".gltf" || ext == ".glb")
+    loadGltf(builder, file, m);
+  else
+    r.fail(ptr + "/file", fmt::format("unsupported geometry extension '{}' (expected .obj, "
+                                      ".gltf or .glb)",
+                                      ext));
+}
+
 void readGeometry(const JsonReader& r, const Json& list, SceneBuilder& builder) {
   if (!list.is_array())
     r.fail("/geometry", fmt::format("expected an array, got {}", list.type_name()));
-  const std::string dir = parentDirectory(r.path());
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string ptr = fmt::format("/geometry/{}", i);
-    const Json& g = list[i];
-    r.checkKeys(g, ptr, {"file", "transform"});
-    if (!g.contains("file")) r.fail(ptr, "missing key \"file\"");
-    const std::string file = resolvePath(dir, r.string(g["file"], ptr + "/file"));
-    const glm::mat4 m = g.contains("transform")
-                            ? readTransform(r, g["transform"], ptr + "/transform")
-                            : glm::mat4(1.0f);
-    const std::string ext = lowerExtension(file);
-    if (ext == ".obj")
-      loadObj(builder, file, m);
-    else if (ext == ".gltf" || ext == ".glb")
-      loadGltf(builder, file, m);
-    else
-      r.fail(ptr + "/file", fmt::format("unsupported geometry extension '{}' (expected .obj, "
-                                        ".gltf or .glb)",
-                                        ext));
+    r.checkKeys(list[i], ptr, {"file", "transform"});
+    readMeshFile(r, list[i], ptr, builder);
+  }
+}
+
+std::vector<ObjectKeyframe> readObjectPath(const JsonReader& r, const Json& j,
+                                           const std::string& ptr) {
+  if (!j.is_array() || j.empty()) r.fail(ptr, "expected a non-empty array of keyframes");
+  std::vector<ObjectKeyframe> path;
+  for (size_t i = 0; i < j.size(); ++i) {
+    const std::string at = fmt::format("{}/{}", ptr, i);
+    const Json& k = j[i];
+    r.checkKeys(k, at, {"t", "position", "rotation_deg"});
+    if (!k.contains("t")) r.fail(at, "missing key \"t\" (the keyframe's time in seconds)");
+    if (k.size() < 2) r.fail(at, "a keyframe sets nothing (expected position or rotation_deg)");
+    ObjectKeyframe key;
+    key.t = r.number(k["t"], at + "/t");
+    if (!path.empty() && !(key.t > path.back().t))
+      r.fail(at + "/t", fmt::format("t {} must be greater than the previous keyframe's {}", key.t,
+                                    path.back().t));
+    if (k.contains("position")) key.position = r.vec3(k["position"], at + "/position");
+    if (k.contains("rotation_deg"))
+      key.rotationDeg = r.vec3(k["rotation_deg"], at + "/rotation_deg");
+    path.push_back(key);
+  }
+  return path;
+}
+
+void readDynamicObjects(const JsonReader& r, const Json& list, Scene& scene) {
+  if (!list.is_array())
+    r.fail("/dynamic_objects", fmt::format("expected an array, got {}", list.type_name()));
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string ptr = fmt::format("/dynamic_objects/{}", i);
+    const Json& d = list[i];
+    r.checkKeys(d, ptr, {"name", "file", "transform", "rho", "path"});
+    DynamicObject object;
+    object.name =
+        d.contains("name") ? r.string(d["name"], ptr + "/name") : fmt::format("dynamic{}", i);
+    SceneBuilder builder(object.name);
+    readMeshFile(r, d, ptr, builder);
+    Scene mesh = builder.build();
+    if (mesh.triangles.empty()) r.fail(ptr + "/file", "the file holds no triangles");
+    object.mesh = std::make_shared<const Scene>(std::move(mesh));
+    if (d.contains("rho")) object.rho = r.color(d["rho"], ptr + "/rho", "rho", 0.0, 1.0);
+    if (d.contains("path")) object.path = readObjectPath(r, d["path"], ptr + "/path");
+    scene.dynamicObjects.push_back(std::move(object));
   }
 }
 
@@ -372,12 +420,11 @@ Scene loadSceneJson(const std::string& path) {
   const Json root = parseJson(readTextFile(path, "scene file"), path);
   const JsonReader r(path);
   r.checkKeys(root, "", {"geometry", "materials", "lights", "camera", "dynamic_objects", "solver"});
-  if (root.contains("dynamic_objects"))
-    r.fail("/dynamic_objects", "dynamic_objects not supported yet");
   SceneBuilder builder(path);
   if (root.contains("geometry")) readGeometry(r, root["geometry"], builder);
   Scene& scene = builder.scene();
   if (root.contains("materials")) readMaterials(r, root["materials"], scene);
+  if (root.contains("dynamic_objects")) readDynamicObjects(r, root["dynamic_objects"], scene);
   if (root.contains("lights")) {
     const Json& lights = root["lights"];
     if (!lights.is_array())

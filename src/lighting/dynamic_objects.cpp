@@ -1,0 +1,119 @@
+// Probes and vertex irradiance for the dynamic objects placed in a scene.
+#include "lighting/dynamic_objects.h"
+
+#include <tbb/parallel_for.h>
+
+#include <glm/gtc/constants.hpp>
+
+#include "lighting/direct_lighting.h"
+
+namespace rad {
+
+namespace {
+
+// What the static surfaces reflect: the solution's radiance less what they emit.
+class ReflectedOnly : public SurfaceRadiance {
+ public:
+  ReflectedOnly(const Scene& scene, const SurfaceSolution& solution)
+      : scene_(scene), solution_(solution), scales_(solution.emissionScales()) {}
+  Color radiance(const SurfaceHit& hit) const override {
+    const Color l = solution_.radiance(hit);
+    if (!hit.frontFace) return l;
+    const uint32_t material = scene_.faceOf(hit.triangle).material;
+    const Color ke =
+        scene_.materials[material].emission * (scales_.empty() ? Color(1.0f) : scales_[material]);
+    return glm::max(l - ke, Color(0.0f));
+  }
+
+ private:
+  const Scene& scene_;
+  const SurfaceSolution& solution_;
+  std::span<const Color> scales_;
+};
+
+// Each object's vertices (of the placed scene), and their area-weighted normals.
+struct ObjectVertices {
+  std::vector<std::vector<uint32_t>> byObject;
+  std::vector<Vec3> normals;
+};
+ObjectVertices objectVertices(const Scene& placed) {
+  ObjectVertices out;
+  out.byObject.resize(placed.objects.size());
+  out.normals.assign(placed.positions.size(), Vec3(0.0f));
+  std::vector<uint8_t> seen(placed.positions.size(), 0);
+  for (uint32_t t = placed.staticTriangles; t < placed.triangles.size(); ++t) {
+    const UVec3& tri = placed.triangles[t];
+    const Vec3 weighted = placed.triangleNormal(t) * placed.triangleArea(t);
+    for (int k = 0; k < 3; ++k) {
+      out.normals[tri[k]] += weighted;
+      if (!seen[tri[k]]) {
+        seen[tri[k]] = 1;
+        out.byObject[placed.faceOf(t).object].push_back(tri[k]);
+      }
+    }
+  }
+  for (Vec3& n : out.normals)
+    if (glm::length(n) > 0.0f) n = glm::normalize(n);
+  return out;
+}
+
+}  // namespace
+
+DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceSolution& solution,
+                                             const RayCaster& staticCaster,
+                                             const RayCaster& placedCaster,
+                                             const DynamicObjectSettings& settings)
+    : placed_(placed),
+      solution_(solution),
+      full_(placed.positions.size(), Color(0.0f)),
+      indirect_(placed.positions.size(), Color(0.0f)) {
+  const ObjectVertices vertices = objectVertices(placed);
+  const ReflectedOnly reflected(solution.scene(), solution);
+  const DirectLighting direct(placed, placedCaster, solution.directLights(),
+                              solution.emissionScales());
+  for (const std::vector<uint32_t>& own : vertices.byObject) {
+    if (own.empty()) continue;
+    Vec3 centre(0.0f);
+    for (uint32_t v : own) centre += placed.positions[v] / float(own.size());
+    CubeProbe full(settings.probeResolution), bounce(settings.probeResolution);
+    full.capture(staticCaster, solution, centre);
+    bounce.capture(staticCaster, reflected, centre);
+    tbb::parallel_for(size_t(0), own.size(), [&](size_t k) {
+      const uint32_t v = own[k];
+      const Vec3& n = vertices.normals[v];
+      const Vec3 p = placed.positions[v];
+      full_[v] = full.irradiance(n, settings.way) + direct.fromLights(p, n);
+      indirect_[v] = bounce.irradiance(n, settings.way);
+    });
+  }
+}
+
+Color DynamicObjectLighting::atHit(const SurfaceHit& hit,
+                                   const std::vector<Color>& perVertex) const {
+  const UVec3& t = placed_.triangles[hit.triangle];
+  const Vec3 a = placed_.positions[t.x], b = placed_.positions[t.y], c = placed_.positions[t.z];
+  const Vec3 e1 = b - a, e2 = c - a, d = hit.point - a;
+  const float d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+  const float d1 = glm::dot(d, e1), d2 = glm::dot(d, e2);
+  const float det = d11 * d22 - d12 * d12;
+  if (!(det > 0.0f)) return (perVertex[t.x] + perVertex[t.y] + perVertex[t.z]) / 3.0f;
+  const float v = glm::clamp((d22 * d1 - d12 * d2) / det, 0.0f, 1.0f);
+  const float w = glm::clamp((d11 * d2 - d12 * d1) / det, 0.0f, 1.0f - v);
+  return (1.0f - v - w) * perVertex[t.x] + v * perVertex[t.y] + w * perVertex[t.z];
+}
+
+Color DynamicObjectLighting::radiance(const SurfaceHit& hit) const {
+  if (!isObject(hit.triangle)) return solution_.radiance(hit);
+  const Material& m = placed_.materialOf(hit.triangle);
+  if (!hit.frontFace && !m.twoSided) return Color(0.0f);
+  return m.rho * atHit(hit, full_) / glm::pi<float>();
+}
+
+Color DynamicObjectLighting::indirectIrradiance(const SurfaceHit& hit) const {
+  if (!isObject(hit.triangle)) return solution_.indirectIrradiance(hit);
+  const Material& m = placed_.materialOf(hit.triangle);
+  if (!hit.frontFace && !m.twoSided) return Color(0.0f);
+  return atHit(hit, indirect_);
+}
+
+}  // namespace rad

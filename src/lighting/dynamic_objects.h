@@ -1,0 +1,56 @@
+#pragma once
+// Objects that move, lit by the static solution (after "real-time radiosity II"'s radiosity
+// mapping): a probe at each object's centre sees the static scene's light (CubeProbe), and each
+// of its vertices takes its irradiance from that view plus the direct light of the point, spot
+// and IES lights by shadow rays; hits on the object are shaded by interpolating its vertices'
+// irradiance, smooth across its mesh. Not yet: the light an object throws back on the static
+// scene, several probes for a large object, recapture only when something moved.
+
+#include <radiosity/surface_solution.h>
+
+#include <vector>
+
+#include "lighting/cube_probe.h"
+
+namespace rad {
+
+struct DynamicObjectSettings {
+  int probeResolution = 16;  ///< texels a cube face
+  ProbeIrradiance way = ProbeIrradiance::Harmonic;
+};
+
+/// The static solution with the dynamic objects in place, as one SurfaceRadiance over `placed`
+/// (Scene::withDynamicObjectsAt): its own triangles shaded by `solution`, the objects' by rho / pi
+/// times their vertices' irradiance. Its indirect irradiance (per-pixel pictures add the direct
+/// light) is, on an object, its probe's view of what the static surfaces reflect (their emission
+/// left out, since the renderer samples the emitters itself). Captures its probes and lights the
+/// vertices on construction (in parallel); `staticCaster` is built over the solution's scene,
+/// `placedCaster` over `placed` (objects shadow themselves and the scene).
+class DynamicObjectLighting : public SurfaceRadiance {
+ public:
+  DynamicObjectLighting(const Scene& placed, const SurfaceSolution& solution,
+                        const RayCaster& staticCaster, const RayCaster& placedCaster,
+                        const DynamicObjectSettings& settings = {});
+
+  Color radiance(const SurfaceHit& hit) const override;
+  bool hasIndirectIrradiance() const override { return solution_.hasIndirectIrradiance(); }
+  Color indirectIrradiance(const SurfaceHit& hit) const override;
+  std::span<const Light> directLights() const override { return solution_.directLights(); }
+  std::span<const Color> emissionScales() const override { return solution_.emissionScales(); }
+
+  /// The irradiance of vertex `v` of `placed` (an object's; 0 for the scene's own), full and
+  /// without the lights' and emitters' direct light.
+  Color vertexIrradiance(uint32_t v) const { return full_[v]; }
+  Color vertexIndirect(uint32_t v) const { return indirect_[v]; }
+
+ private:
+  bool isObject(uint32_t triangle) const { return triangle >= placed_.staticTriangles; }
+  /// A per-vertex value at a hit on an object's triangle (barycentric interpolation).
+  Color atHit(const SurfaceHit& hit, const std::vector<Color>& perVertex) const;
+
+  const Scene& placed_;
+  const SurfaceSolution& solution_;
+  std::vector<Color> full_, indirect_;  ///< per vertex of `placed` (objects' only)
+};
+
+}  // namespace rad

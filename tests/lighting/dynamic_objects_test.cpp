@@ -1,0 +1,102 @@
+// Dynamic objects: placed where their paths say, and lit at their vertices by probes of the
+// static solution (against a furnace's closed form and the colour of the wall a vertex faces).
+#include "lighting/dynamic_objects.h"
+
+#include <gtest/gtest.h>
+#include <radiosity/patch_radiosity.h>
+#include <radiosity/scene_builder.h>
+#include <radiosity/scene_loader.h>
+
+#include <glm/gtc/constants.hpp>
+
+#include "render/test_scenes.h"
+
+namespace rad {
+namespace {
+
+// A cube of side `size` centred on its own origin, faces outward, rho 0.5.
+std::shared_ptr<const Scene> cubeMesh(float size) {
+  SceneBuilder b("cube");
+  const uint32_t m = b.addMaterial({"grey", Color(0.5f), Color(0.0f), false});
+  const uint32_t o = b.addObject("cube");
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      Vec3 centre(0.0f), out(0.0f);
+      centre[axis] = out[axis] = side == 0 ? -0.5f * size : 0.5f * size;
+      test::addQuadFacing(b, test::axisSquare(centre, axis, size), glm::normalize(out), m, o);
+    }
+  return std::make_shared<const Scene>(b.build());
+}
+
+TEST(DynamicObjects, PlacedWhereTheirPathSays) {
+  Scene scene = loadScene("cornell");
+  DynamicObject ball{"ball", cubeMesh(10.0f), std::nullopt, {}};
+  ball.path = {{0.0, Vec3(100, 100, 100), Vec3(0.0f)}, {2.0, Vec3(300, 100, 100), Vec3(0, 90, 0)}};
+  scene.dynamicObjects.push_back(ball);
+  const Scene placed = scene.withDynamicObjectsAt(1.0);
+  EXPECT_EQ(placed.staticTriangles, scene.triangles.size());
+  EXPECT_EQ(placed.triangles.size(), scene.triangles.size() + 12);
+  EXPECT_TRUE(placed.dynamicObjects.empty());
+  // Halfway: at x = 200, turned 45 degrees about y (a corner of the cube swung round).
+  Vec3 centre(0.0f);
+  for (size_t v = scene.positions.size(); v < placed.positions.size(); ++v)
+    centre += placed.positions[v] / float(placed.positions.size() - scene.positions.size());
+  EXPECT_NEAR(centre.x, 200.0f, 1e-3f);
+  const glm::mat4 m = ball.placementAt(1.0);
+  const Vec3 corner = Vec3(m * glm::vec4(5.0f, 0.0f, 5.0f, 1.0f)) - Vec3(200, 100, 100);
+  EXPECT_NEAR(corner.x, 5.0f * std::sqrt(2.0f), 1e-3f);  // rotated onto the x axis
+  EXPECT_NEAR(corner.z, 0.0f, 1e-3f);
+  // The own triangles keep their places and materials.
+  EXPECT_EQ(placed.materialOf(0).name, scene.materialOf(0).name);
+}
+
+// A furnace: the object inside a closed box whose walls emit L (rho 0); every vertex's
+// irradiance is pi L (each way within 1%, here the default: harmonics).
+TEST(DynamicObjects, FurnaceVerticesGetPiL) {
+  SceneBuilder b("furnace");
+  const Color l(1.0f, 0.5f, 0.25f);
+  const uint32_t glow = b.addMaterial({"glow", Color(0.0f), l, false});
+  test::addInwardCube(b, [&](int) { return glow; });
+  Scene scene = b.build();
+  PatchRadiositySettings settings;
+  settings.targetPatches = 200;
+  const PatchRadiosity solution(scene, settings);
+  scene.dynamicObjects.push_back(
+      {"cube", cubeMesh(0.2f), std::nullopt, {{0.0, Vec3(0.5f), std::nullopt}}});
+  const Scene placed = scene.withDynamicObjectsAt(0.0);
+  const RayCaster staticCaster(scene), placedCaster(placed);
+  const DynamicObjectLighting lighting(placed, solution, staticCaster, placedCaster);
+  for (uint32_t v = uint32_t(scene.positions.size()); v < placed.positions.size(); ++v)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(lighting.vertexIrradiance(v)[c], glm::pi<float>() * l[c],
+                  0.01f * glm::pi<float>() * l[c]);
+}
+
+// In the Cornell box a vertex facing the red wall gets more red than green, one facing the green
+// wall the other way round.
+TEST(DynamicObjects, AVertexFacingTheRedWallGetsMoreRed) {
+  Scene scene = loadScene("cornell");
+  PatchRadiositySettings settings;
+  settings.targetPatches = 1000;
+  const PatchRadiosity solution(scene, settings);
+  scene.dynamicObjects.push_back(
+      {"cube", cubeMesh(40.0f), std::nullopt, {{0.0, Vec3(278, 274, 280), std::nullopt}}});
+  const Scene placed = scene.withDynamicObjectsAt(0.0);
+  const RayCaster staticCaster(scene), placedCaster(placed);
+  const DynamicObjectLighting lighting(placed, solution, staticCaster, placedCaster);
+  // The red wall is at x = 550 or so, the green one at x = 0: the cube's +x and -x faces.
+  Color towardRed(0.0f), towardGreen(0.0f);
+  for (uint32_t t = placed.staticTriangles; t < placed.triangles.size(); ++t) {
+    const Vec3 n = placed.triangleNormal(t);
+    for (int k = 0; k < 3; ++k) {
+      const Color e = lighting.vertexIrradiance(placed.triangles[t][k]);
+      if (n.x > 0.9f) towardRed += e;
+      if (n.x < -0.9f) towardGreen += e;
+    }
+  }
+  EXPECT_GT(towardRed.r / towardRed.g, towardGreen.r / towardGreen.g);
+  EXPECT_GT(towardGreen.g / towardGreen.r, towardRed.g / towardRed.r);
+}
+
+}  // namespace
+}  // namespace rad
