@@ -87,7 +87,6 @@ int runAnimate(AnimateOptions& o, Console& console) {
   const std::vector<Color> scales = groupScalesFor(groups, o.method.groupScales());
   scaleEmitters(scene, groups, scales);  // the emitting materials; the lights per frame
   const Camera camera = o.picture.camera(scene);
-  const SurfaceRenderSettings renderSettings = o.picture.surfaceSettings(o.method);
   frameFiles.createDirectory();
 
   InterruptGuard interruptible;
@@ -99,6 +98,7 @@ int runAnimate(AnimateOptions& o, Console& console) {
   Relighter relighter = startRelighter(model, first, o.solution, o.relight, console);
   stats.timingsSeconds.solve = solveTime.seconds();
 
+  PictureOptions::warnOfDynamicObjects(scene, "patch", console);
   std::vector<FrameRecord> records;
   const ProgressCallback progress = console.progress("animate");
   int written = 0;
@@ -110,9 +110,8 @@ int runAnimate(AnimateOptions& o, Console& console) {
         record.relightMs = record.relight.milliseconds;
       }
       Stopwatch renderTime;
-      const Image image =
-          renderSurfaceRadiance(scene, caster, camera, relighter.solution(), renderSettings,
-                                progressPart(progress, f, o.frames));
+      const Image image = o.picture.render(scene, caster, camera, relighter.solution(), o.method,
+                                           record.t, progressPart(progress, f, o.frames));
       writeImage(frameFiles.name(f), image, o.picture.writeOptions());
       record.renderMs = 1e3 * renderTime.seconds();
       records.push_back(record);

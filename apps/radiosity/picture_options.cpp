@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "console.h"
+#include "lighting/dynamic_objects.h"
 #include "method_options.h"
 
 namespace rad::cli {
@@ -63,6 +64,27 @@ ImageWriteOptions PictureOptions::writeOptions() const {
   options.exposureEV = exposure;
   options.exrPixelType = exrFloat ? ExrPixelType::Float : ExrPixelType::Half;
   return options;
+}
+
+Image PictureOptions::render(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                             const SurfaceSolution& solution, const MethodOptions& method,
+                             double seconds, const ProgressCallback& progress) const {
+  const SurfaceRenderSettings settings = surfaceSettings(method);
+  if (scene.dynamicObjects.empty())
+    return renderSurfaceRadiance(scene, caster, camera, solution, settings, progress);
+  const Scene placed = scene.withDynamicObjectsAt(seconds);
+  const RayCaster placedCaster(placed);
+  const DynamicObjectLighting lighting(placed, solution, caster, placedCaster);
+  return renderSurfaceRadiance(placed, placedCaster, camera, lighting, settings, progress);
+}
+
+void PictureOptions::warnOfDynamicObjects(const Scene& scene, const std::string& method,
+                                          Console& console) {
+  if (scene.dynamicObjects.empty()) return;
+  console.warn(fmt::format(
+      "{} dynamic object(s) lit by probes of the {} solution; the light they reflect onto the "
+      "scene is not in it yet (their shadows from point, spot and IES lights are, per pixel)",
+      scene.dynamicObjects.size(), method));
 }
 
 void PictureOptions::warnIfDirectUnavailable(const SurfaceRadiance& solution,

@@ -5,6 +5,7 @@
 #include <radiosity/image.h>
 #include <radiosity/scene.h>
 #include <radiosity/surface_radiance.h>
+#include <radiosity/surface_solution.h>
 
 #include <string>
 
@@ -31,6 +32,13 @@ struct PictureOptions {
   /// How a radiosity solution is drawn: camera rays and seed from the method's settings.
   SurfaceRenderSettings surfaceSettings(const MethodOptions& method) const;
   ImageWriteOptions writeOptions() const;
+  /// The picture of `solution` (made by `method`) through `camera`; with the scene's dynamic
+  /// objects placed as at `seconds`, each lit by probes of the solution (DynamicObjectLighting).
+  Image render(const Scene& scene, const RayCaster& caster, const Camera& camera,
+               const SurfaceSolution& solution, const MethodOptions& method, double seconds,
+               const ProgressCallback& progress) const;
+  /// Warns, when the scene has dynamic objects, of what their lighting leaves out.
+  static void warnOfDynamicObjects(const Scene& scene, const std::string& method, Console& console);
   /// Warns when per-pixel direct light was asked of a solution that cannot give it.
   void warnIfDirectUnavailable(const SurfaceRadiance& solution, const std::string& method,
                                Console& console) const;

@@ -16,7 +16,6 @@
 
 #include "command_support.h"
 #include "commands.h"
-#include "lighting/dynamic_objects.h"
 #include "method_options.h"
 #include "picture_options.h"
 
@@ -60,29 +59,15 @@ Image renderWithPathTracer(const Scene& scene, const RayCaster& caster, const Ca
   return std::move(result.image);
 }
 
-// The solution's picture; with dynamic objects, of the scene with them placed at --time, each lit
-// by a probe of the solution (lighting/dynamic_objects.h).
+// The solution's picture, with the scene's dynamic objects where --time puts them.
 Image renderSolution(const Scene& scene, const RayCaster& caster, const Camera& camera,
                      const SurfaceSolution& solution, const RenderOptions& o, Console& console,
                      RunStats& stats) {
   Stopwatch renderTime;
   o.picture.warnIfDirectUnavailable(solution, o.method.method(), console);
-  const SurfaceRenderSettings settings = o.picture.surfaceSettings(o.method);
-  Image image;
-  if (scene.dynamicObjects.empty()) {
-    image = renderSurfaceRadiance(scene, caster, camera, solution, settings,
-                                  console.progress("render"));
-  } else {
-    console.warn(fmt::format(
-        "{} dynamic object(s) lit by probes of the {} solution; the light they reflect onto the "
-        "scene is not in it yet (their shadows from point, spot and IES lights are, per pixel)",
-        scene.dynamicObjects.size(), o.method.method()));
-    const Scene placed = scene.withDynamicObjectsAt(o.time);
-    const RayCaster placedCaster(placed);
-    const DynamicObjectLighting lighting(placed, solution, caster, placedCaster);
-    image = renderSurfaceRadiance(placed, placedCaster, camera, lighting, settings,
-                                  console.progress("render"));
-  }
+  PictureOptions::warnOfDynamicObjects(scene, o.method.method(), console);
+  Image image = o.picture.render(scene, caster, camera, solution, o.method, o.time,
+                                 console.progress("render"));
   console.finishProgress();
   stats.timingsSeconds.render = renderTime.seconds();
   return image;
