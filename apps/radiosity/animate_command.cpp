@@ -17,6 +17,7 @@
 #include "command_support.h"
 #include "commands.h"
 #include "frame_files.h"
+#include "lighting/dynamic_objects.h"
 #include "method_options.h"
 #include "picture_options.h"
 
@@ -105,8 +106,12 @@ int runAnimate(AnimateOptions& o, Console& console) {
   try {
     for (int f = 0; f < o.frames; ++f) {
       FrameRecord record{timeOf(f), 0.0, 0.0, {}};
-      if (f > 0) {
-        record.relight = relighter.relight(lightsAt(scene, record.t, groups, scales));
+      if (f > 0 || !scene.dynamicObjects.empty()) {
+        // The objects' reflected light as the last frame's solution lit them: a frame behind.
+        std::vector<Light> lights = lightsAt(scene, record.t, groups, scales);
+        for (const Light& l : dynamicObjectLights(scene, caster, relighter.solution(), record.t))
+          lights.push_back(l);
+        record.relight = relighter.relight(lights);
         record.relightMs = record.relight.milliseconds;
       }
       Stopwatch renderTime;

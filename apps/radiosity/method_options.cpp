@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "command_support.h"
+#include "lighting/dynamic_objects.h"
 
 namespace rad::cli {
 
@@ -27,6 +28,13 @@ auto solveShowingProgress(const Scene& scene, const RayCaster& caster, const Set
   auto solution = source.file.empty() ? model.solve(scene.lights, console.progress(label))
                                       : model.load(source.file, scene.lights);
   console.finishProgress();
+  if (!scene.dynamicObjects.empty() && source.file.empty()) {
+    std::vector<Light> lights = scene.lights;
+    for (const Light& l : dynamicObjectLights(scene, caster, solution, source.seconds))
+      lights.push_back(l);
+    solution = model.solve(lights, console.progress(label + ", objects' bounce"));
+    console.finishProgress();
+  }
   for (const std::string& w : solution.stats().warnings) console.warn(w);
   if (source.groups.empty()) return solution;
   if (solution.lightGroups().empty())

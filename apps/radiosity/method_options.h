@@ -74,11 +74,13 @@ struct SolveReport {
 struct SolutionSource {
   std::span<const GroupScale> groups;  ///< the --group scales, applied after
   std::string file;
+  double seconds = 0.0;  ///< where the dynamic objects are (their light is one more bounce)
 };
 
 /// Solves `scene` (through `caster`, the run's one ray caster) by the voxel method with a
 /// progress bar, or loads it from the source's file, scales its light groups as the source
-/// asks, prints the method's warnings and reports its numbers. Throws what the solver throws.
+/// asks, prints the method's warnings and reports its numbers. With dynamic objects, solves again
+/// with the light they reflect (dynamicObjectLights) as lights. Throws what the solver throws.
 VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
                            const VoxelRadiositySettings& settings, const SolutionSource& source,
                            Console& console, const SolveReport& report);

@@ -82,8 +82,9 @@ void PictureOptions::warnOfDynamicObjects(const Scene& scene, const std::string&
                                           Console& console) {
   if (scene.dynamicObjects.empty()) return;
   console.warn(fmt::format(
-      "{} dynamic object(s) lit by probes of the {} solution; the light they reflect onto the "
-      "scene is not in it yet (their shadows from point, spot and IES lights are, per pixel)",
+      "{} dynamic object(s) lit by probes of the {} solution, the light they reflect added to it "
+      "as one more bounce; their shadows and occlusion are not in the solution (point, spot and "
+      "IES lights' shadows are drawn per pixel)",
       scene.dynamicObjects.size(), method));
 }
 

@@ -106,14 +106,15 @@ int runRender(RenderOptions& o, Console& console) {
                   groupScalesFor(lightGroupsOf(scene, scene.lights), groups));
   const Image image =
       method == "pathtrace" ? renderWithPathTracer(scene, caster, camera, o, console, stats)
-      : method == "patch"   ? renderSolution(scene, caster, camera,
-                                             solvePatches(scene, caster, o.method.patch(),
-                                                          {groups, o.solution}, console, report),
-                                             o, console, stats)
-                            : renderSolution(scene, caster, camera,
-                                             solveVoxels(scene, caster, voxelSettingsFor(o),
-                                                         {groups, o.solution}, console, report),
-                                             o, console, stats);
+      : method == "patch"
+          ? renderSolution(scene, caster, camera,
+                           solvePatches(scene, caster, o.method.patch(),
+                                        {groups, o.solution, o.time}, console, report),
+                           o, console, stats)
+          : renderSolution(scene, caster, camera,
+                           solveVoxels(scene, caster, voxelSettingsFor(o),
+                                       {groups, o.solution, o.time}, console, report),
+                           o, console, stats);
   writeImage(o.output, image, o.picture.writeOptions());
   if (!o.stats.empty()) {
     stats.settings = settingsOf(o.method.settings());

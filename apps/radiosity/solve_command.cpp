@@ -107,12 +107,13 @@ int runSolve(SolveOptions& o, Console& console) {
   const RayCaster caster(scene);  // the run's one BVH
   const std::vector<GroupScale>& groups = o.method.groupScales();
   if (o.method.method() == "patch")
-    return finishSolve(o, scene,
-                       solvePatches(scene, caster, o.method.patch(), {groups, ""}, console, report),
-                       ext, total, stats, console);
-  return finishSolve(o, scene,
-                     solveVoxels(scene, caster, voxelSettings, {groups, ""}, console, report), ext,
-                     total, stats, console);
+    return finishSolve(
+        o, scene,
+        solvePatches(scene, caster, o.method.patch(), {groups, "", o.time}, console, report), ext,
+        total, stats, console);
+  return finishSolve(
+      o, scene, solveVoxels(scene, caster, voxelSettings, {groups, "", o.time}, console, report),
+      ext, total, stats, console);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -45,8 +46,10 @@ struct Face {
   float area = 0.0f;
 };
 
-enum class LightType { Point, Spot, Ies };
-/// "point", "spot" or "ies", as the scene file spells it.
+/// Object: the light a dynamic object reflects, summarized at its centre (lighting/dynamic_objects.h;
+/// made by the program, not read from scene files).
+enum class LightType { Point, Spot, Ies, Object };
+/// "point", "spot", "ies" or "object", as the scene file and the stats spell it.
 const char* lightTypeName(LightType type);
 
 /// A light's state at a time of its animation: the fields it sets (the others follow the
@@ -80,6 +83,9 @@ struct Light {
   /// colour-weighted scale: intensity * candela gives W/sr).
   std::shared_ptr<const IesProfile> ies;
   std::string iesFile;
+  /// Object: toward unit direction d it sends sum_k lobes[k] max(0, d . e_k) W/sr, e_k the axes
+  /// +x, -x, +y, -y, +z, -z (a diffuse object's faces seen from d, summarized by axis).
+  std::array<Color, 6> lobes{};
 
   /// Radiant intensity (W/sr) toward the unit direction `toward` (from the light outward).
   Color intensityToward(const Vec3& toward) const;

@@ -68,13 +68,17 @@ DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceS
       full_(placed.positions.size(), Color(0.0f)),
       indirect_(placed.positions.size(), Color(0.0f)) {
   const ObjectVertices vertices = objectVertices(placed);
+  centres_.assign(placed.objects.size(), Vec3(0.0f));
+  for (const Light& light : solution.directLights())
+    (light.type == LightType::Object ? objectLights_ : pointLights_).push_back(light);
+  fromObjects_ = std::make_unique<DirectLighting>(solution.scene(), staticCaster, objectLights_);
   const ReflectedOnly reflected(solution.scene(), solution);
-  const DirectLighting direct(placed, placedCaster, solution.directLights(),
-                              solution.emissionScales());
+  const DirectLighting direct(placed, placedCaster, pointLights_, solution.emissionScales());
   for (const std::vector<uint32_t>& own : vertices.byObject) {
     if (own.empty()) continue;
     Vec3 centre(0.0f);
     for (uint32_t v : own) centre += placed.positions[v] / float(own.size());
+    centres_[&own - vertices.byObject.data()] = centre;
     CubeProbe full(settings.probeResolution), bounce(settings.probeResolution);
     full.capture(staticCaster, solution, centre);
     bounce.capture(staticCaster, reflected, centre);
@@ -86,6 +90,44 @@ DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceS
       indirect_[v] = bounce.irradiance(n, settings.way);
     });
   }
+}
+
+std::vector<Light> DynamicObjectLighting::objectLights() const {
+  std::vector<std::array<Color, 6>> lobes(placed_.objects.size());
+  std::vector<uint8_t> has(placed_.objects.size(), 0);
+  for (uint32_t t = placed_.staticTriangles; t < placed_.triangles.size(); ++t) {
+    const UVec3& tri = placed_.triangles[t];
+    const Color b = placed_.materialOf(t).rho * (full_[tri.x] + full_[tri.y] + full_[tri.z]) / 3.0f;
+    const Vec3 n = placed_.triangleNormal(t);
+    const float weight = placed_.triangleArea(t) / glm::pi<float>();
+    const uint32_t object = placed_.faceOf(t).object;
+    has[object] = 1;
+    for (int k = 0; k < 6; ++k)
+      lobes[object][size_t(k)] +=
+          b * (weight * std::max(0.0f, (k % 2 == 0 ? 1.0f : -1.0f) * n[k / 2]));
+  }
+  std::vector<Light> lights;
+  for (size_t o = 0; o < lobes.size(); ++o) {
+    if (!has[o]) continue;
+    Light light;
+    light.type = LightType::Object;
+    light.position = centres_[o];
+    light.lobes = lobes[o];
+    light.intensity = Color(1.0f);
+    light.group = "object:" + placed_.objects[o].name;
+    lights.push_back(light);
+  }
+  return lights;
+}
+
+std::vector<Light> dynamicObjectLights(const Scene& scene, const RayCaster& staticCaster,
+                                       const SurfaceSolution& solution, double seconds,
+                                       const DynamicObjectSettings& settings) {
+  if (scene.dynamicObjects.empty()) return {};
+  const Scene placed = scene.withDynamicObjectsAt(seconds);
+  const RayCaster placedCaster(placed);
+  return DynamicObjectLighting(placed, solution, staticCaster, placedCaster, settings)
+      .objectLights();
 }
 
 Color DynamicObjectLighting::atHit(const SurfaceHit& hit,
@@ -110,7 +152,12 @@ Color DynamicObjectLighting::radiance(const SurfaceHit& hit) const {
 }
 
 Color DynamicObjectLighting::indirectIrradiance(const SurfaceHit& hit) const {
-  if (!isObject(hit.triangle)) return solution_.indirectIrradiance(hit);
+  if (!isObject(hit.triangle)) {
+    const Color bounce = solution_.indirectIrradiance(hit);
+    if (objectLights_.empty()) return bounce;
+    const Vec3 n = hit.frontFace ? hit.normal : -hit.normal;
+    return bounce + fromObjects_->fromLights(hit.point, n);
+  }
   const Material& m = placed_.materialOf(hit.triangle);
   if (!hit.frontFace && !m.twoSided) return Color(0.0f);
   return atHit(hit, indirect_);

@@ -3,14 +3,19 @@
 // mapping): a probe at each object's centre sees the static scene's light (CubeProbe), and each
 // of its vertices takes its irradiance from that view plus the direct light of the point, spot
 // and IES lights by shadow rays; hits on the object are shaded by interpolating its vertices'
-// irradiance, smooth across its mesh. Not yet: the light an object throws back on the static
-// scene, several probes for a large object, recapture only when something moved.
+// irradiance, smooth across its mesh. What an object reflects goes back to the static scene as a
+// light at its centre (LightType::Object): its radiant intensity toward d blends six lobes, the
+// object's faces summarized by axis, sum_k P_k max(0, d . e_k) with P_k = sum over its
+// triangles of B A max(0, n . e_k) / pi. Not yet: several probes for a large object, recapture
+// only when something moved, the object's shadow in the static solution.
 
 #include <radiosity/surface_solution.h>
 
+#include <memory>
 #include <vector>
 
 #include "lighting/cube_probe.h"
+#include "lighting/direct_lighting.h"
 
 namespace rad {
 
@@ -35,8 +40,13 @@ class DynamicObjectLighting : public SurfaceRadiance {
   Color radiance(const SurfaceHit& hit) const override;
   bool hasIndirectIrradiance() const override { return solution_.hasIndirectIrradiance(); }
   Color indirectIrradiance(const SurfaceHit& hit) const override;
-  std::span<const Light> directLights() const override { return solution_.directLights(); }
+  /// The solution's lights but the objects' own (a shadow ray toward one would stop at its
+  /// object); their direct light on the scene is in indirectIrradiance() instead.
+  std::span<const Light> directLights() const override { return pointLights_; }
   std::span<const Color> emissionScales() const override { return solution_.emissionScales(); }
+
+  /// Each object's reflected light as a light at its centre (LightType::Object), named after it.
+  std::vector<Light> objectLights() const;
 
   /// The irradiance of vertex `v` of `placed` (an object's; 0 for the scene's own), full and
   /// without the lights' and emitters' direct light.
@@ -50,7 +60,17 @@ class DynamicObjectLighting : public SurfaceRadiance {
 
   const Scene& placed_;
   const SurfaceSolution& solution_;
-  std::vector<Color> full_, indirect_;  ///< per vertex of `placed` (objects' only)
+  std::vector<Vec3> centres_;  ///< per object of `placed` (its own objects' unused)
+  std::vector<Light> pointLights_, objectLights_;  ///< the solution's, split by kind
+  std::unique_ptr<DirectLighting> fromObjects_;    ///< objectLights_ through the static caster
+  std::vector<Color> full_, indirect_;             ///< per vertex of `placed` (objects' only)
 };
+
+/// The dynamic objects of `scene` placed as at `seconds`, lit by `solution` (of the scene's own
+/// triangles, through `staticCaster`): their reflected light as lights (objectLights), for the
+/// static solution to take as one more bounce.
+std::vector<Light> dynamicObjectLights(const Scene& scene, const RayCaster& staticCaster,
+                                       const SurfaceSolution& solution, double seconds,
+                                       const DynamicObjectSettings& settings = {});
 
 }  // namespace rad

@@ -12,9 +12,11 @@ const char* lightTypeName(LightType type) {
     case LightType::Spot:
       return "spot";
     case LightType::Ies:
+      return "ies";
+    case LightType::Object:
       break;
   }
-  return "ies";
+  return "object";
 }
 
 namespace {
@@ -55,6 +57,12 @@ Color Light::intensityToward(const Vec3& toward) const {
           ies->candelaToward(glm::dot(toward, x), glm::dot(toward, y), glm::dot(toward, z));
       return intensity * float(cd);
     }
+    case LightType::Object: {
+      Color sum(0.0f);
+      for (int k = 0; k < 6; ++k)
+        sum += lobes[size_t(k)] * std::max(0.0f, (k % 2 == 0 ? 1.0f : -1.0f) * toward[k / 2]);
+      return intensity * sum;  // intensity: a dimmer on it (1 as made)
+    }
   }
   return Color(0.0f);
 }
@@ -80,6 +88,12 @@ Color Light::power() const {
     case LightType::Ies:
       // Lumens are candela x steradians, so the flux integral scales the same way as intensity.
       return ies ? intensity * float(ies->totalFlux()) : Color(0.0f);
+    case LightType::Object: {
+      // Each lobe max(0, d . e) integrates to pi over the sphere.
+      Color sum(0.0f);
+      for (const Color& lobe : lobes) sum += lobe;
+      return intensity * sum * glm::pi<float>();
+    }
   }
   return Color(0.0f);
 }

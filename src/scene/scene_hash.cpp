@@ -37,6 +37,7 @@ void hashLights(Hasher& h, std::span<const Light> lights) {
     h.value(l.outerAngleDeg);
     h.text(l.group);
     h.text(l.iesFile);
+    h.value(l.lobes);
   }
 }
 

@@ -100,3 +100,32 @@ TEST(DynamicObjects, AVertexFacingTheRedWallGetsMoreRed) {
 
 }  // namespace
 }  // namespace rad
+
+namespace rad {
+namespace {
+
+// The light an object reflects, summarized at its centre: a cube of radiosity B on every face
+// sends B A / pi along each axis (one face's projected area) and B times its area in all.
+TEST(DynamicObjects, ObjectLightCarriesWhatTheObjectReflects) {
+  SceneBuilder b("furnace");
+  const Color l(1.0f);
+  const uint32_t glow = b.addMaterial({"glow", Color(0.0f), l, false});
+  test::addInwardCube(b, [&](int) { return glow; });
+  Scene scene = b.build();
+  PatchRadiositySettings settings;
+  settings.targetPatches = 200;
+  const PatchRadiosity solution(scene, settings);
+  scene.dynamicObjects.push_back(
+      {"cube", cubeMesh(0.2f), std::nullopt, {{0.0, Vec3(0.5f), std::nullopt}}});
+  const RayCaster caster(scene);
+  const std::vector<Light> lights = dynamicObjectLights(scene, caster, solution, 0.0);
+  ASSERT_EQ(lights.size(), 1u);
+  const float b0 = 0.5f * glm::pi<float>();  // rho 0.5 times pi L
+  const float face = 0.2f * 0.2f;
+  EXPECT_NEAR(lights[0].intensityToward(Vec3(1, 0, 0)).r, b0 * face / glm::pi<float>(), 2e-3f);
+  EXPECT_NEAR(lights[0].power().g, b0 * 6.0f * face, 0.01f * b0 * 6.0f * face);
+  EXPECT_NEAR(glm::length(lights[0].position - Vec3(0.5f)), 0.0f, 1e-5f);
+}
+
+}  // namespace
+}  // namespace rad
