@@ -52,17 +52,33 @@ TEST(DynamicObjects, PlacedWhereTheirPathSays) {
 
 // A furnace: the object inside a closed box whose walls emit L (rho 0); every vertex's
 // irradiance is pi L (each way within 1%, here the default: harmonics).
+// The unit cube seen from inside, its walls emitting `l` (rho 0), solved; then a cube of side 0.2
+// (rho 0.5) placed at its centre as a dynamic object.
+struct Furnace {
+  explicit Furnace(const Color& l) : scene(walls(l)), solution(scene, settings()) {
+    scene.dynamicObjects.push_back(
+        {"cube", cubeMesh(0.2f), std::nullopt, {{0.0, Vec3(0.5f), std::nullopt}}});
+  }
+  static Scene walls(const Color& l) {
+    SceneBuilder b("furnace");
+    const uint32_t glow = b.addMaterial({"glow", Color(0.0f), l, false});
+    test::addInwardCube(b, [&](int) { return glow; });
+    return b.build();
+  }
+  static PatchRadiositySettings settings() {
+    PatchRadiositySettings s;
+    s.targetPatches = 200;
+    return s;
+  }
+  Scene scene;
+  PatchRadiosity solution;
+};
+
 TEST(DynamicObjects, FurnaceVerticesGetPiL) {
-  SceneBuilder b("furnace");
   const Color l(1.0f, 0.5f, 0.25f);
-  const uint32_t glow = b.addMaterial({"glow", Color(0.0f), l, false});
-  test::addInwardCube(b, [&](int) { return glow; });
-  Scene scene = b.build();
-  PatchRadiositySettings settings;
-  settings.targetPatches = 200;
-  const PatchRadiosity solution(scene, settings);
-  scene.dynamicObjects.push_back(
-      {"cube", cubeMesh(0.2f), std::nullopt, {{0.0, Vec3(0.5f), std::nullopt}}});
+  Furnace furnace(l);
+  const Scene& scene = furnace.scene;
+  const PatchRadiosity& solution = furnace.solution;
   const Scene placed = scene.withDynamicObjectsAt(0.0);
   const RayCaster staticCaster(scene), placedCaster(placed);
   const DynamicObjectLighting lighting(placed, solution, staticCaster, placedCaster);
@@ -107,18 +123,10 @@ namespace {
 // The light an object reflects, summarized at its centre: a cube of radiosity B on every face
 // sends B A / pi along each axis (one face's projected area) and B times its area in all.
 TEST(DynamicObjects, ObjectLightCarriesWhatTheObjectReflects) {
-  SceneBuilder b("furnace");
-  const Color l(1.0f);
-  const uint32_t glow = b.addMaterial({"glow", Color(0.0f), l, false});
-  test::addInwardCube(b, [&](int) { return glow; });
-  Scene scene = b.build();
-  PatchRadiositySettings settings;
-  settings.targetPatches = 200;
-  const PatchRadiosity solution(scene, settings);
-  scene.dynamicObjects.push_back(
-      {"cube", cubeMesh(0.2f), std::nullopt, {{0.0, Vec3(0.5f), std::nullopt}}});
-  const RayCaster caster(scene);
-  const std::vector<Light> lights = dynamicObjectLights(scene, caster, solution, 0.0);
+  Furnace furnace(Color(1.0f));
+  const RayCaster caster(furnace.scene);
+  const std::vector<Light> lights =
+      dynamicObjectLights(furnace.scene, caster, furnace.solution, 0.0);
   ASSERT_EQ(lights.size(), 1u);
   const float b0 = 0.5f * glm::pi<float>();  // rho 0.5 times pi L
   const float face = 0.2f * 0.2f;
