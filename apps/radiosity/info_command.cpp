@@ -28,6 +28,10 @@ int runInfo(const std::string& sceneName, Console& console) {
     out << fmt::format("  {:<5} at ({:g}, {:g}, {:g}), intensity ({:g}, {:g}, {:g}) W/sr\n",
                        lightTypeName(light.type), light.position.x, light.position.y,
                        light.position.z, light.intensity.r, light.intensity.g, light.intensity.b);
+  out << fmt::format("dynamic    {}\n", scene.dynamicObjects.size());
+  for (const DynamicObject& object : scene.dynamicObjects)
+    out << fmt::format("  {} ({} triangles, {} keyframes)\n", object.name,
+                       object.mesh->triangles.size(), object.path.size());
   const Bounds b = scene.bounds();
   if (!b.empty())
     out << fmt::format("bounds     ({:g}, {:g}, {:g}) - ({:g}, {:g}, {:g})\n", b.min.x, b.min.y,
