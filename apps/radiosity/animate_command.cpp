@@ -107,11 +107,20 @@ int runAnimate(AnimateOptions& o, Console& console) {
     for (int f = 0; f < o.frames; ++f) {
       FrameRecord record{timeOf(f), 0.0, 0.0, {}};
       if (f > 0 || !scene.dynamicObjects.empty()) {
-        // The objects' reflected light as the last frame's solution lit them: a frame behind.
         std::vector<Light> lights = lightsAt(scene, record.t, groups, scales);
-        for (const Light& l : dynamicObjectLights(scene, caster, relighter.solution(), record.t))
-          lights.push_back(l);
-        record.relight = relighter.relight(lights);
+        if (scene.dynamicObjects.empty()) {
+          record.relight = relighter.relight(lights);
+        } else {
+          // The objects in place: their shadows, and their reflected light as the last frame's
+          // solution lit them (a frame behind).
+          const Scene placed = scene.withDynamicObjectsAt(record.t);
+          const RayCaster placedCaster(placed);
+          for (const Light& l :
+               DynamicObjectLighting(placed, relighter.solution(), caster, placedCaster)
+                   .objectLights())
+            lights.push_back(l);
+          record.relight = relighter.relight(lights, {}, &placedCaster);
+        }
         record.relightMs = record.relight.milliseconds;
       }
       Stopwatch renderTime;

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "command_support.h"
@@ -29,10 +30,19 @@ auto solveShowingProgress(const Scene& scene, const RayCaster& caster, const Set
                                       : model.load(source.file, scene.lights);
   console.finishProgress();
   if (!scene.dynamicObjects.empty() && source.file.empty()) {
+    // Once more with the objects in place: their reflected light as lights, and (patch) their
+    // shadows in the lights' direct light.
+    const Scene placed = scene.withDynamicObjectsAt(source.seconds);
+    const RayCaster placedCaster(placed);
     std::vector<Light> lights = scene.lights;
-    for (const Light& l : dynamicObjectLights(scene, caster, solution, source.seconds))
+    for (const Light& l :
+         DynamicObjectLighting(placed, solution, caster, placedCaster).objectLights())
       lights.push_back(l);
-    solution = model.solve(lights, console.progress(label + ", objects' bounce"));
+    const ProgressCallback progress = console.progress(label + ", objects' bounce");
+    if constexpr (std::is_same_v<Model, PatchModel>)
+      solution = model.solve(lights, placedCaster, progress);
+    else
+      solution = model.solve(lights, progress);
     console.finishProgress();
   }
   for (const std::string& w : solution.stats().warnings) console.warn(w);

@@ -83,9 +83,10 @@ void PictureOptions::warnOfDynamicObjects(const Scene& scene, const std::string&
   if (scene.dynamicObjects.empty()) return;
   console.warn(fmt::format(
       "{} dynamic object(s) lit by probes of the {} solution, the light they reflect added to it "
-      "as one more bounce; their shadows and occlusion are not in the solution (point, spot and "
-      "IES lights' shadows are drawn per pixel)",
-      scene.dynamicObjects.size(), method));
+      "as one more bounce{}; the bounce light they block is not taken out",
+      scene.dynamicObjects.size(), method,
+      method == "patch" ? ", their shadows from point, spot and IES lights in it too"
+                        : "; their shadows are drawn per pixel, not in the solution"));
 }
 
 void PictureOptions::warnIfDirectUnavailable(const SurfaceRadiance& solution,

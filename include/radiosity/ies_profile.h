@@ -12,11 +12,11 @@ namespace rad {
 enum class PhotometricType { C = 1, B = 2, A = 3 };
 
 struct IesProfile {
-  std::string source;  // file name, for messages
-  std::string version; // "IESNA:LM-63-2002", ... or "LM-63-1986" when the file has no version line
+  std::string source;   // file name, for messages
+  std::string version;  // "IESNA:LM-63-2002", ... or "LM-63-1986" when the file has no version line
   PhotometricType type = PhotometricType::C;
-  double candelaMultiplier = 1.0;  // already applied to `candela`
-  double ballastFactor = 1.0;      // already applied to `candela`
+  double candelaMultiplier = 1.0;        // already applied to `candela`
+  double ballastFactor = 1.0;            // already applied to `candela`
   std::vector<double> verticalAngles;    // degrees, ascending
   std::vector<double> horizontalAngles;  // degrees, ascending
   /// candela[h * verticalAngles.size() + v], multiplier and ballast factor applied.

@@ -153,6 +153,10 @@ class PatchModel {
   /// computed), and the bounces. Thread-safe. Throws rad::Cancelled if `progress` returns false;
   /// a bad cache file is a warning.
   PatchRadiosity solve(std::span<const Light> lights, const ProgressCallback& progress = {}) const;
+  /// The same with the lights' direct light shadowed by what `shadowCaster` holds (the scene
+  /// with its dynamic objects placed: Scene::withDynamicObjectsAt), which must outlive the call.
+  PatchRadiosity solve(std::span<const Light> lights, const RayCaster& shadowCaster,
+                       const ProgressCallback& progress = {}) const;
   /// The solution a solution file (solution_file.h) keeps, saved from a model of this scene and
   /// settings solved for `lights`, without solving: its patches, and its light per group when
   /// they were solved apart (at the scales it was saved with). Throws InputError naming the file
@@ -214,7 +218,7 @@ class PatchRadiosity : public SurfaceSolution {
   friend class PatchModel;
   friend class Relighter;
   PatchRadiosity(std::shared_ptr<const PatchModel::State> model, std::span<const Light> lights,
-                 const ProgressCallback& progress);
+                 const RayCaster* shadowCaster, const ProgressCallback& progress);
   struct Impl;
   explicit PatchRadiosity(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;

@@ -78,8 +78,12 @@ class Relighter {
   /// `emissionScales`: per scene material, a factor on its emission (a dimmer on glowing
   /// surfaces; empty: the scene's own), shot as a change like the lights'. Throws
   /// std::invalid_argument for a count that is not the scene's materials'.
+  /// `shadowCaster`: what shadows the lights' direct light (the scene with its dynamic objects
+  /// placed as now; null: the model's scene alone); with one, every light's direct light is
+  /// evaluated anew (the objects may have moved).
   const RelightStats& relight(std::span<const Light> lights,
-                              std::span<const Color> emissionScales = {});
+                              std::span<const Color> emissionScales = {},
+                              const RayCaster* shadowCaster = nullptr);
   /// The solution for the last lights: the ambient term of progressive refinement stands in
   /// for what is left unshot. Valid until the next relight.
   const PatchRadiosity& solution() const;

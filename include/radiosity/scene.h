@@ -6,10 +6,9 @@
 #include <radiosity/ies_profile.h>
 #include <radiosity/types.h>
 
-#include <glm/mat4x4.hpp>
-
 #include <array>
 #include <cstdint>
+#include <glm/mat4x4.hpp>
 #include <map>
 #include <memory>
 #include <optional>
@@ -46,8 +45,8 @@ struct Face {
   float area = 0.0f;
 };
 
-/// Object: the light a dynamic object reflects, summarized at its centre (lighting/dynamic_objects.h;
-/// made by the program, not read from scene files).
+/// Object: the light a dynamic object reflects, summarized at its centre
+/// (lighting/dynamic_objects.h; made by the program, not read from scene files).
 enum class LightType { Point, Spot, Ies, Object };
 /// "point", "spot", "ies" or "object", as the scene file and the stats spell it.
 const char* lightTypeName(LightType type);
@@ -104,7 +103,7 @@ struct Scene;
 /// A moving object's placement at a time of its path: the fields it sets (the others follow the
 /// keyframes around it that set them).
 struct ObjectKeyframe {
-  double t = 0.0;  ///< seconds
+  double t = 0.0;                   ///< seconds
   std::optional<Vec3> position;     ///< where its own origin goes, scene units
   std::optional<Vec3> rotationDeg;  ///< about its origin: x, then y, then z (degrees)
   bool operator==(const ObjectKeyframe&) const = default;

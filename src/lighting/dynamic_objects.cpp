@@ -120,16 +120,6 @@ std::vector<Light> DynamicObjectLighting::objectLights() const {
   return lights;
 }
 
-std::vector<Light> dynamicObjectLights(const Scene& scene, const RayCaster& staticCaster,
-                                       const SurfaceSolution& solution, double seconds,
-                                       const DynamicObjectSettings& settings) {
-  if (scene.dynamicObjects.empty()) return {};
-  const Scene placed = scene.withDynamicObjectsAt(seconds);
-  const RayCaster placedCaster(placed);
-  return DynamicObjectLighting(placed, solution, staticCaster, placedCaster, settings)
-      .objectLights();
-}
-
 Color DynamicObjectLighting::atHit(const SurfaceHit& hit,
                                    const std::vector<Color>& perVertex) const {
   const UVec3& t = placed_.triangles[hit.triangle];

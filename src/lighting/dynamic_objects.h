@@ -66,11 +66,4 @@ class DynamicObjectLighting : public SurfaceRadiance {
   std::vector<Color> full_, indirect_;             ///< per vertex of `placed` (objects' only)
 };
 
-/// The dynamic objects of `scene` placed as at `seconds`, lit by `solution` (of the scene's own
-/// triangles, through `staticCaster`): their reflected light as lights (objectLights), for the
-/// static solution to take as one more bounce.
-std::vector<Light> dynamicObjectLights(const Scene& scene, const RayCaster& staticCaster,
-                                       const SurfaceSolution& solution, double seconds,
-                                       const DynamicObjectSettings& settings = {});
-
 }  // namespace rad

@@ -91,7 +91,8 @@ struct Relighter::State {
 
   const FormFactorTable& table() const { return *m.table; }
   void anchor(std::span<const Color> guess);
-  LitPatches lightPatches(std::span<const Light> lights);
+  LitPatches lightPatches(std::span<const Light> lights, const RayCaster& shadows);
+  bool shadowed = false;  ///< the light cache holds values shadowed by objects
   void changeMesh(LitPatches lit);
   void applyDirect(const std::vector<Color>& direct);
   /// E of every patch as the emission scales make it (after m.system(), which has the scene's).
@@ -119,13 +120,13 @@ void Relighter::State::anchor(std::span<const Color> guess) {
 
 // The lights' direct light on the patches of a mesh refined for them anew; lights that did not
 // change are not evaluated again (the cache).
-LitPatches Relighter::State::lightPatches(std::span<const Light> lights) {
+LitPatches Relighter::State::lightPatches(std::span<const Light> lights, const RayCaster& shadows) {
   m.lights.assign(lights.begin(), lights.end());
   const std::vector<uint8_t> changed = cache.update(m.lights);
   stats.lightsChanged = size_t(std::count(changed.begin(), changed.end(), 1));
   LitPatches lit{std::make_unique<PatchMesh>(*m.model->baseMesh), {}};
   const PatchRadiositySettings& s = m.settings;
-  lit.direct = refineForLights(*lit.mesh, DirectLighting(*m.scene, *m.model->caster, m.lights),
+  lit.direct = refineForLights(*lit.mesh, DirectLighting(*m.scene, shadows, m.lights),
                                {s.refineLevels, s.refineThreshold, s.lightSamples}, cache)
                    .direct;
   if (lit.direct.empty()) lit.direct.assign(lit.mesh->size(), Color(0.0f));
@@ -309,12 +310,15 @@ Relighter::Relighter(Relighter&&) noexcept = default;
 Relighter& Relighter::operator=(Relighter&&) noexcept = default;
 
 const RelightStats& Relighter::relight(std::span<const Light> lights,
-                                       std::span<const Color> emissionScales) {
+                                       std::span<const Color> emissionScales,
+                                       const RayCaster* shadowCaster) {
   State& s = *state_;
   const auto start = std::chrono::steady_clock::now();
   s.stats = {};
   s.applyEmission(emissionScales);
-  LitPatches lit = s.lightPatches(lights);
+  if (shadowCaster || s.shadowed) s.cache.forget();
+  s.shadowed = shadowCaster != nullptr;
+  LitPatches lit = s.lightPatches(lights, shadowCaster ? *shadowCaster : *s.m.model->caster);
   s.stats.directMs = msSince(start);
   s.stats.meshChanged = !samePatches(*lit.mesh, *s.m.mesh);
   const auto table = std::chrono::steady_clock::now();

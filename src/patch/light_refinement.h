@@ -42,6 +42,11 @@ class PatchLightCache {
   /// Keeps what it holds of the lights equal to `lights` (by position in the list), forgets the
   /// rest, and returns per light whether it changed (all, when the count did).
   std::vector<uint8_t> update(std::span<const Light> lights);
+  /// Forgets every value (what shadows the lights changed: objects moved).
+  void forget() {
+    lights_.clear();
+    byLight_.clear();
+  }
   /// What light `light` puts on the node at `address`, if evaluated.
   const PatchLight* find(size_t light, uint64_t address) const;
   void insert(size_t light, uint64_t address, const PatchLight& value);

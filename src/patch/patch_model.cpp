@@ -79,7 +79,12 @@ PatchModel& PatchModel::operator=(PatchModel&&) noexcept = default;
 
 PatchRadiosity PatchModel::solve(std::span<const Light> lights,
                                  const ProgressCallback& progress) const {
-  return PatchRadiosity(state_, lights, progress);
+  return PatchRadiosity(state_, lights, nullptr, progress);
+}
+
+PatchRadiosity PatchModel::solve(std::span<const Light> lights, const RayCaster& shadowCaster,
+                                 const ProgressCallback& progress) const {
+  return PatchRadiosity(state_, lights, &shadowCaster, progress);
 }
 
 }  // namespace rad

@@ -359,7 +359,8 @@ void PatchRadiosity::Impl::build(PatchLightCache& cache, const ProgressCallback&
   const uint64_t raysBefore = caster.raysCast();
   mix = LightGroupMix(*scene, lights, settings.lightGroups);
   cache.update(lights);
-  lightPatches(caster, cache, progress);
+  lightPatches(shadowCaster ? *shadowCaster : caster, cache, progress);
+  shadowCaster = nullptr;  // only for this solve
   solve(caster, progress);
   warnOfThresholdLoss();
   shadeVertices();
@@ -391,8 +392,10 @@ void PatchRadiosity::Impl::recordMesh() {
 PatchRadiosity::PatchRadiosity(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 PatchRadiosity::PatchRadiosity(std::shared_ptr<const PatchModel::State> model,
-                               std::span<const Light> lights, const ProgressCallback& progress)
+                               std::span<const Light> lights, const RayCaster* shadowCaster,
+                               const ProgressCallback& progress)
     : impl_(std::make_unique<Impl>(std::move(model), lights)) {
+  impl_->shadowCaster = shadowCaster;
   PatchLightCache cache;
   impl_->build(cache, progress);
 }

@@ -39,6 +39,9 @@ struct PatchRadiosity::Impl {
   LightGroupMix mix;
   std::vector<std::vector<Color>> groupDirect, groupIrradiance, groupIndirect;
 
+  /// What shadows the lights' direct light in build() (the scene with its dynamic objects
+  /// placed); null: the model's caster.
+  const RayCaster* shadowCaster = nullptr;
   bool keepTable = false;                ///< keep the form factors (for relighting)
   bool saveMaster = true;                ///< save the master table when rows were cast
   std::optional<FormFactorTable> table;  ///< the form factors of the patches, when kept

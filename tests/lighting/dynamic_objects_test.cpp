@@ -124,15 +124,55 @@ namespace {
 // sends B A / pi along each axis (one face's projected area) and B times its area in all.
 TEST(DynamicObjects, ObjectLightCarriesWhatTheObjectReflects) {
   Furnace furnace(Color(1.0f));
-  const RayCaster caster(furnace.scene);
+  const Scene placed = furnace.scene.withDynamicObjectsAt(0.0);
+  const RayCaster caster(furnace.scene), placedCaster(placed);
   const std::vector<Light> lights =
-      dynamicObjectLights(furnace.scene, caster, furnace.solution, 0.0);
+      DynamicObjectLighting(placed, furnace.solution, caster, placedCaster).objectLights();
   ASSERT_EQ(lights.size(), 1u);
   const float b0 = 0.5f * glm::pi<float>();  // rho 0.5 times pi L
   const float face = 0.2f * 0.2f;
   EXPECT_NEAR(lights[0].intensityToward(Vec3(1, 0, 0)).r, b0 * face / glm::pi<float>(), 2e-3f);
   EXPECT_NEAR(lights[0].power().g, b0 * 6.0f * face, 0.01f * b0 * 6.0f * face);
   EXPECT_NEAR(glm::length(lights[0].position - Vec3(0.5f)), 0.0f, 1e-5f);
+}
+
+}  // namespace
+}  // namespace rad
+
+#include "lighting/light_test_scenes.h"
+
+namespace rad {
+namespace {
+
+// A cube hung under a point light shadows the floor in the static solution when the solve is
+// given the scene with the cube placed: the patches under it get none of the light's direct
+// light, those far from it all of it.
+TEST(DynamicObjects, ShadowTheLightsDirectLightInTheStaticSolution) {
+  Scene scene = test::floorUnderLight(1.0f, test::pointLight(Vec3(0, 2, 0), Color(1.0f)));
+  scene.dynamicObjects.push_back(
+      {"cube", cubeMesh(0.5f), std::nullopt, {{0.0, Vec3(0, 1, 0), std::nullopt}}});
+  PatchRadiositySettings settings;
+  settings.targetPatches = 400;
+  settings.refineLevels = 0;
+  const PatchModel model(scene, settings);
+  const Scene placed = scene.withDynamicObjectsAt(0.0);
+  const RayCaster placedCaster(placed);
+  const PatchRadiosity open = model.solve(scene.lights);
+  const PatchRadiosity shadowed = model.solve(scene.lights, placedCaster);
+  size_t under = 0, far = 0;
+  for (size_t p = 0; p < open.elementCount(); ++p) {
+    const SurfaceElement e = shadowed.element(p);
+    const float r = std::max(std::abs(e.position.x), std::abs(e.position.z));
+    if (r < 0.25f) {  // the shadow of its bottom reaches 0.4 from the centre, of its top 0.67
+      EXPECT_LT(e.irradiance.r, 1e-6f) << p;
+      ++under;
+    } else if (r > 0.75f) {
+      EXPECT_FLOAT_EQ(e.irradiance.r, open.element(p).irradiance.r) << p;
+      ++far;
+    }
+  }
+  EXPECT_GT(under, 4u);
+  EXPECT_GT(far, 50u);
 }
 
 }  // namespace
