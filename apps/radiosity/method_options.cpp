@@ -59,9 +59,16 @@ auto solveShowingProgress(const Scene& scene, const RayCaster& caster, const Set
 }
 
 // The light groups, their scales and power, and the per-object means.
-void reportObjects(const Scene& scene, const SurfaceSolution& solution, const SolveReport& report) {
+void reportObjects(const Scene& scene, const RayCaster& caster, const SurfaceSolution& solution,
+                   double seconds, const SolveReport& report) {
   if (!report.objectMeans) return;
   report.stats.objects = solution.objectRadiometry();
+  if (!scene.dynamicObjects.empty()) {
+    const Scene placed = scene.withDynamicObjectsAt(seconds);
+    const RayCaster placedCaster(placed);
+    for (const auto& s : DynamicObjectLighting(placed, solution, caster, placedCaster).summaries())
+      report.stats.dynamicObjects.push_back({s.name, s.meanIrradiance, s.lobes});
+  }
   const std::span<const LightGroup> groups = solution.lightGroups();
   for (size_t g = 0; g < groups.size(); ++g) {
     const Color scale = solution.groupScales()[g];
@@ -223,7 +230,7 @@ VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
   stats.iterations = int(v.residuals.size());
   stats.residual = v.residuals.empty() ? 0.0 : v.residuals.back();
   stats.residuals = v.residuals;
-  reportObjects(scene, solution, report);
+  reportObjects(scene, caster, solution, source.seconds, report);
   return solution;
 }
 
@@ -273,7 +280,7 @@ PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
   stats.iterations = p.iterations;
   stats.residual = p.residuals.empty() ? 0.0 : p.residuals.back();
   stats.residuals = p.residuals;
-  reportObjects(scene, solution, report);
+  reportObjects(scene, caster, solution, source.seconds, report);
   return solution;
 }
 

@@ -120,6 +120,26 @@ std::vector<Light> DynamicObjectLighting::objectLights() const {
   return lights;
 }
 
+std::vector<DynamicObjectLighting::Summary> DynamicObjectLighting::summaries() const {
+  std::vector<Vec3d> sum(placed_.objects.size(), Vec3d(0.0));
+  std::vector<double> area(placed_.objects.size(), 0.0);
+  for (uint32_t t = placed_.staticTriangles; t < placed_.triangles.size(); ++t) {
+    const UVec3& tri = placed_.triangles[t];
+    const uint32_t object = placed_.faceOf(t).object;
+    const double a = placed_.triangleArea(t);
+    sum[object] += a * Vec3d(full_[tri.x] + full_[tri.y] + full_[tri.z]) / 3.0;
+    area[object] += a;
+  }
+  std::vector<Summary> out;
+  const std::vector<Light> lights = objectLights();
+  size_t k = 0;
+  for (size_t o = 0; o < sum.size(); ++o) {
+    if (!(area[o] > 0.0)) continue;
+    out.push_back({placed_.objects[o].name, Color(sum[o] / area[o]), lights[k++].lobes});
+  }
+  return out;
+}
+
 Color DynamicObjectLighting::atHit(const SurfaceHit& hit,
                                    const std::vector<Color>& perVertex) const {
   const UVec3& t = placed_.triangles[hit.triangle];

@@ -47,6 +47,13 @@ class DynamicObjectLighting : public SurfaceRadiance {
 
   /// Each object's reflected light as a light at its centre (LightType::Object), named after it.
   std::vector<Light> objectLights() const;
+  /// Per object (in order): its name, its area-weighted mean irradiance and its light's lobes.
+  struct Summary {
+    std::string name;
+    Color meanIrradiance{0.0f};
+    std::array<Color, 6> lobes{};
+  };
+  std::vector<Summary> summaries() const;
 
   /// The irradiance of vertex `v` of `placed` (an object's; 0 for the scene's own), full and
   /// without the lights' and emitters' direct light.

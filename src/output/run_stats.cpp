@@ -64,6 +64,16 @@ nlohmann::json toJson(const RunStats& s) {
       {"objects", objects},
       {"memory_peak_bytes", s.memoryPeakBytes},
   };
+  if (!s.dynamicObjects.empty()) {
+    nlohmann::json& objects = j["dynamic_objects"] = nlohmann::json::array();
+    for (const RunStats::DynamicObjectEntry& d : s.dynamicObjects) {
+      nlohmann::json lobes = nlohmann::json::object();
+      const char* axes[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+      for (size_t k = 0; k < 6; ++k) lobes[axes[k]] = rgb(d.lobes[k]);
+      objects.push_back(
+          {{"name", d.name}, {"mean_irradiance", rgb(d.meanIrradiance)}, {"lobes", lobes}});
+    }
+  }
   if (!s.lightGroups.empty()) {
     nlohmann::json& groups = j["light_groups"] = nlohmann::json::array();
     for (const RunStats::LightGroupEntry& g : s.lightGroups)

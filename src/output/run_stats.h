@@ -6,6 +6,7 @@
 #include <radiosity/scene.h>
 #include <radiosity/types.h>
 
+#include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <span>
@@ -37,6 +38,14 @@ struct RunStats {
   };
   std::vector<LightGroupEntry> lightGroups;
   std::vector<Color> emissionScales;  ///< per material, its group's scale (empty: none)
+  /// Per dynamic object: its mean irradiance and its reflected light's six lobes (W/sr along
+  /// +x, -x, +y, -y, +z, -z).
+  struct DynamicObjectEntry {
+    std::string name;
+    Color meanIrradiance{0.0f};
+    std::array<Color, 6> lobes{};
+  };
+  std::vector<DynamicObjectEntry> dynamicObjects;
   uint64_t memoryPeakBytes = 0;
   /// Numbers particular to the method, written under the method's name ("voxel": {...}).
   nlohmann::json methodDetails;

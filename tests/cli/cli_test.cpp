@@ -706,10 +706,19 @@ TEST(Cli, RendersDynamicObjectsWhereTheirPathPutsThem) {
   std::map<std::string, rad::Image> at;
   for (const std::string t : {"0", "1"}) {
     const std::string png = (dir / ("p" + t + ".pfm")).string();
+    const std::string stats = (dir / ("s" + t + ".json")).string();
     const CliResult r =
         run({"render", scene.string(), "--method", "patch", "--patches", "400", "--cache-dir",
-             "none", "--width", "64", "--spp", "1", "--time", t, "-o", png});
+             "none", "--width", "64", "--spp", "1", "--time", t, "-o", png, "--stats", stats});
     ASSERT_EQ(r.status, 0) << r.err;
+    // The stats hold the object's light: its mean irradiance and what it sends along each axis
+    // (its top, lit by the lamp above, sends more up than its bottom sends down).
+    const nlohmann::json j = readJson(stats);
+    ASSERT_EQ(j["dynamic_objects"].size(), 1u);
+    EXPECT_EQ(j["dynamic_objects"][0]["name"], "box");
+    EXPECT_GT(j["dynamic_objects"][0]["mean_irradiance"][1].get<double>(), 0.0);
+    const nlohmann::json& lobes = j["dynamic_objects"][0]["lobes"];
+    EXPECT_GT(lobes["+y"][1].get<double>(), lobes["-y"][1].get<double>());
     EXPECT_NE(r.err.find("dynamic object(s) lit by probes"), std::string::npos) << r.err;
     at[t] = rad::readImage(png);
   }
