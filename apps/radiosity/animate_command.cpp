@@ -100,6 +100,8 @@ int runAnimate(AnimateOptions& o, Console& console) {
   stats.timingsSeconds.solve = solveTime.seconds();
 
   PictureOptions::warnOfDynamicObjects(scene, "patch", console);
+  ProbeCache probes;  // the render's probes, kept while the lights stay and objects barely move
+  std::vector<Light> lastLights = scene.lights;
   std::vector<FrameRecord> records;
   const ProgressCallback progress = console.progress("animate");
   int written = 0;
@@ -108,6 +110,8 @@ int runAnimate(AnimateOptions& o, Console& console) {
       FrameRecord record{timeOf(f), 0.0, 0.0, {}};
       if (f > 0 || !scene.dynamicObjects.empty()) {
         std::vector<Light> lights = lightsAt(scene, record.t, groups, scales);
+        if (lights != lastLights) probes.invalidate();
+        lastLights = lights;
         if (scene.dynamicObjects.empty()) {
           record.relight = relighter.relight(lights);
         } else {
@@ -125,7 +129,7 @@ int runAnimate(AnimateOptions& o, Console& console) {
       }
       Stopwatch renderTime;
       const Image image = o.picture.render(scene, caster, camera, relighter.solution(), o.method,
-                                           record.t, progressPart(progress, f, o.frames));
+                                           record.t, progressPart(progress, f, o.frames), &probes);
       writeImage(frameFiles.name(f), image, o.picture.writeOptions());
       record.renderMs = 1e3 * renderTime.seconds();
       records.push_back(record);
@@ -148,6 +152,7 @@ int runAnimate(AnimateOptions& o, Console& console) {
     stats.counts.patches = relighter.solution().stats().patches;
     stats.timingsSeconds.render = std::accumulate(renderMs.begin(), renderMs.end(), 0.0) / 1e3;
     stats.methodDetails = {{"frames", framesJson(records)},
+                           {"probe_captures", probes.captures()},
                            {"fps", o.fps},
                            {"ms_per_relight", median(relightMs)},
                            {"ms_per_render", median(renderMs)}};
@@ -183,6 +188,10 @@ void addAnimateCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--solution", o->solution,
                   "Start from the solution a .rad file keeps (solve --save at --start) instead "
                   "of solving");
+  sub->add_option("--probe-move-threshold", o->picture.probeMoveThreshold,
+                  "Capture a dynamic object's probes again once it moved more than this (scene "
+                  "units; default 0: whenever it moved) or the lights changed")
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--relight-threshold", o->relight.threshold,
                   "Bring a patch's direct light up to date when it changed by more than this "
                   "fraction of the brightest patch's (default 1e-4)")

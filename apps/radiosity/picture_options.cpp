@@ -68,13 +68,16 @@ ImageWriteOptions PictureOptions::writeOptions() const {
 
 Image PictureOptions::render(const Scene& scene, const RayCaster& caster, const Camera& camera,
                              const SurfaceSolution& solution, const MethodOptions& method,
-                             double seconds, const ProgressCallback& progress) const {
+                             double seconds, const ProgressCallback& progress,
+                             ProbeCache* probes) const {
   const SurfaceRenderSettings settings = surfaceSettings(method);
   if (scene.dynamicObjects.empty())
     return renderSurfaceRadiance(scene, caster, camera, solution, settings, progress);
   const Scene placed = scene.withDynamicObjectsAt(seconds);
   const RayCaster placedCaster(placed);
-  const DynamicObjectLighting lighting(placed, solution, caster, placedCaster);
+  DynamicObjectSettings objects;
+  objects.probeMoveThreshold = probeMoveThreshold;
+  const DynamicObjectLighting lighting(placed, solution, caster, placedCaster, objects, probes);
   return renderSurfaceRadiance(placed, placedCaster, camera, lighting, settings, progress);
 }
 

@@ -13,6 +13,10 @@ namespace CLI {
 class App;
 }  // namespace CLI
 
+namespace rad {
+class ProbeCache;
+}  // namespace rad
+
 namespace rad::cli {
 
 class Console;
@@ -34,9 +38,12 @@ struct PictureOptions {
   ImageWriteOptions writeOptions() const;
   /// The picture of `solution` (made by `method`) through `camera`; with the scene's dynamic
   /// objects placed as at `seconds`, each lit by probes of the solution (DynamicObjectLighting).
+  /// `probes`: the probes of earlier frames to keep where their objects barely moved (null:
+  /// none).
   Image render(const Scene& scene, const RayCaster& caster, const Camera& camera,
                const SurfaceSolution& solution, const MethodOptions& method, double seconds,
-               const ProgressCallback& progress) const;
+               const ProgressCallback& progress, ProbeCache* probes = nullptr) const;
+  float probeMoveThreshold = 0.0f;  ///< --probe-move-threshold (animate)
   /// Warns, when the scene has dynamic objects, of what their lighting leaves out.
   static void warnOfDynamicObjects(const Scene& scene, const std::string& method, Console& console);
   /// Warns when per-pixel direct light was asked of a solution that cannot give it.

@@ -62,7 +62,8 @@ ObjectVertices objectVertices(const Scene& placed) {
 DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceSolution& solution,
                                              const RayCaster& staticCaster,
                                              const RayCaster& placedCaster,
-                                             const DynamicObjectSettings& settings)
+                                             const DynamicObjectSettings& settings,
+                                             ProbeCache* cache)
     : placed_(placed),
       solution_(solution),
       full_(placed.positions.size(), Color(0.0f)),
@@ -78,10 +79,21 @@ DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceS
     if (own.empty()) continue;
     Vec3 centre(0.0f);
     for (uint32_t v : own) centre += placed.positions[v] / float(own.size());
-    centres_[&own - vertices.byObject.data()] = centre;
-    CubeProbe full(settings.probeResolution), bounce(settings.probeResolution);
-    full.capture(staticCaster, solution, centre);
-    bounce.capture(staticCaster, reflected, centre);
+    const size_t object = size_t(&own - vertices.byObject.data());
+    centres_[object] = centre;
+    ProbeCache::Probes captured;
+    ProbeCache::Probes& probes = cache ? cache->probes_[placed.objects[object].name] : captured;
+    if (!probes.full || glm::length(centre - probes.centre) > settings.probeMoveThreshold ||
+        (settings.probeMoveThreshold == 0.0f && centre != probes.centre)) {
+      auto full = std::make_shared<CubeProbe>(settings.probeResolution);
+      auto bounce = std::make_shared<CubeProbe>(settings.probeResolution);
+      full->capture(staticCaster, solution, centre);
+      bounce->capture(staticCaster, reflected, centre);
+      probes = {centre, std::move(full), std::move(bounce)};
+      if (cache) ++cache->captures_;
+    }
+    const CubeProbe& full = *probes.full;
+    const CubeProbe& bounce = *probes.bounce;
     tbb::parallel_for(size_t(0), own.size(), [&](size_t k) {
       const uint32_t v = own[k];
       const Vec3& n = vertices.normals[v];

@@ -11,7 +11,9 @@
 
 #include <radiosity/surface_solution.h>
 
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "lighting/cube_probe.h"
@@ -22,6 +24,28 @@ namespace rad {
 struct DynamicObjectSettings {
   int probeResolution = 16;  ///< texels a cube face
   ProbeIrradiance way = ProbeIrradiance::Harmonic;
+  /// A probe kept from an earlier frame (ProbeCache) is captured again once its object's centre
+  /// moved more than this (scene units); 0: whenever it moved at all.
+  float probeMoveThreshold = 0.0f;
+};
+
+/// The probes of earlier frames, by object name, so that an object that barely moved under
+/// unchanged lights is not captured again (selective update). The caller says when the static
+/// light changed (invalidate()); it counts the captures.
+class ProbeCache {
+ public:
+  /// The static solution's light changed: every probe is captured anew.
+  void invalidate() { probes_.clear(); }
+  size_t captures() const { return captures_; }
+
+ private:
+  friend class DynamicObjectLighting;
+  struct Probes {
+    Vec3 centre{0.0f};
+    std::shared_ptr<const CubeProbe> full, bounce;
+  };
+  std::map<std::string, Probes> probes_;
+  size_t captures_ = 0;
 };
 
 /// The static solution with the dynamic objects in place, as one SurfaceRadiance over `placed`
@@ -35,7 +59,7 @@ class DynamicObjectLighting : public SurfaceRadiance {
  public:
   DynamicObjectLighting(const Scene& placed, const SurfaceSolution& solution,
                         const RayCaster& staticCaster, const RayCaster& placedCaster,
-                        const DynamicObjectSettings& settings = {});
+                        const DynamicObjectSettings& settings = {}, ProbeCache* cache = nullptr);
 
   Color radiance(const SurfaceHit& hit) const override;
   bool hasIndirectIrradiance() const override { return solution_.hasIndirectIrradiance(); }

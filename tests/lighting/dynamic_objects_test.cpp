@@ -177,3 +177,33 @@ TEST(DynamicObjects, ShadowTheLightsDirectLightInTheStaticSolution) {
 
 }  // namespace
 }  // namespace rad
+
+namespace rad {
+namespace {
+
+// Selective update: a probe is captured again only when its object moved more than the
+// threshold, or when the caller says the light changed.
+TEST(DynamicObjects, ProbesAreCapturedAgainOnlyWhenNeeded) {
+  Furnace furnace(Color(1.0f));
+  const RayCaster caster(furnace.scene);
+  ProbeCache cache;
+  DynamicObjectSettings settings;
+  settings.probeMoveThreshold = 0.1f;
+  auto lightAt = [&](const Vec3& position) {
+    furnace.scene.dynamicObjects[0].path = {{0.0, position, std::nullopt}};
+    const Scene placed = furnace.scene.withDynamicObjectsAt(0.0);
+    const RayCaster placedCaster(placed);
+    const DynamicObjectLighting lighting(placed, furnace.solution, caster, placedCaster, settings,
+                                         &cache);
+    return cache.captures();
+  };
+  EXPECT_EQ(lightAt(Vec3(0.5f)), 1u);
+  EXPECT_EQ(lightAt(Vec3(0.5f)), 1u);               // still
+  EXPECT_EQ(lightAt(Vec3(0.55f, 0.5f, 0.5f)), 1u);  // moved 0.05: within the threshold
+  EXPECT_EQ(lightAt(Vec3(0.7f, 0.5f, 0.5f)), 2u);   // moved 0.2
+  cache.invalidate();                               // the lights changed
+  EXPECT_EQ(lightAt(Vec3(0.7f, 0.5f, 0.5f)), 3u);
+}
+
+}  // namespace
+}  // namespace rad
