@@ -37,6 +37,13 @@ void PictureOptions::addTo(CLI::App& c) {
                "patch, voxel, per-pixel direct light: area samples of the emitting surfaces per "
                "camera ray (default 8)")
       ->check(CLI::Range(1, 1 << 16));
+  c.add_option("--probe-res", probeResolution,
+               "patch, voxel: texels a cube face of a dynamic object's probe (default 16)")
+      ->check(CLI::Range(1, 1024));
+  c.add_option("--probe-way", probeWay,
+               "patch, voxel: a dynamic object's vertex irradiance from its probe: exact, harmonic "
+               "(default) or pattern (the published sampling)")
+      ->check(CLI::IsMember({"exact", "harmonic", "pattern"}));
 }
 
 Camera PictureOptions::camera(const Scene& scene) const {
@@ -77,6 +84,10 @@ Image PictureOptions::render(const Scene& scene, const RayCaster& caster, const 
   const RayCaster placedCaster(placed);
   DynamicObjectSettings objects;
   objects.probeMoveThreshold = probeMoveThreshold;
+  objects.probeResolution = probeResolution;
+  objects.way = probeWay == "exact"     ? ProbeIrradiance::Exact
+                : probeWay == "pattern" ? ProbeIrradiance::Pattern
+                                        : ProbeIrradiance::Harmonic;
   const DynamicObjectLighting lighting(placed, solution, caster, placedCaster, objects, probes);
   return renderSurfaceRadiance(placed, placedCaster, camera, lighting, settings, progress);
 }

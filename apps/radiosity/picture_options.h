@@ -44,6 +44,8 @@ struct PictureOptions {
                const SurfaceSolution& solution, const MethodOptions& method, double seconds,
                const ProgressCallback& progress, ProbeCache* probes = nullptr) const;
   float probeMoveThreshold = 0.0f;  ///< --probe-move-threshold (animate)
+  int probeResolution = 16;         ///< --probe-res: texels a cube face of a dynamic object's probe
+  std::string probeWay = "harmonic";  ///< --probe-way: exact, harmonic or pattern
   /// Warns, when the scene has dynamic objects, of what their lighting leaves out.
   static void warnOfDynamicObjects(const Scene& scene, const std::string& method, Console& console);
   /// Warns when per-pixel direct light was asked of a solution that cannot give it.
