@@ -15,7 +15,9 @@
 
 #include "command_support.h"
 #include "commands.h"
+#include "lighting/dynamic_objects.h"
 #include "method_options.h"
+#include "output/gltf_export.h"
 
 namespace rad::cli {
 
@@ -69,13 +71,24 @@ std::string describeRun(const VoxelRadiosityStats& v, double seconds) {
       double(v.visits) / std::max(v.sweepSeconds, 1e-9) * 1e-6);
 }
 
+// The lit mesh as glTF; with dynamic objects, theirs too (placed at --time, a node each).
+void exportGlbWithObjects(const SolveOptions& o, const Scene& scene,
+                          const SurfaceSolution& solution) {
+  if (scene.dynamicObjects.empty()) return solution.exportGlb(o.exportPath);
+  LitMesh mesh = solution.litMesh();
+  const Scene placed = scene.withDynamicObjectsAt(o.time);
+  const RayCaster staticCaster(scene), placedCaster(placed);
+  DynamicObjectLighting(placed, solution, staticCaster, placedCaster).appendObjects(mesh);
+  writeLitMeshGlb(o.exportPath, mesh);
+}
+
 // Exports the solution, writes the stats and prints the summary line.
 template <class Solution>
 int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solution,
                 const std::string& ext, const Stopwatch& total, RunStats& stats, Console& console) {
   if (ext == ".csv") solution.exportCsv(o.exportPath);
   if (ext == ".ply") solution.exportPly(o.exportPath);
-  if (ext == ".glb") solution.exportGlb(o.exportPath);
+  if (ext == ".glb") exportGlbWithObjects(o, scene, solution);
   if (!o.save.empty()) solution.save(o.save, solvedWith(o.method.settings()));
   if (!o.stats.empty()) {
     stats.settings = settingsOf(o.method.settings());

@@ -132,6 +132,26 @@ std::vector<Light> DynamicObjectLighting::objectLights() const {
   return lights;
 }
 
+void DynamicObjectLighting::appendObjects(LitMesh& mesh) const {
+  for (uint32_t t = placed_.staticTriangles; t < placed_.triangles.size();) {
+    const uint32_t object = placed_.faceOf(t).object;
+    const uint32_t first = uint32_t(mesh.indices.size() / 3);
+    for (; t < placed_.triangles.size() && placed_.faceOf(t).object == object; ++t) {
+      const Material& m = placed_.materialOf(t);
+      const Vec3 n = placed_.triangleNormal(t);
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = placed_.triangles[t][k];
+        mesh.indices.push_back(uint32_t(mesh.positions.size()));
+        mesh.positions.push_back(placed_.positions[v]);
+        mesh.normals.push_back(n);
+        mesh.colors.push_back(m.rho * full_[v] / glm::pi<float>());
+      }
+    }
+    mesh.groups.push_back(
+        {placed_.objects[object].name, first, uint32_t(mesh.indices.size() / 3) - first});
+  }
+}
+
 std::vector<DynamicObjectLighting::Summary> DynamicObjectLighting::summaries() const {
   std::vector<Vec3d> sum(placed_.objects.size(), Vec3d(0.0));
   std::vector<double> area(placed_.objects.size(), 0.0);

@@ -71,6 +71,9 @@ class DynamicObjectLighting : public SurfaceRadiance {
 
   /// Each object's reflected light as a light at its centre (LightType::Object), named after it.
   std::vector<Light> objectLights() const;
+  /// Adds the objects to `mesh` (the solution's lit mesh), a group each: their triangles with
+  /// the radiance radiance() gives at their corners.
+  void appendObjects(LitMesh& mesh) const;
   /// Per object (in order): its name, its area-weighted mean irradiance and its light's lobes.
   struct Summary {
     std::string name;

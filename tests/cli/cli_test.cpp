@@ -726,6 +726,13 @@ TEST(Cli, RendersDynamicObjectsWhereTheirPathPutsThem) {
   for (size_t k = 0; k < at["0"].pixels.size(); ++k)
     differing += rad::maxComponent(glm::abs(at["0"].pixels[k] - at["1"].pixels[k])) > 0.05f;
   EXPECT_GT(differing, 40u);  // the cube left one place for another
+  // The lit mesh exported with the object as a node of its own.
+  const std::string glb = (dir / "moving.glb").string();
+  ASSERT_EQ(run({"solve", scene.string(), "--method", "patch", "--patches", "300", "--cache-dir",
+                 "none", "--export", glb})
+                .status,
+            0);
+  EXPECT_NE(readBytes(glb).find("\"name\":\"box\""), std::string::npos);
   const CliResult traced = run({"render", scene.string(), "--method", "pathtrace", "--width", "32",
                                 "--spp", "4", "-o", (dir / "t.pfm").string()});
   EXPECT_EQ(traced.status, 0) << traced.err;
