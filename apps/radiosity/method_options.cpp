@@ -30,8 +30,8 @@ auto solveShowingProgress(const Scene& scene, const RayCaster& caster, const Set
                                       : model.load(source.file, scene.lights);
   console.finishProgress();
   if (!scene.dynamicObjects.empty() && source.file.empty()) {
-    // Once more with the objects in place: their reflected light as lights, and (patch) their
-    // shadows in the lights' direct light.
+    // Once more with the objects in place: their reflected light as lights, and their shadows
+    // in the lights' direct light.
     const Scene placed = scene.withDynamicObjectsAt(source.seconds);
     const RayCaster placedCaster(placed);
     std::vector<Light> lights = scene.lights;
@@ -39,10 +39,7 @@ auto solveShowingProgress(const Scene& scene, const RayCaster& caster, const Set
          DynamicObjectLighting(placed, solution, caster, placedCaster).objectLights())
       lights.push_back(l);
     const ProgressCallback progress = console.progress(label + ", objects' bounce");
-    if constexpr (std::is_same_v<Model, PatchModel>)
-      solution = model.solve(lights, placedCaster, progress);
-    else
-      solution = model.solve(lights, progress);
+    solution = model.solve(lights, placedCaster, progress);
     console.finishProgress();
   }
   for (const std::string& w : solution.stats().warnings) console.warn(w);

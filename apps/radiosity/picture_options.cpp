@@ -97,10 +97,9 @@ void PictureOptions::warnOfDynamicObjects(const Scene& scene, const std::string&
   if (scene.dynamicObjects.empty()) return;
   console.warn(fmt::format(
       "{} dynamic object(s) lit by probes of the {} solution, the light they reflect added to it "
-      "as one more bounce{}; the bounce light they block is not taken out",
-      scene.dynamicObjects.size(), method,
-      method == "patch" ? ", their shadows from point, spot and IES lights in it too"
-                        : "; their shadows are drawn per pixel, not in the solution"));
+      "as one more bounce and their shadows from the lights in it too; the bounce light they "
+      "block is not taken out",
+      scene.dynamicObjects.size(), method));
 }
 
 void PictureOptions::warnIfDirectUnavailable(const SurfaceRadiance& solution,

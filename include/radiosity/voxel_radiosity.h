@@ -86,6 +86,10 @@ class VoxelModel {
   /// them). Thread-safe. Throws InputError if memory would not hold the solve, rad::Cancelled if
   /// `progress` returns false.
   VoxelRadiosity solve(std::span<const Light> lights, const ProgressCallback& progress = {}) const;
+  /// The same with the first shot shadowed by what `shadowCaster` holds (the scene with its
+  /// dynamic objects placed: Scene::withDynamicObjectsAt), which must outlive the call.
+  VoxelRadiosity solve(std::span<const Light> lights, const RayCaster& shadowCaster,
+                       const ProgressCallback& progress = {}) const;
   /// The solution a solution file (solution_file.h) keeps, saved from a model of this scene and
   /// settings solved for `lights`, without solving (its light per group when they were solved
   /// apart, at the scales it was saved with). Throws InputError naming the file for one that is
@@ -139,7 +143,7 @@ class VoxelRadiosity : public SurfaceSolution {
  private:
   friend class VoxelModel;
   VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model, std::span<const Light> lights,
-                 const ProgressCallback& progress);
+                 const RayCaster* shadowCaster, const ProgressCallback& progress);
   struct Impl;
   explicit VoxelRadiosity(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;

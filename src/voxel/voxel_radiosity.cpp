@@ -68,8 +68,8 @@ VoxelSolverSettings solverSettings(const VoxelRadiositySettings& settings) {
 std::pair<VoxelSolution, std::vector<Color>> VoxelRadiosity::Impl::solve(
     std::span<const Light> lights, const VoxelSolverSettings& solver,
     const ProgressCallback& progress) const {
-  VoxelSolution solved =
-      solveVoxelRadiosity(*scene, grid, *model->caster, lights, solver, progress);
+  VoxelSolution solved = solveVoxelRadiosity(
+      *scene, grid, shadowCaster ? *shadowCaster : *model->caster, lights, solver, progress);
   std::vector<Color> h;
   if (solver.keepDirect) {
     h = solved.irradiance;
@@ -141,7 +141,12 @@ VoxelModel& VoxelModel::operator=(VoxelModel&&) noexcept = default;
 
 VoxelRadiosity VoxelModel::solve(std::span<const Light> lights,
                                  const ProgressCallback& progress) const {
-  return VoxelRadiosity(state_, lights, progress);
+  return VoxelRadiosity(state_, lights, nullptr, progress);
+}
+
+VoxelRadiosity VoxelModel::solve(std::span<const Light> lights, const RayCaster& shadowCaster,
+                                 const ProgressCallback& progress) const {
+  return VoxelRadiosity(state_, lights, &shadowCaster, progress);
 }
 
 VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings& settings,
@@ -149,8 +154,10 @@ VoxelRadiosity::VoxelRadiosity(const Scene& scene, const VoxelRadiositySettings&
     : VoxelRadiosity(VoxelModel(scene, settings).solve(scene.lights, progress)) {}
 
 VoxelRadiosity::VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model,
-                               std::span<const Light> lights, const ProgressCallback& progress)
+                               std::span<const Light> lights, const RayCaster* shadowCaster,
+                               const ProgressCallback& progress)
     : impl_(std::make_unique<Impl>(model, lights)) {
+  impl_->shadowCaster = shadowCaster;
   const Scene& scene = *impl_->scene;
   const VoxelRadiositySettings& settings = model->settings;
   impl_->stats.voxelizeSeconds = model->voxelizeSeconds;
@@ -161,6 +168,7 @@ VoxelRadiosity::VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model,
     impl_->solveGroups(solver, progress);
   else
     std::tie(impl_->solution, impl_->indirect) = impl_->solve(impl_->lights, solver, progress);
+  impl_->shadowCaster = nullptr;  // only for this solve
 
   VoxelRadiosityStats& s = impl_->stats;
   const VoxelSolution& solution = impl_->solution;

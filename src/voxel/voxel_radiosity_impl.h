@@ -33,6 +33,9 @@ struct VoxelRadiosity::Impl {
   const Scene* scene;
   const VoxelGrid& grid;
   std::vector<Light> lights;  ///< those it is solved with
+  /// What shadows the first shot while solving (the scene with its dynamic objects placed);
+  /// null: the model's caster.
+  const RayCaster* shadowCaster = nullptr;
   VoxelSolution solution;
   std::vector<Color> indirect;  ///< H less the first shot (keepDirectLight); else empty
   VoxelRadiosityStats stats;

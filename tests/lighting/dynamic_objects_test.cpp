@@ -6,6 +6,7 @@
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
+#include <radiosity/voxel_radiosity.h>
 
 #include <glm/gtc/constants.hpp>
 
@@ -203,6 +204,38 @@ TEST(DynamicObjects, ProbesAreCapturedAgainOnlyWhenNeeded) {
   EXPECT_EQ(lightAt(Vec3(0.7f, 0.5f, 0.5f)), 2u);   // moved 0.2
   cache.invalidate();                               // the lights changed
   EXPECT_EQ(lightAt(Vec3(0.7f, 0.5f, 0.5f)), 3u);
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+// The voxel method's first shot is shadowed the same way.
+TEST(DynamicObjects, ShadowTheVoxelFirstShot) {
+  Scene scene = test::floorUnderLight(1.0f, test::pointLight(Vec3(0, 2, 0), Color(1.0f)));
+  scene.dynamicObjects.push_back(
+      {"cube", cubeMesh(0.5f), std::nullopt, {{0.0, Vec3(0, 1, 0), std::nullopt}}});
+  VoxelRadiositySettings settings;
+  settings.targetVoxels = 3000;
+  settings.sphereRadius = 4;
+  settings.iterations = 1;
+  const VoxelModel model(scene, settings);
+  const Scene placed = scene.withDynamicObjectsAt(0.0);
+  const RayCaster placedCaster(placed);
+  const VoxelRadiosity open = model.solve(scene.lights);
+  const VoxelRadiosity shadowed = model.solve(scene.lights, placedCaster);
+  size_t under = 0;
+  for (size_t e = 0; e < open.elementCount(); ++e) {
+    const SurfaceElement s = shadowed.element(e);
+    if (std::max(std::abs(s.position.x), std::abs(s.position.z)) < 0.25f) {
+      EXPECT_LT(s.irradiance.r, 1e-6f);
+      EXPECT_GT(open.element(e).irradiance.r, 0.1f);
+      ++under;
+    }
+  }
+  EXPECT_GT(under, 4u);
 }
 
 }  // namespace
