@@ -145,13 +145,20 @@ TEST(DynamicObjects, ObjectLightCarriesWhatTheObjectReflects) {
 namespace rad {
 namespace {
 
+// The floor [-1, 1]^2 under a point light 2 above its centre, a cube of side 0.5 hung at height 1
+// between them (its shadow: within 0.4 of the centre fully, out to 0.67 in part).
+Scene floorWithHungCube() {
+  Scene scene = test::floorUnderLight(1.0f, test::pointLight(Vec3(0, 2, 0), Color(1.0f)));
+  scene.dynamicObjects.push_back(
+      {"cube", cubeMesh(0.5f), std::nullopt, {{0.0, Vec3(0, 1, 0), std::nullopt}}});
+  return scene;
+}
+
 // A cube hung under a point light shadows the floor in the static solution when the solve is
 // given the scene with the cube placed: the patches under it get none of the light's direct
 // light, those far from it all of it.
 TEST(DynamicObjects, ShadowTheLightsDirectLightInTheStaticSolution) {
-  Scene scene = test::floorUnderLight(1.0f, test::pointLight(Vec3(0, 2, 0), Color(1.0f)));
-  scene.dynamicObjects.push_back(
-      {"cube", cubeMesh(0.5f), std::nullopt, {{0.0, Vec3(0, 1, 0), std::nullopt}}});
+  const Scene scene = floorWithHungCube();
   PatchRadiositySettings settings;
   settings.targetPatches = 400;
   settings.refineLevels = 0;
@@ -164,7 +171,7 @@ TEST(DynamicObjects, ShadowTheLightsDirectLightInTheStaticSolution) {
   for (size_t p = 0; p < open.elementCount(); ++p) {
     const SurfaceElement e = shadowed.element(p);
     const float r = std::max(std::abs(e.position.x), std::abs(e.position.z));
-    if (r < 0.25f) {  // the shadow of its bottom reaches 0.4 from the centre, of its top 0.67
+    if (r < 0.25f) {
       EXPECT_LT(e.irradiance.r, 1e-6f) << p;
       ++under;
     } else if (r > 0.75f) {
@@ -214,9 +221,7 @@ namespace {
 
 // The voxel method's first shot is shadowed the same way.
 TEST(DynamicObjects, ShadowTheVoxelFirstShot) {
-  Scene scene = test::floorUnderLight(1.0f, test::pointLight(Vec3(0, 2, 0), Color(1.0f)));
-  scene.dynamicObjects.push_back(
-      {"cube", cubeMesh(0.5f), std::nullopt, {{0.0, Vec3(0, 1, 0), std::nullopt}}});
+  const Scene scene = floorWithHungCube();
   VoxelRadiositySettings settings;
   settings.targetVoxels = 3000;
   settings.sphereRadius = 4;
