@@ -40,6 +40,10 @@ void PictureOptions::addTo(CLI::App& c) {
   c.add_option("--probe-res", probeResolution,
                "patch, voxel: texels a cube face of a dynamic object's probe (default 16)")
       ->check(CLI::Range(1, 1024));
+  c.add_option("--probe-spacing", probeSpacing,
+               "patch, voxel: a dynamic object larger than this gets a grid of probes at most this "
+               "far apart (scene units; default 0: one probe at its centre)")
+      ->check(CLI::NonNegativeNumber);
   c.add_option("--probe-way", probeWay,
                "patch, voxel: a dynamic object's vertex irradiance from its probe: exact, harmonic "
                "(default) or pattern (the published sampling)")
@@ -85,6 +89,7 @@ Image PictureOptions::render(const Scene& scene, const RayCaster& caster, const 
   DynamicObjectSettings objects;
   objects.probeMoveThreshold = probeMoveThreshold;
   objects.probeResolution = probeResolution;
+  objects.probeSpacing = probeSpacing;
   objects.way = probeWay == "exact"     ? ProbeIrradiance::Exact
                 : probeWay == "pattern" ? ProbeIrradiance::Pattern
                                         : ProbeIrradiance::Harmonic;

@@ -46,6 +46,7 @@ struct PictureOptions {
   float probeMoveThreshold = 0.0f;  ///< --probe-move-threshold (animate)
   int probeResolution = 16;         ///< --probe-res: texels a cube face of a dynamic object's probe
   std::string probeWay = "harmonic";  ///< --probe-way: exact, harmonic or pattern
+  float probeSpacing = 0.0f;          ///< --probe-spacing: a grid of probes over a large object
   /// Warns, when the scene has dynamic objects, of what their lighting leaves out.
   static void warnOfDynamicObjects(const Scene& scene, const std::string& method, Console& console);
   /// Warns when per-pixel direct light was asked of a solution that cannot give it.

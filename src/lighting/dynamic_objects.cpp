@@ -75,31 +75,61 @@ DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceS
   fromObjects_ = std::make_unique<DirectLighting>(solution.scene(), staticCaster, objectLights_);
   const ReflectedOnly reflected(solution.scene(), solution);
   const DirectLighting direct(placed, placedCaster, pointLights_, solution.emissionScales());
-  for (const std::vector<uint32_t>& own : vertices.byObject) {
+  for (size_t object = 0; object < vertices.byObject.size(); ++object) {
+    const std::vector<uint32_t>& own = vertices.byObject[object];
     if (own.empty()) continue;
     Vec3 centre(0.0f);
-    for (uint32_t v : own) centre += placed.positions[v] / float(own.size());
-    const size_t object = size_t(&own - vertices.byObject.data());
-    centres_[object] = centre;
-    ProbeCache::Probes captured;
-    ProbeCache::Probes& probes = cache ? cache->probes_[placed.objects[object].name] : captured;
-    if (!probes.full || glm::length(centre - probes.centre) > settings.probeMoveThreshold ||
-        (settings.probeMoveThreshold == 0.0f && centre != probes.centre)) {
-      auto full = std::make_shared<CubeProbe>(settings.probeResolution);
-      auto bounce = std::make_shared<CubeProbe>(settings.probeResolution);
-      full->capture(staticCaster, solution, centre);
-      bounce->capture(staticCaster, reflected, centre);
-      probes = {centre, std::move(full), std::move(bounce)};
-      if (cache) ++cache->captures_;
+    Bounds box;
+    for (uint32_t v : own) {
+      centre += placed.positions[v] / float(own.size());
+      box.extend(placed.positions[v]);
     }
-    const CubeProbe& full = *probes.full;
-    const CubeProbe& bounce = *probes.bounce;
+    centres_[object] = centre;
+    // One probe at the centre, or for a large object a grid over its box (at most
+    // probeSpacing apart), each vertex blending them by inverse squared distance.
+    std::vector<Vec3> at = {centre};
+    if (settings.probeSpacing > 0.0f) {
+      const Vec3 size = box.max - box.min;
+      const glm::ivec3 n = glm::max(glm::ivec3(glm::ceil(size / settings.probeSpacing)), 1);
+      if (n.x * n.y * n.z > 1) {
+        at.clear();
+        for (int k = 0; k < n.z; ++k)
+          for (int j = 0; j < n.y; ++j)
+            for (int i = 0; i < n.x; ++i)
+              at.push_back(box.min + size * (Vec3(i, j, k) + 0.5f) / Vec3(n));
+      }
+    }
+    std::vector<const ProbeCache::Probes*> probes;
+    std::vector<ProbeCache::Probes> uncached(at.size());
+    for (size_t k = 0; k < at.size(); ++k) {
+      const std::string key = placed.objects[object].name + "#" + std::to_string(k);
+      ProbeCache::Probes& p = cache ? cache->probes_[key] : uncached[k];
+      if (!p.full || glm::length(at[k] - p.centre) > settings.probeMoveThreshold ||
+          (settings.probeMoveThreshold == 0.0f && at[k] != p.centre)) {
+        auto full = std::make_shared<CubeProbe>(settings.probeResolution);
+        auto bounce = std::make_shared<CubeProbe>(settings.probeResolution);
+        full->capture(staticCaster, solution, at[k]);
+        bounce->capture(staticCaster, reflected, at[k]);
+        p = {at[k], std::move(full), std::move(bounce)};
+        if (cache) ++cache->captures_;
+      }
+      probes.push_back(&p);
+    }
     tbb::parallel_for(size_t(0), own.size(), [&](size_t k) {
       const uint32_t v = own[k];
       const Vec3& n = vertices.normals[v];
       const Vec3 p = placed.positions[v];
-      full_[v] = full.irradiance(n, settings.way) + direct.fromLights(p, n);
-      indirect_[v] = bounce.irradiance(n, settings.way);
+      Color full(0.0f), bounce(0.0f);
+      float total = 0.0f;
+      for (const ProbeCache::Probes* probe : probes) {
+        const Vec3 d = p - probe->centre;
+        const float w = probes.size() == 1 ? 1.0f : 1.0f / (glm::dot(d, d) + 1e-12f);
+        full += w * probe->full->irradiance(n, settings.way);
+        bounce += w * probe->bounce->irradiance(n, settings.way);
+        total += w;
+      }
+      full_[v] = full / total + direct.fromLights(p, n);
+      indirect_[v] = bounce / total;
     });
   }
 }

@@ -27,10 +27,14 @@ struct DynamicObjectSettings {
   /// A probe kept from an earlier frame (ProbeCache) is captured again once its object's centre
   /// moved more than this (scene units); 0: whenever it moved at all.
   float probeMoveThreshold = 0.0f;
+  /// An object larger than this (scene units) along some axis gets a grid of probes over its
+  /// box, at most this far apart, blended at each vertex by inverse squared distance (one
+  /// probe's lighting holds only near it); 0: one probe at each object's centre.
+  float probeSpacing = 0.0f;
 };
 
-/// The probes of earlier frames, by object name, so that an object that barely moved under
-/// unchanged lights is not captured again (selective update). The caller says when the static
+/// The probes of earlier frames, by object name and probe, so that an object that barely moved
+/// under unchanged lights is not captured again (selective update). The caller says when the static
 /// light changed (invalidate()); it counts the captures.
 class ProbeCache {
  public:

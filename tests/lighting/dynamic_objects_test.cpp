@@ -245,3 +245,60 @@ TEST(DynamicObjects, ShadowTheVoxelFirstShot) {
 
 }  // namespace
 }  // namespace rad
+
+namespace rad {
+namespace {
+
+// A bar across the Cornell box from the green wall to the red one: one probe at its middle gives
+// both ends the middle's light; a grid of probes (100 apart) gives the end by the red wall more
+// red against the end by the green wall, as the walls' bounce light does there.
+TEST(DynamicObjects, ALargeObjectGetsSeveralProbes) {
+  Scene scene = loadScene("cornell");
+  SceneBuilder b("bar");
+  const uint32_t m = b.addMaterial({"grey", Color(0.5f), Color(0.0f), false});
+  const uint32_t o = b.addObject("bar");
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const Vec3 half(220.0f, 20.0f, 20.0f);
+      Vec3 centre(0.0f), out(0.0f);
+      centre[axis] = side == 0 ? -half[axis] : half[axis];
+      out[axis] = side == 0 ? -1.0f : 1.0f;
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      std::array<Vec3, 4> q;
+      const float su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+      for (int k = 0; k < 4; ++k) {
+        q[k] = centre;
+        q[k][u] += su[k] * half[u];
+        q[k][v] += sv[k] * half[v];
+      }
+      test::addQuadFacing(b, q, out, m, o);
+    }
+  scene.dynamicObjects.push_back({"bar",
+                                  std::make_shared<const Scene>(b.build()),
+                                  std::nullopt,
+                                  {{0.0, Vec3(278, 150, 280), std::nullopt}}});
+  PatchRadiositySettings settings;
+  settings.targetPatches = 1000;
+  const PatchRadiosity solution(scene, settings);
+  const Scene placed = scene.withDynamicObjectsAt(0.0);
+  const RayCaster staticCaster(scene), placedCaster(placed);
+  // Red over green of the bar's upward face near each end.
+  auto redness = [&](const DynamicObjectLighting& lighting, float x) {
+    Color sum(0.0f);
+    for (uint32_t v = uint32_t(scene.positions.size()); v < placed.positions.size(); ++v)
+      if (std::abs(placed.positions[v].x - x) < 1.0f) sum += lighting.vertexIrradiance(v);
+    return sum.r / sum.g;
+  };
+  DynamicObjectSettings grid;
+  grid.probeSpacing = 100.0f;
+  const DynamicObjectLighting one(placed, solution, staticCaster, placedCaster);
+  const DynamicObjectLighting several(placed, solution, staticCaster, placedCaster, grid);
+  // The red wall is at x = 550 or so: the bar's +x end at 498, its -x end at 58. (Even one
+  // probe tells the ends apart a little: their corner normals lean toward their walls.)
+  const float contrastOne = redness(one, 498.0f) / redness(one, 58.0f);
+  const float contrastSeveral = redness(several, 498.0f) / redness(several, 58.0f);
+  EXPECT_GT(contrastSeveral, 2.0f * contrastOne);  // measured: 1.14 with one probe, 3.10 with 5
+}
+
+}  // namespace
+}  // namespace rad
