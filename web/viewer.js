@@ -112,10 +112,10 @@ function applyColors(buffer) {
 let inFlight = false, pending = false;
 
 function lightState() {
-  return {
-    lights: lights.map((l) => ({ id: l.id, position: l.position, direction: l.direction, intensity: l.intensity })),
-    groups: { ...groupScales },
-  };
+  const state = { groups: { ...groupScales } };
+  if (summary.relights)  // a voxel solution takes group scales only
+    state.lights = lights.map((l) => ({ id: l.id, position: l.position, direction: l.direction, intensity: l.intensity }));
+  return state;
 }
 
 async function sendState() {
@@ -191,6 +191,8 @@ function lightPanel(light) {
   const intensity = numberInputs('W/sr', light.intensity, (k, v) => { light.intensity[k] = Math.max(0, v); sendState(); });
   intensity.classList.add('intensity');
   box.appendChild(intensity);
+  // A voxel solution is not relit: its lights are shown, not edited.
+  if (!summary.relights) box.querySelectorAll('input').forEach((input) => { input.disabled = true; });
   light.positionInputs = position.querySelectorAll('input');
   return box;
 }
@@ -203,7 +205,7 @@ function groupPanel(group) {
   on.checked = true;
   const dimmer = document.createElement('input');
   dimmer.type = 'range';
-  dimmer.min = '0'; dimmer.max = '2'; dimmer.step = '0.01'; dimmer.value = '1';
+  dimmer.min = '0'; dimmer.max = '2'; dimmer.step = '0.01'; dimmer.value = String(group.scale[0]);
   const apply = () => { groupScales[group.name] = on.checked ? Number(dimmer.value) : 0; sendState(); };
   on.addEventListener('change', apply);
   dimmer.addEventListener('input', apply);
@@ -294,7 +296,7 @@ async function start() {
     pointer.set(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
     raycaster.setFromCamera(pointer, camera);
     const hit = raycaster.intersectObjects(markers.filter(Boolean))[0];
-    if (hit) gizmo.attach(hit.object);
+    if (hit && summary.relights) gizmo.attach(hit.object);
   });
 
   const exposure = document.getElementById('exposure');
@@ -316,7 +318,8 @@ async function start() {
   });
   window.addEventListener('resize', resize);
   resize();
-  report(`${summary.patches} patches, ${summary.vertices} vertices`);
+  report(summary.relights ? `${summary.patches} patches, ${summary.vertices} vertices`
+    : `voxel solution (${summary.patches} voxel sides): light groups dim, lights stay`);
   renderer.setAnimationLoop(() => {
     orbit.update();
     renderer.render(scene3d, camera);

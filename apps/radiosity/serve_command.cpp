@@ -1,9 +1,11 @@
 // `radiosity serve SCENE`: solves the scene by the patch method (or loads a saved solution) and
 // serves the browser viewer: the lit scene, its lights to move and dim, the bounce following
-// (src/server: ViewerSession, ViewerServer).
+// (src/server: ViewerSession, ViewerServer). A voxel solution is shown and its light groups
+// dimmed, not relit.
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/relighter.h>
+#include <radiosity/voxel_radiosity.h>
 
 #include <CLI/CLI.hpp>
 #include <atomic>
@@ -26,7 +28,7 @@ namespace rad::cli {
 namespace {
 
 struct ServeOptions {
-  explicit ServeOptions(CLI::App& command) : method(command, {"patch"}) {}
+  explicit ServeOptions(CLI::App& command) : method(command, {"patch", "voxel"}) {}
   MethodOptions method;
   std::string scene, solution, host = "127.0.0.1", webDir = RADIOSITY_WEB_DIR;
   int port = 8080;
@@ -47,11 +49,25 @@ int runServe(ServeOptions& o, Console& console) {
   std::unique_ptr<ViewerSession> session;
   {
     InterruptGuard interruptible;
-    const PatchModel model(scene, caster, o.method.patch());
-    Relighter relighter = startRelighter(model, scene.lights, o.solution, {}, console);
-    const float edge =
-        o.displayEdge > 0.0f ? o.displayEdge : 0.5f * relighter.solution().stats().patchSize;
-    session = std::make_unique<ViewerSession>(scene, scene.lights, std::move(relighter), edge);
+    if (o.method.method() == "patch") {
+      const PatchModel model(scene, caster, o.method.patch());
+      Relighter relighter = startRelighter(model, scene.lights, o.solution, {}, console);
+      const float edge =
+          o.displayEdge > 0.0f ? o.displayEdge : 0.5f * relighter.solution().stats().patchSize;
+      session = std::make_unique<ViewerSession>(scene, scene.lights, std::move(relighter), edge);
+    } else {
+      // A voxel solution is shown and its groups dimmed, not relit: solved with its groups apart.
+      VoxelRadiositySettings settings = o.method.voxel();
+      settings.lightGroups = true;
+      const VoxelModel model(scene, caster, settings);
+      VoxelRadiosity solution = o.solution.empty()
+                                    ? model.solve(scene.lights, console.progress("voxel solve"))
+                                    : model.load(o.solution, scene.lights);
+      console.finishProgress();
+      for (const std::string& w : solution.stats().warnings) console.warn(w);
+      const float edge = o.displayEdge > 0.0f ? o.displayEdge : solution.stats().voxelSize;
+      session = std::make_unique<ViewerSession>(scene, scene.lights, std::move(solution), edge);
+    }
   }
   ViewerServer server(*session, o.webDir);
   const int port = server.bind(o.host, o.port);

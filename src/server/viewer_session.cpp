@@ -51,17 +51,36 @@ ViewerSession::ViewerSession(const Scene& scene, std::vector<Light> lights, Reli
                              float displayEdge)
     : scene_(scene),
       groups_(lightGroupsOf(scene, lights)),
-      display_(cutSurfaces(scene, displayEdge)),
-      glbOrder_(glbVertexOrder(display_.mesh)),
       lights_(std::move(lights)),
       scales_(groups_.size(), Color(1.0f)),
       relighter_(std::move(relighter)) {
+  start(displayEdge);
+}
+
+ViewerSession::ViewerSession(const Scene& scene, std::vector<Light> lights, VoxelRadiosity solution,
+                             float displayEdge)
+    : scene_(scene),
+      groups_(lightGroupsOf(scene, lights)),
+      lights_(std::move(lights)),
+      scales_(groups_.size(), Color(1.0f)),
+      voxel_(std::move(solution)) {
+  start(displayEdge);
+}
+
+void ViewerSession::start(float displayEdge) {
+  display_ = cutSurfaces(scene_, displayEdge);
+  glbOrder_ = glbVertexOrder(display_.mesh);
   shade();
   meshGlb_ = litMeshGlb(display_.mesh);
 }
 
+const SurfaceSolution& ViewerSession::solution() const {
+  if (relighter_) return relighter_->solution();
+  return *voxel_;
+}
+
 void ViewerSession::shade() {
-  const PatchRadiosity& solution = relighter_.solution();
+  const SurfaceSolution& solution = this->solution();
   shadeSurfaces(display_, solution);
   colors_.resize(3 * glbOrder_.size());
   irradiance_.resize(3 * glbOrder_.size());
@@ -74,6 +93,8 @@ void ViewerSession::shade() {
 }
 
 Json ViewerSession::summary() const {
+  // The relight lock first, as applyLights takes them (the other order could deadlock).
+  std::lock_guard relight(relightMutex_);
   std::lock_guard state(stateMutex_);
   Json lights = Json::array();
   for (size_t i = 0; i < lights_.size(); ++i) {
@@ -100,10 +121,10 @@ Json ViewerSession::summary() const {
                       {"emitting_materials", groups_[g].materials.size()}});
   const Camera camera = scene_.cameraOrDefault();
   const Bounds bounds = scene_.bounds();
-  std::lock_guard relight(relightMutex_);
   return {{"scene", scene_.name},
-          {"method", "patch"},
-          {"patches", relighter_.solution().elementCount()},
+          {"method", relighter_ ? "patch" : "voxel"},
+          {"patches", solution().elementCount()},
+          {"relights", relighter_.has_value()},
           {"vertices", glbOrder_.size()},
           {"lights", lights},
           {"groups", groups},
@@ -129,7 +150,7 @@ std::string ViewerSession::irradiance() const {
 
 std::string ViewerSession::objectsCsv() const {
   std::lock_guard relight(relightMutex_);
-  return objectRadiometryCsv(relighter_.solution().objectRadiometry());
+  return objectRadiometryCsv(solution().objectRadiometry());
 }
 
 std::vector<Light> ViewerSession::effectiveLights() const {
@@ -149,6 +170,10 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
     std::lock_guard state(stateMutex_);
     std::vector<Light> lights = lights_;
     std::vector<Color> scales = scales_;
+    if (request.contains("lights") && voxel_)
+      refuse("/lights", "a voxel solution cannot be relit (serve --method patch moves lights)");
+    if (request.contains("groups") && voxel_ && voxel_->lightGroups().empty())
+      refuse("/groups", "this voxel solution solved its light groups together");
     if (request.contains("lights")) {
       const Json& list = request["lights"];
       if (!list.is_array()) refuse("/lights", "expected an array");
@@ -204,7 +229,12 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
       newest = asked_;
     }
     const auto start = std::chrono::steady_clock::now();
-    relighter_.relight(lights, emission);
+    if (relighter_) {
+      relighter_->relight(lights, emission);
+    } else {
+      std::lock_guard state(stateMutex_);
+      voxel_->setGroupScales(scales_);  // the groups as solved, combined anew
+    }
     shade();
     lastRelightMs_ =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

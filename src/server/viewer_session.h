@@ -10,10 +10,12 @@
 #include <radiosity/light_groups.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/relighter.h>
+#include <radiosity/voxel_radiosity.h>
 
 #include <cstdint>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,10 @@ class ViewerSession {
   /// Takes the relighter (solved for `lights`) of a model of `scene`, which must outlive the
   /// session; the display mesh's edges are at most `displayEdge` (scene units).
   ViewerSession(const Scene& scene, std::vector<Light> lights, Relighter relighter,
+                float displayEdge);
+  /// A voxel solution of `scene` for `lights`: it cannot be relit (a light edit is refused),
+  /// but its light groups, when it solved them apart, are dimmed and switched as asked.
+  ViewerSession(const Scene& scene, std::vector<Light> lights, VoxelRadiosity solution,
                 float displayEdge);
 
   /// The scene, its lights (with ids, groups, and the state now) and the light groups, the
@@ -63,8 +69,11 @@ class ViewerSession {
   std::vector<Color> scales_;
   uint64_t asked_ = 0;  ///< generation of the newest asked state
 
-  mutable std::mutex relightMutex_;  ///< the relighter and what it shows
-  Relighter relighter_;
+  mutable std::mutex relightMutex_;     ///< the relighter and what it shows
+  std::optional<Relighter> relighter_;  ///< the patch method's (one of the two is set)
+  std::optional<VoxelRadiosity> voxel_;
+  const SurfaceSolution& solution() const;
+  void start(float displayEdge);
   uint64_t reached_ = 0;  ///< generation the relighter and the colours are at
   double lastRelightMs_ = 0.0;
   std::vector<float> colors_, irradiance_;  ///< in .glb order

@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 #include <httplib.h>
+#include <radiosity/error.h>
 #include <radiosity/relighter.h>
 #include <radiosity/scene_loader.h>
+#include <radiosity/voxel_radiosity.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -250,6 +252,37 @@ TEST(ViewerSession, DimsAGroupOfGlowingSurfaces) {
   double sumBefore = 0.0, sumAfter = 0.0;
   for (size_t k = 0; k < before.size() / 4; ++k) sumBefore += a[k], sumAfter += b[k];
   EXPECT_NEAR(sumAfter / sumBefore, 0.25, 0.005);
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+// A voxel solution is shown and its groups dimmed (solved apart), never relit: a light edit is
+// refused, and the state stays as it was.
+TEST(ViewerSession, AVoxelSolutionDimsItsGroupsButMovesNoLight) {
+  const Scene scene = loadScene("cornell");
+  VoxelRadiositySettings settings;
+  settings.targetVoxels = 5000;
+  settings.sphereRadius = 6;
+  settings.iterations = 3;
+  settings.lightGroups = true;
+  ViewerSession session(scene, scene.lights, VoxelModel(scene, settings).solve(scene.lights),
+                        kDisplayEdge);
+  EXPECT_EQ(session.summary()["method"], "voxel");
+  const std::string before = session.colors();
+  EXPECT_THROW(session.applyLights(nlohmann::json::parse(R"({"lights": [{"id": 0}]})")),
+               InputError);
+  EXPECT_TRUE(session.colors() == before);
+  const std::string after =
+      session.applyLights(nlohmann::json::parse(R"({"groups": {"light": 0.5}})"));
+  const float* a = reinterpret_cast<const float*>(before.data());
+  const float* b = reinterpret_cast<const float*>(after.data());
+  double sumBefore = 0.0, sumAfter = 0.0;
+  for (size_t k = 0; k < before.size() / 4; ++k) sumBefore += a[k], sumAfter += b[k];
+  EXPECT_NEAR(sumAfter / sumBefore, 0.5, 1e-3);  // all its light is the lamp's
 }
 
 }  // namespace
