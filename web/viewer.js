@@ -214,7 +214,18 @@ function groupPanel(group) {
 }
 
 // --- start -----------------------------------------------------------------------------------
+// While the server solves, its API answers 503: show the solve's progress until it is ready.
+async function waitForSolve() {
+  for (;;) {
+    const state = await (await fetchOk('api/progress')).json();
+    if (state.ready) return;
+    report(`solving: ${Math.round(100 * state.progress)}%`);
+    await new Promise((resolve) => setTimeout(resolve, 300));
+  }
+}
+
 async function start() {
+  await waitForSolve();
   summary = await (await fetchOk('api/scene')).json();
   document.getElementById('title').textContent = summary.scene;
   const gltf = await new GLTFLoader().parseAsync(await (await fetchOk('api/mesh.glb')).arrayBuffer(), '');

@@ -162,11 +162,18 @@ void MethodOptions::resolveFromSolution(const Scene& scene, const std::string& p
 
 Relighter startRelighter(const PatchModel& model, std::span<const Light> lights,
                          const std::string& solutionFile, const RelightSettings& settings,
-                         Console& console) {
-  Relighter relighter = solutionFile.empty()
-                            ? Relighter(model, lights, settings, console.progress("patch solve"))
-                            : Relighter(model, model.load(solutionFile, lights), settings,
-                                        console.progress("form factors"));
+                         Console& console, const std::function<void(double)>& alsoReport) {
+  auto reported = [&](const std::string& label) -> ProgressCallback {
+    ProgressCallback bar = console.progress(label);
+    return [bar, alsoReport](double fraction) {
+      if (alsoReport) alsoReport(fraction);
+      return !bar || bar(fraction);
+    };
+  };
+  Relighter relighter =
+      solutionFile.empty()
+          ? Relighter(model, lights, settings, reported("patch solve"))
+          : Relighter(model, model.load(solutionFile, lights), settings, reported("form factors"));
   console.finishProgress();
   for (const std::string& w : relighter.solution().stats().warnings) console.warn(w);
   return relighter;

@@ -11,6 +11,7 @@
 #include <radiosity/solver_settings.h>
 #include <radiosity/voxel_radiosity.h>
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -92,7 +93,7 @@ PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
 /// file `solutionFile` when it is set; prints the solution's warnings.
 Relighter startRelighter(const PatchModel& model, std::span<const Light> lights,
                          const std::string& solutionFile, const RelightSettings& settings,
-                         Console& console);
+                         Console& console, const std::function<void(double)>& alsoReport = {});
 /// The settings as a solution file records them: every one the method read, by name.
 SolverSettings solvedWith(const MethodSettings& settings);
 

@@ -36,6 +36,34 @@ struct ServeOptions {
   float displayEdge = 0.0f;
 };
 
+// The session: the patch method's relighter, or a voxel solution shown and dimmed by group.
+std::unique_ptr<ViewerSession> startSession(const ServeOptions& o, const Scene& scene,
+                                            const RayCaster& caster, Console& console,
+                                            const std::function<void(double)>& report) {
+  if (o.method.method() == "patch") {
+    const PatchModel model(scene, caster, o.method.patch());
+    Relighter relighter = startRelighter(model, scene.lights, o.solution, {}, console, report);
+    const float edge =
+        o.displayEdge > 0.0f ? o.displayEdge : 0.5f * relighter.solution().stats().patchSize;
+    return std::make_unique<ViewerSession>(scene, scene.lights, std::move(relighter), edge);
+  }
+  // Shown and its groups dimmed, not relit: solved with its groups apart.
+  VoxelRadiositySettings settings = o.method.voxel();
+  settings.lightGroups = true;
+  const VoxelModel model(scene, caster, settings);
+  const ProgressCallback bar = console.progress("voxel solve");
+  VoxelRadiosity solution = o.solution.empty() ? model.solve(scene.lights,
+                                                             [&](double f) {
+                                                               report(f);
+                                                               return !bar || bar(f);
+                                                             })
+                                               : model.load(o.solution, scene.lights);
+  console.finishProgress();
+  for (const std::string& w : solution.stats().warnings) console.warn(w);
+  const float edge = o.displayEdge > 0.0f ? o.displayEdge : solution.stats().voxelSize;
+  return std::make_unique<ViewerSession>(scene, scene.lights, std::move(solution), edge);
+}
+
 int runServe(ServeOptions& o, Console& console) {
   RunStats stats;
   const Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
@@ -46,40 +74,32 @@ int runServe(ServeOptions& o, Console& console) {
   if (!o.method.groupScales().empty())
     throw InputError("--group", "serve: the page dims and switches the groups");
   const RayCaster caster(scene);  // the relighter's, for as long as it serves
-  std::unique_ptr<ViewerSession> session;
-  {
-    InterruptGuard interruptible;
-    if (o.method.method() == "patch") {
-      const PatchModel model(scene, caster, o.method.patch());
-      Relighter relighter = startRelighter(model, scene.lights, o.solution, {}, console);
-      const float edge =
-          o.displayEdge > 0.0f ? o.displayEdge : 0.5f * relighter.solution().stats().patchSize;
-      session = std::make_unique<ViewerSession>(scene, scene.lights, std::move(relighter), edge);
-    } else {
-      // A voxel solution is shown and its groups dimmed, not relit: solved with its groups apart.
-      VoxelRadiositySettings settings = o.method.voxel();
-      settings.lightGroups = true;
-      const VoxelModel model(scene, caster, settings);
-      VoxelRadiosity solution = o.solution.empty()
-                                    ? model.solve(scene.lights, console.progress("voxel solve"))
-                                    : model.load(o.solution, scene.lights);
-      console.finishProgress();
-      for (const std::string& w : solution.stats().warnings) console.warn(w);
-      const float edge = o.displayEdge > 0.0f ? o.displayEdge : solution.stats().voxelSize;
-      session = std::make_unique<ViewerSession>(scene, scene.lights, std::move(solution), edge);
-    }
-  }
-  ViewerServer server(*session, o.webDir);
+  // Listening from the start: the page shows the solve's progress until the session is there.
+  ViewerServer server(o.webDir);
   const int port = server.bind(o.host, o.port);
-  console.info(fmt::format("serving {} at http://{}:{}/ (Ctrl-C stops)", o.scene, o.host, port));
+  console.info(fmt::format("serving {} at http://{}:{}/ (solving first; Ctrl-C stops)", o.scene,
+                           o.host, port));
   InterruptGuard interruptible;
+  std::thread listener([&] { server.run(); });
+  server.waitUntilRunning();
   std::atomic<bool> done = false;
   std::thread watcher([&] {
     while (!done && !InterruptGuard::interrupted())
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
     server.stop();
   });
-  server.run();
+  std::unique_ptr<ViewerSession> session;
+  try {
+    session = startSession(o, scene, caster, console, [&](double f) { server.setProgress(f); });
+  } catch (...) {
+    done = true;
+    watcher.join();
+    listener.join();
+    throw;
+  }
+  server.serve(*session);
+  console.info("ready");
+  listener.join();  // until Ctrl-C stops it
   done = true;
   watcher.join();
   console.info("stopped");

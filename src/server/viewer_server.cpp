@@ -5,8 +5,10 @@
 #include <httplib.h>
 #include <radiosity/error.h>
 
+#include <chrono>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <thread>
 
 #include "server/viewer_session.h"
 
@@ -26,40 +28,77 @@ void binary(httplib::Response& response, const std::string& bytes) {
 }  // namespace
 
 ViewerServer::ViewerServer(ViewerSession& session, const std::filesystem::path& webRoot)
+    : ViewerServer(webRoot) {
+  serve(session);
+}
+
+void ViewerServer::serve(ViewerSession& session) {
+  session_.store(&session);
+  progress_.store(1.0);
+}
+
+void ViewerServer::setProgress(double fraction) {
+  progress_.store(fraction);
+}
+
+// Calls f(session), or answers 503 with the solve's progress while there is none yet.
+template <class F>
+void ViewerServer::withSession(httplib::Response& response, F&& f) const {
+  ViewerSession* session = session_.load();
+  if (session) return f(*session);
+  response.status = 503;
+  response.set_content(nlohmann::json{{"error", "solving"}, {"progress", progress_.load()}}.dump(),
+                       "application/json");
+}
+
+ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
     : http_(std::make_unique<httplib::Server>()) {
   httplib::Server& http = *http_;
   // Above the limit httplib itself answers 413 without reading it; up to it, a 400 below.
   http.set_payload_max_length(4 * kMaxBody);
-  http.Get("/api/scene", [&session](const httplib::Request&, httplib::Response& response) {
-    response.set_content(session.summary().dump(), "application/json");
+  http.Get("/api/progress", [this](const httplib::Request&, httplib::Response& response) {
+    response.set_content(
+        nlohmann::json{{"ready", session_.load() != nullptr}, {"progress", progress_.load()}}
+            .dump(),
+        "application/json");
   });
-  http.Get("/api/mesh.glb", [&session](const httplib::Request&, httplib::Response& response) {
-    response.set_content(session.meshGlb(), "model/gltf-binary");
+  http.Get("/api/scene", [this](const httplib::Request&, httplib::Response& response) {
+    withSession(response, [&](ViewerSession& session) {
+      response.set_content(session.summary().dump(), "application/json");
+    });
   });
-  http.Get("/api/colors", [&session](const httplib::Request&, httplib::Response& response) {
-    binary(response, session.colors());
+  http.Get("/api/mesh.glb", [this](const httplib::Request&, httplib::Response& response) {
+    withSession(response, [&](ViewerSession& session) {
+      response.set_content(session.meshGlb(), "model/gltf-binary");
+    });
   });
-  http.Get("/api/irradiance", [&session](const httplib::Request&, httplib::Response& response) {
-    binary(response, session.irradiance());
+  http.Get("/api/colors", [this](const httplib::Request&, httplib::Response& response) {
+    withSession(response, [&](ViewerSession& session) { binary(response, session.colors()); });
   });
-  http.Get("/api/objects.csv", [&session](const httplib::Request&, httplib::Response& response) {
-    response.set_content(session.objectsCsv(), "text/csv");
+  http.Get("/api/irradiance", [this](const httplib::Request&, httplib::Response& response) {
+    withSession(response, [&](ViewerSession& session) { binary(response, session.irradiance()); });
   });
-  http.Post(
-      "/api/lights", [&session](const httplib::Request& request, httplib::Response& response) {
-        if (request.body.size() > kMaxBody)
-          return badRequest(
-              response, fmt::format("body of {} bytes; at most {}", request.body.size(), kMaxBody));
-        const nlohmann::json body = nlohmann::json::parse(request.body, nullptr, false);
-        if (body.is_discarded()) return badRequest(response, "the body is not valid JSON");
-        try {
-          double ms = 0.0;
-          binary(response, session.applyLights(body, &ms));
-          response.set_header("X-Relight-Ms", fmt::format("{:.3f}", ms));
-        } catch (const InputError& e) {
-          badRequest(response, e.what());
-        }
-      });
+  http.Get("/api/objects.csv", [this](const httplib::Request&, httplib::Response& response) {
+    withSession(response, [&](ViewerSession& session) {
+      response.set_content(session.objectsCsv(), "text/csv");
+    });
+  });
+  http.Post("/api/lights", [this](const httplib::Request& request, httplib::Response& response) {
+    if (request.body.size() > kMaxBody)
+      return badRequest(response,
+                        fmt::format("body of {} bytes; at most {}", request.body.size(), kMaxBody));
+    const nlohmann::json body = nlohmann::json::parse(request.body, nullptr, false);
+    if (body.is_discarded()) return badRequest(response, "the body is not valid JSON");
+    withSession(response, [&](ViewerSession& session) {
+      try {
+        double ms = 0.0;
+        binary(response, session.applyLights(body, &ms));
+        response.set_header("X-Relight-Ms", fmt::format("{:.3f}", ms));
+      } catch (const InputError& e) {
+        badRequest(response, e.what());
+      }
+    });
+  });
   std::error_code ec;
   if (std::filesystem::is_directory(webRoot, ec)) http.set_mount_point("/", webRoot.string());
   http.set_exception_handler(
@@ -87,6 +126,10 @@ int ViewerServer::bind(const std::string& host, int port) {
 
 void ViewerServer::run() {
   http_->listen_after_bind();
+}
+
+void ViewerServer::waitUntilRunning() const {
+  while (!http_->is_running()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
 void ViewerServer::stop() {

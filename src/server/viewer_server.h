@@ -1,6 +1,7 @@
 #pragma once
 // The viewer's HTTP server (cpp-httplib): the JSON API over a ViewerSession and the page's
 // static files. Binds 127.0.0.1 unless told otherwise. The API (README, "Viewer"):
+//   GET  /api/progress  {"ready", "progress"}: the solve's progress before the rest answers (503)
 //   GET  /api/scene     the session's summary (JSON)
 //   GET  /api/mesh.glb  the display mesh (binary glTF)
 //   GET  /api/colors    its vertices' linear radiance, float32 RGB in the .glb's vertex order
@@ -11,13 +12,15 @@
 // A bad request gets 400 with {"error": message} and changes nothing. Static files come only
 // from the page's folder.
 
+#include <atomic>
 #include <filesystem>
 #include <memory>
 #include <string>
 
 namespace httplib {
 class Server;
-}
+struct Response;
+}  // namespace httplib
 
 namespace rad {
 
@@ -25,8 +28,15 @@ class ViewerSession;
 
 class ViewerServer {
  public:
-  /// Serves `session` and the files under `webRoot` (none if it does not exist).
+  /// Serves the files under `webRoot` (none if it does not exist); the API answers 503 with the
+  /// solve's progress (GET /api/progress) until serve() gives it a session.
+  explicit ViewerServer(const std::filesystem::path& webRoot);
+  /// Serves `session` and the files under `webRoot`.
   ViewerServer(ViewerSession& session, const std::filesystem::path& webRoot);
+  /// From now on the API answers from `session` (which must outlive the server).
+  void serve(ViewerSession& session);
+  /// The solve's progress while there is no session yet, in [0, 1].
+  void setProgress(double fraction);
   ~ViewerServer();
 
   /// Binds `host`:`port` (0: a free port) and returns the port; throws std::runtime_error if it
@@ -34,6 +44,8 @@ class ViewerServer {
   int bind(const std::string& host, int port);
   /// Answers requests until stop(); call after bind().
   void run();
+  /// Returns once run() (on another thread) is answering, so that a stop() after it ends it.
+  void waitUntilRunning() const;
   /// Ends run() (from any thread).
   void stop();
 
@@ -41,7 +53,12 @@ class ViewerServer {
   static constexpr size_t kMaxBody = 1 << 20;
 
  private:
+  template <class F>
+  void withSession(httplib::Response& response, F&& f) const;
+
   std::unique_ptr<httplib::Server> http_;
+  std::atomic<ViewerSession*> session_{nullptr};
+  std::atomic<double> progress_{0.0};
 };
 
 }  // namespace rad

@@ -221,6 +221,13 @@ TEST(Serve, ListensWhereItSaysAndStopsOnCtrlC) {
   }
   ASSERT_GT(port, 0) << "no URL printed";
   httplib::Client client("127.0.0.1", port);
+  // It listens while it solves: the API answers once /api/progress says ready.
+  for (int tries = 0; tries < 600; ++tries) {
+    const auto progress = client.Get("/api/progress");
+    ASSERT_TRUE(progress);
+    if (nlohmann::json::parse(progress->body)["ready"].get<bool>()) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
   const auto scene = client.Get("/api/scene");
   ASSERT_TRUE(scene);
   EXPECT_EQ(scene->status, 200);
@@ -283,6 +290,36 @@ TEST(ViewerSession, AVoxelSolutionDimsItsGroupsButMovesNoLight) {
   double sumBefore = 0.0, sumAfter = 0.0;
   for (size_t k = 0; k < before.size() / 4; ++k) sumBefore += a[k], sumAfter += b[k];
   EXPECT_NEAR(sumAfter / sumBefore, 0.5, 1e-3);  // all its light is the lamp's
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+// Before it has a session (while `serve` solves) the API answers 503 with the progress, and
+// /api/progress says how far; then the session's answers.
+TEST(ViewerServer, AnswersProgressUntilItHasASession) {
+  ViewerServer server(fs::path(::testing::TempDir()) / "no_page_here");
+  const int port = server.bind("127.0.0.1", 0);
+  std::thread listener([&] { server.run(); });
+  server.waitUntilRunning();
+  server.setProgress(0.25);
+  httplib::Client client("127.0.0.1", port);
+  const auto early = client.Get("/api/scene");
+  ASSERT_TRUE(early);
+  EXPECT_EQ(early->status, 503);
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(early->body)["progress"].get<double>(), 0.25);
+  EXPECT_FALSE(nlohmann::json::parse(client.Get("/api/progress")->body)["ready"].get<bool>());
+  const Scene scene = loadScene("cornell-spot");
+  const PatchModel model(scene, smallSettings());
+  ViewerSession session(scene, scene.lights, Relighter(model, scene.lights), kDisplayEdge);
+  server.serve(session);
+  EXPECT_EQ(client.Get("/api/scene")->status, 200);
+  EXPECT_TRUE(nlohmann::json::parse(client.Get("/api/progress")->body)["ready"].get<bool>());
+  server.stop();
+  listener.join();
 }
 
 }  // namespace
