@@ -76,10 +76,7 @@ int runAnimate(AnimateOptions& o, Console& console) {
   if (!o.video.empty()) checkVideoOutput(o.video, frameFiles);
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.start, console, stats);
-  if (o.solution.empty())
-    o.method.resolve(scene);
-  else
-    o.method.resolveFromSolution(scene, o.solution, console);
+  o.method.resolve(scene, o.solution, console);
   if (!o.solution.empty() && !o.method.groupScales().empty())
     throw InputError("--group",
                      "animate --solution relights the lights the solution was solved "

@@ -179,6 +179,13 @@ Relighter startRelighter(const PatchModel& model, std::span<const Light> lights,
   return relighter;
 }
 
+void MethodOptions::resolve(const Scene& scene, const std::string& solutionFile, Console& console) {
+  if (solutionFile.empty())
+    resolve(scene);
+  else
+    resolveFromSolution(scene, solutionFile, console);
+}
+
 SolverSettings solvedWith(const MethodSettings& settings) {
   SolverSettings out;
   // Not a value that stands for "unset" (patch_size 0: from the patch count), which the

@@ -40,6 +40,8 @@ class MethodOptions {
   /// "solver" values are not for this run, and are warned of; --cache-dir, --spp and --seed,
   /// which are the run's own, and --group still apply). Throws InputError for a bad file.
   void resolveFromSolution(const Scene& scene, const std::string& path, Console& console);
+  /// resolveFromSolution when `solutionFile` is set (--solution), else resolve.
+  void resolve(const Scene& scene, const std::string& solutionFile, Console& console);
 
   const std::string& method() const { return settings_.method; }
   const MethodSettings& settings() const { return settings_; }

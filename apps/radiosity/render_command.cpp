@@ -84,10 +84,7 @@ int runRender(RenderOptions& o, Console& console) {
   Stopwatch total;
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
-  if (o.solution.empty())
-    o.method.resolve(scene);
-  else
-    o.method.resolveFromSolution(scene, o.solution, console);
+  o.method.resolve(scene, o.solution, console);
   if (o.output.empty()) o.output = defaultOutput(o.scene, o.method.method());
   if (!isSupportedImageFormat(o.output))
     throw InputError("-o " + o.output, "unsupported image format (supported: .png, .exr, .pfm)");

@@ -67,10 +67,7 @@ std::unique_ptr<ViewerSession> startSession(const ServeOptions& o, const Scene& 
 int runServe(ServeOptions& o, Console& console) {
   RunStats stats;
   const Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
-  if (o.solution.empty())
-    o.method.resolve(scene);
-  else
-    o.method.resolveFromSolution(scene, o.solution, console);
+  o.method.resolve(scene, o.solution, console);
   if (!o.method.groupScales().empty())
     throw InputError("--group", "serve: the page dims and switches the groups");
   const RayCaster caster(scene);  // the relighter's, for as long as it serves

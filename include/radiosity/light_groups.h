@@ -27,6 +27,11 @@ struct LightGroup {
 /// "light<i>" is taken by another group.
 std::vector<LightGroup> lightGroupsOf(const Scene& scene, std::span<const Light> lights);
 
+/// Material `material`'s emission (Ke) times its factor in `scales` (one per material: a light
+/// group's scale; none, or a material past its end: 1). What every picture and sampler shows of
+/// a dimmed glowing surface.
+Color scaledEmission(const Scene& scene, uint32_t material, std::span<const Color> scales);
+
 /// The power (W) group `group` of `lights` and the scene's materials emits at scale 1.
 Color groupPower(const Scene& scene, std::span<const Light> lights, const LightGroup& group);
 

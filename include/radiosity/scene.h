@@ -6,6 +6,7 @@
 #include <radiosity/ies_profile.h>
 #include <radiosity/types.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <glm/mat4x4.hpp>
@@ -59,6 +60,12 @@ struct LightKeyframe {
   std::optional<Color> intensity;
   bool operator==(const LightKeyframe&) const = default;
 };
+
+/// max(0, d . e_k) for the axes e_k = +x, -x, +y, -y, +z, -z (k = 0..5): how much of lobe k of
+/// an Object light points along d, or how much of a surface with normal d faces e_k.
+inline float axisLobe(const Vec3& d, int k) {
+  return std::max(0.0f, (k % 2 == 0 ? 1.0f : -1.0f) * d[k / 2]);
+}
 
 /// An analytic light at a point. Intensity is radiant intensity in W/sr (RGB): the irradiance
 /// at distance d on a surface tilted by theta is I cos(theta) / d^2.

@@ -19,9 +19,7 @@ class ReflectedOnly : public SurfaceRadiance {
   Color radiance(const SurfaceHit& hit) const override {
     const Color l = solution_.radiance(hit);
     if (!hit.frontFace) return l;
-    const uint32_t material = scene_.faceOf(hit.triangle).material;
-    const Color ke =
-        scene_.materials[material].emission * (scales_.empty() ? Color(1.0f) : scales_[material]);
+    const Color ke = scaledEmission(scene_, scene_.faceOf(hit.triangle).material, scales_);
     return glm::max(l - ke, Color(0.0f));
   }
 
@@ -104,8 +102,7 @@ DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceS
     for (size_t k = 0; k < at.size(); ++k) {
       const std::string key = placed.objects[object].name + "#" + std::to_string(k);
       ProbeCache::Probes& p = cache ? cache->probes_[key] : uncached[k];
-      if (!p.full || glm::length(at[k] - p.centre) > settings.probeMoveThreshold ||
-          (settings.probeMoveThreshold == 0.0f && at[k] != p.centre)) {
+      if (!p.full || glm::length(at[k] - p.centre) > settings.probeMoveThreshold) {
         auto full = std::make_shared<CubeProbe>(settings.probeResolution);
         auto bounce = std::make_shared<CubeProbe>(settings.probeResolution);
         full->capture(staticCaster, solution, at[k]);
@@ -144,9 +141,7 @@ std::vector<Light> DynamicObjectLighting::objectLights() const {
     const float weight = placed_.triangleArea(t) / glm::pi<float>();
     const uint32_t object = placed_.faceOf(t).object;
     has[object] = 1;
-    for (int k = 0; k < 6; ++k)
-      lobes[object][size_t(k)] +=
-          b * (weight * std::max(0.0f, (k % 2 == 0 ? 1.0f : -1.0f) * n[k / 2]));
+    for (int k = 0; k < 6; ++k) lobes[object][size_t(k)] += b * (weight * axisLobe(n, k));
   }
   std::vector<Light> lights;
   for (size_t o = 0; o < lobes.size(); ++o) {

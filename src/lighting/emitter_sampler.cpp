@@ -1,5 +1,7 @@
 #include "lighting/emitter_sampler.h"
 
+#include <radiosity/light_groups.h>
+
 namespace rad {
 
 EmitterSampler::EmitterSampler(const Scene& scene, std::span<const Color> emissionScales)
@@ -11,7 +13,7 @@ EmitterSampler::EmitterSampler(const Scene& scene, std::span<const Color> emissi
     const Material& m = scene.materialOf(t);
     if (!m.emits()) continue;
     // pi is common to every weight; luminance is positive whenever any channel is.
-    const Color emission = emissionOf(scene.faceOf(t).material);
+    const Color emission = scaledEmission(scene, scene.faceOf(t).material, emissionScales_);
     const double weight = double(luminance(glm::max(emission, Color(0.0f)))) *
                           double(scene.triangleArea(t)) * (m.twoSided ? 2.0 : 1.0);
     if (!(weight > 0.0)) continue;
@@ -26,11 +28,6 @@ EmitterSampler::EmitterSampler(const Scene& scene, std::span<const Color> emissi
   }
 }
 
-Color EmitterSampler::emissionOf(uint32_t material) const {
-  const Color ke = scene_->materials[material].emission;
-  return material < emissionScales_.size() ? ke * emissionScales_[material] : ke;
-}
-
 EmitterSample EmitterSampler::sample(float choose, Vec2 position) const {
   const size_t i = distribution_.sample(choose);
   const uint32_t t = triangles_[i];
@@ -41,7 +38,7 @@ EmitterSample EmitterSampler::sample(float choose, Vec2 position) const {
   s.point = (1.0f - b.x - b.y) * scene_->positions[tri.x] + b.x * scene_->positions[tri.y] +
             b.y * scene_->positions[tri.z];
   s.normal = scene_->triangleNormal(t);
-  s.emission = emissionOf(scene_->faceOf(t).material);
+  s.emission = scaledEmission(*scene_, scene_->faceOf(t).material, emissionScales_);
   s.twoSided = m.twoSided;
   s.pdfArea = pdfArea_[t];
   return s;

@@ -35,8 +35,6 @@ class EmitterSampler {
   float pdfArea(uint32_t triangle) const { return pdfArea_[triangle]; }
 
  private:
-  Color emissionOf(uint32_t material) const;
-
   const Scene* scene_;
   std::vector<Color> emissionScales_;
   std::vector<uint32_t> triangles_;

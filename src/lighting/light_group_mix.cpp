@@ -12,13 +12,11 @@
 namespace rad {
 
 LightGroupMix::LightGroupMix(const Scene& scene, std::span<const Light> lights, bool apart)
-    : lights_(lights.begin(), lights.end()),
-      scaledLights_(lights_),
-      materials_(scene.materials.size()) {
+    : lights_(lights.begin(), lights.end()), scaledLights_(lights_) {
   if (!apart) return;
   groups_ = lightGroupsOf(scene, lights);
   scales_.assign(groups_.size(), Color(1.0f));
-  materialScales_.assign(materials_, Color(1.0f));
+  materialScales_.assign(scene.materials.size(), Color(1.0f));
 }
 
 std::vector<Light> LightGroupMix::lightsOf(size_t g) const {
@@ -55,8 +53,7 @@ void LightGroupMix::setEmissionScales(std::span<const Color> scales) {
 }
 
 Color LightGroupMix::emission(const Scene& scene, uint32_t material) const {
-  const Color ke = scene.materials[material].emission;
-  return materialScales_.empty() ? ke : ke * materialScales_[material];
+  return scaledEmission(scene, material, materialScales_);
 }
 
 std::vector<Color> LightGroupMix::combine(const std::vector<std::vector<Color>>& perGroup) const {

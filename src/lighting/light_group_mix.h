@@ -49,7 +49,6 @@ class LightGroupMix {
   std::vector<LightGroup> groups_;
   std::vector<Light> lights_, scaledLights_;
   std::vector<Color> scales_, materialScales_;
-  size_t materials_ = 0;
 };
 
 }  // namespace rad

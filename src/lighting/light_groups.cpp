@@ -47,6 +47,11 @@ std::vector<LightGroup> lightGroupsOf(const Scene& scene, std::span<const Light>
   return groups;
 }
 
+Color scaledEmission(const Scene& scene, uint32_t material, std::span<const Color> scales) {
+  const Color ke = scene.materials[material].emission;
+  return material < scales.size() ? ke * scales[material] : ke;
+}
+
 Color groupPower(const Scene& scene, std::span<const Light> lights, const LightGroup& group) {
   Vec3d power(0.0);
   for (uint32_t i : group.lights) power += Vec3d(lights[i].power());

@@ -1,5 +1,6 @@
 // renderSurfaceRadiance: camera rays through Embree, each hit shaded by a SurfaceRadiance.
 #include <radiosity/error.h>
+#include <radiosity/light_groups.h>
 #include <radiosity/surface_radiance.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -38,10 +39,9 @@ class PerPixelDirectShading {
         emitted += direct_.sampleEmitters(hit.point, n, rng);
       h += emitted / float(emitterSamples_);
     }
-    const std::span<const Color> scales = radiance_.emissionScales();
     // (the scales cover the solution's own materials; a scene with objects placed has more)
-    const uint32_t material = scene_.faceOf(hit.triangle).material;
-    const Color ke = material < scales.size() ? m.emission * scales[material] : m.emission;
+    const Color ke =
+        scaledEmission(scene_, scene_.faceOf(hit.triangle).material, radiance_.emissionScales());
     return ke + m.rho * h * glm::one_over_pi<float>();
   }
 

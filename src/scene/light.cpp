@@ -59,8 +59,7 @@ Color Light::intensityToward(const Vec3& toward) const {
     }
     case LightType::Object: {
       Color sum(0.0f);
-      for (int k = 0; k < 6; ++k)
-        sum += lobes[size_t(k)] * std::max(0.0f, (k % 2 == 0 ? 1.0f : -1.0f) * toward[k / 2]);
+      for (int k = 0; k < 6; ++k) sum += lobes[size_t(k)] * axisLobe(toward, k);
       return intensity * sum;  // intensity: a dimmer on it (1 as made)
     }
   }
