@@ -26,6 +26,17 @@ FaceAxes axesOf(int face) {
   return {axis, (axis + 1) % 3, (axis + 2) % 3, face % 2 == 0 ? 1.0f : -1.0f};
 }
 
+// The unit direction through face `face`'s point at texel coordinates (i, j) (continuous: the
+// texel's centre is i + 0.5) of a face `n` texels wide.
+Vec3 faceDirection(int face, float i, float j, int n) {
+  const FaceAxes a = axesOf(face);
+  Vec3 d(0.0f);
+  d[a.axis] = a.sign;
+  d[a.b] = -1.0f + i * 2.0f / float(n);
+  d[a.c] = -1.0f + j * 2.0f / float(n);
+  return glm::normalize(d);
+}
+
 // The solid angle of [0, x] x [0, y] on the plane at distance 1 seen from the origin's foot:
 // atan(x y / sqrt(x^2 + y^2 + 1)), whose four corners give a texel's.
 double cornerSolidAngle(double x, double y) {
@@ -87,18 +98,12 @@ CubeProbe::CubeProbe(int resolution, int samples)
           cornerSolidAngle(u0 + step, v0 + step) - cornerSolidAngle(u0, v0 + step) -
           cornerSolidAngle(u0 + step, v0) + cornerSolidAngle(u0, v0);
     }
-  for (int face = 0; face < 6; ++face) {
-    const FaceAxes a = axesOf(face);
+  for (int face = 0; face < 6; ++face)
     for (int j = 0; j < resolution; ++j)
       for (int i = 0; i < resolution; ++i) {
-        Vec3 d(0.0f);
-        d[a.axis] = a.sign;
-        d[a.b] = -1.0f + (float(i) + 0.5f) * 2.0f / float(resolution);
-        d[a.c] = -1.0f + (float(j) + 0.5f) * 2.0f / float(resolution);
-        directions_.push_back(glm::normalize(d));
+        directions_.push_back(faceDirection(face, float(i) + 0.5f, float(j) + 0.5f, resolution));
         texelSolidAngle_.push_back(float(solidAngle(i, j)));
       }
-  }
   // The published pattern: over a square twice a face's size around where the normal meets the
   // cube, four texels at random on every ring (square) around its centre, drawn once.
   Rng rng(0x70726f6265ull, uint64_t(resolution));
@@ -135,16 +140,13 @@ void CubeProbe::capture(const RayCaster& caster, const SurfaceRadiance& radiance
   tbb::parallel_for(tbb::blocked_range<int>(0, 6 * n), [&](const auto& rows) {
     for (int row = rows.begin(); row != rows.end(); ++row) {
       const int face = row / n, j = row % n;
-      const FaceAxes a = axesOf(face);
       for (int i = 0; i < n; ++i) {
         Color sum(0.0f);
         for (int sj = 0; sj < samples_; ++sj)
           for (int si = 0; si < samples_; ++si) {
-            Vec3 d(0.0f);
-            d[a.axis] = a.sign;
-            d[a.b] = -1.0f + (float(i) + (float(si) + 0.5f) / float(samples_)) * 2.0f / float(n);
-            d[a.c] = -1.0f + (float(j) + (float(sj) + 0.5f) / float(samples_)) * 2.0f / float(n);
-            const Ray ray{centre, glm::normalize(d)};
+            const Ray ray{centre,
+                          faceDirection(face, float(i) + (float(si) + 0.5f) / float(samples_),
+                                        float(j) + (float(sj) + 0.5f) / float(samples_), n)};
             const Hit hit = caster.intersect(ray);
             if (hit.valid())
               sum += radiance.radiance({centre + hit.distance * ray.direction, hit.geometricNormal,

@@ -41,6 +41,11 @@ Color nonNegative(const Json& j, const std::string& where) {
   return c;
 }
 
+// The floats as the API sends them: their bytes (little-endian float32 on every supported machine).
+std::string bytesOf(const std::vector<float>& values) {
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(float));
+}
+
 Json array(const Vec3& v) {
   return Json::array({v.x, v.y, v.z});
 }
@@ -139,13 +144,12 @@ Json ViewerSession::summary() const {
 
 std::string ViewerSession::colors() const {
   std::lock_guard relight(relightMutex_);
-  return std::string(reinterpret_cast<const char*>(colors_.data()), colors_.size() * sizeof(float));
+  return bytesOf(colors_);
 }
 
 std::string ViewerSession::irradiance() const {
   std::lock_guard relight(relightMutex_);
-  return std::string(reinterpret_cast<const char*>(irradiance_.data()),
-                     irradiance_.size() * sizeof(float));
+  return bytesOf(irradiance_);
 }
 
 std::string ViewerSession::objectsCsv() const {
@@ -241,7 +245,7 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
     reached_ = newest;
   }
   if (relightMs) *relightMs = lastRelightMs_;
-  return std::string(reinterpret_cast<const char*>(colors_.data()), colors_.size() * sizeof(float));
+  return bytesOf(colors_);
 }
 
 }  // namespace rad
