@@ -13,6 +13,7 @@
 #include "command_support.h"
 #include "commands.h"
 #include "console.h"
+#include "core/message_text.h"
 
 namespace rad::cli {
 
@@ -54,7 +55,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     out << app.version() << "\n";
     return 0;
   } catch (const CLI::ParseError& e) {
-    err << "radiosity: " << e.what() << " (see radiosity --help)\n";
+    err << "radiosity: " << printableMessage(e.what()) << " (see radiosity --help)\n";
     return 2;
   }
 
@@ -82,7 +83,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     return 1;
   } catch (const std::exception& e) {
     console.finishProgress();
-    err << "radiosity: error: " << e.what() << "\n";
+    err << "radiosity: error: " << printableMessage(e.what()) << "\n";
     return 1;
   }
 }

@@ -11,10 +11,10 @@ namespace rad {
 class InputError : public std::runtime_error {
  public:
   /// `where` is "file", "file:line" or "file: /json/path"; `what` says what was wrong and what
-  /// was expected, e.g. "fov_deg 200 out of range (0, 180)".
-  InputError(const std::string& where, const std::string& what)
-      : std::runtime_error(where.empty() ? what : where + ": " + what) {}
-  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+  /// was expected, e.g. "fov_deg 200 out of range (0, 180)". The message is kept to one
+  /// printable line of bounded length, whatever a file put in the parts it echoes.
+  InputError(const std::string& where, const std::string& what);
+  explicit InputError(const std::string& message);
 };
 
 /// Thrown when a progress callback asks a long computation to stop.

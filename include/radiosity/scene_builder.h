@@ -12,13 +12,21 @@
 
 namespace rad {
 
+/// Largest coordinate a scene may have, in scene units. Rays are cast in 32-bit floats, whose
+/// spacing at 1e9 is 64 units: beyond that a scene is not resolvable (and Embree asserts on
+/// origins near 1e18). A kilometre-wide site in millimetres is 1e6.
+constexpr float kMaxSceneCoordinate = 1e9f;
+
 class SceneBuilder {
  public:
   explicit SceneBuilder(std::string sceneName);
 
+  /// Adds a material; throws InputError naming it if a component of rho or emission is not
+  /// finite (or rho is outside [0, 1)).
   uint32_t addMaterial(Material material);
   uint32_t addObject(std::string name);
-  /// Adds a vertex; `where` names the source (file:line) for the error if it is NaN or infinite.
+  /// Adds a vertex; `where` names the source (file:line) for the error if it is NaN, infinite or
+  /// beyond kMaxSceneCoordinate.
   uint32_t addVertex(const Vec3& position, const std::string& where);
   /// Adds a polygon given by vertex indices, counter-clockwise about its front side.
   /// A planar polygon becomes one Face (triangulated by ear clipping, so concave ones work);

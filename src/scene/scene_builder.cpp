@@ -1,13 +1,14 @@
+#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/scene_builder.h>
 
-#include "scene/polygon.h"
-
-#include <fmt/format.h>
-
 #include <array>
-#include <optional>
 #include <cmath>
+#include <glm/gtx/component_wise.hpp>
+#include <optional>
+
+#include "core/message_text.h"
+#include "scene/polygon.h"
 
 namespace rad {
 
@@ -25,9 +26,19 @@ double polygonSize(std::span<const Vec3> corners) {
 
 }  // namespace
 
-SceneBuilder::SceneBuilder(std::string sceneName) { scene_.name = std::move(sceneName); }
+SceneBuilder::SceneBuilder(std::string sceneName) {
+  scene_.name = std::move(sceneName);
+}
 
 uint32_t SceneBuilder::addMaterial(Material material) {
+  for (int c = 0; c < 3; ++c) {
+    if (!(material.rho[c] >= 0.0f && material.rho[c] < 1.0f))
+      throw InputError(scene_.name, fmt::format("material {}: rho {} must be in [0, 1)",
+                                                quotedToken(material.name), material.rho[c]));
+    if (!(material.emission[c] >= 0.0f && std::isfinite(material.emission[c])))
+      throw InputError(scene_.name, fmt::format("material {}: emission {} must be finite and >= 0",
+                                                quotedToken(material.name), material.emission[c]));
+  }
   scene_.materials.push_back(std::move(material));
   return uint32_t(scene_.materials.size() - 1);
 }
@@ -40,6 +51,10 @@ uint32_t SceneBuilder::addObject(std::string name) {
 uint32_t SceneBuilder::addVertex(const Vec3& p, const std::string& where) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
     throw InputError(where, fmt::format("vertex ({}, {}, {}) is not finite", p.x, p.y, p.z));
+  if (glm::compMax(glm::abs(p)) > kMaxSceneCoordinate)
+    throw InputError(where, fmt::format("vertex ({}, {}, {}) is beyond {:g} scene units (after the "
+                                        "file's transforms): check the scale",
+                                        p.x, p.y, p.z, kMaxSceneCoordinate));
   scene_.positions.push_back(p);
   return uint32_t(scene_.positions.size() - 1);
 }
@@ -77,10 +92,11 @@ void SceneBuilder::addFace(std::span<const uint32_t> corners, std::span<const UV
   scene_.faces.push_back(std::move(face));
 }
 
-void SceneBuilder::addPolygon(std::span<const uint32_t> corners, uint32_t material,
-                              uint32_t object, const std::string& where) {
+void SceneBuilder::addPolygon(std::span<const uint32_t> corners, uint32_t material, uint32_t object,
+                              const std::string& where) {
   if (corners.size() < 3)
-    throw InputError(where, fmt::format("a face needs at least 3 vertices, got {}", corners.size()));
+    throw InputError(where,
+                     fmt::format("a face needs at least 3 vertices, got {}", corners.size()));
   std::vector<Vec3> points;
   for (uint32_t c : corners) {
     if (c >= scene_.positions.size())
@@ -133,13 +149,16 @@ std::optional<std::array<uint32_t, 4>> SceneBuilder::quadOf(const UVec3& a, cons
 void SceneBuilder::addTriangleMesh(std::span<const uint32_t> indices, uint32_t material,
                                    uint32_t object, const std::string& where) {
   if (indices.size() % 3 != 0)
-    throw InputError(where, fmt::format("triangle index count {} is not a multiple of 3", indices.size()));
+    throw InputError(where,
+                     fmt::format("triangle index count {} is not a multiple of 3", indices.size()));
   for (uint32_t i : indices)
     if (i >= scene_.positions.size())
       throw InputError(where, fmt::format("vertex index {} out of range ({} vertices)", i,
                                           scene_.positions.size()));
   const size_t count = indices.size() / 3;
-  auto tri = [&](size_t t) { return UVec3(indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]); };
+  auto tri = [&](size_t t) {
+    return UVec3(indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]);
+  };
   for (size_t t = 0; t < count; ++t) {
     const UVec3 a = tri(t);
     if (t + 1 < count) {
@@ -163,8 +182,8 @@ void SceneBuilder::warn(const std::string& file, const std::string& text) {
 Scene SceneBuilder::build() {
   if (degenerateTriangles_ > 0)
     scene_.warnings.push_back(
-        fmt::format("dropped {} degenerate triangle{} (zero or near-zero area)", degenerateTriangles_,
-                    degenerateTriangles_ == 1 ? "" : "s"));
+        fmt::format("dropped {} degenerate triangle{} (zero or near-zero area)",
+                    degenerateTriangles_, degenerateTriangles_ == 1 ? "" : "s"));
   degenerateTriangles_ = 0;
   return std::move(scene_);
 }

@@ -5,23 +5,23 @@
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
-
 #include "scene/io/gltf_loader.h"
 
-#include "scene/io/text_file.h"
-
-#include <radiosity/error.h>
-
 #include <fmt/format.h>
-#include <glm/gtc/quaternion.hpp>
-#include <glm/gtc/type_ptr.hpp>
-#include <glm/gtx/transform.hpp>
+#include <radiosity/error.h>
+#include <tiny_gltf.h>
 
 #include <algorithm>
 #include <cstring>
-#include <fstream>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/gtx/transform.hpp>
+#include <limits>
 #include <set>
+
+#include "core/checked_size.h"
+#include "core/json_nesting.h"
+#include "scene/io/text_file.h"
 
 namespace rad {
 
@@ -79,6 +79,7 @@ class GltfReader {
   const tinygltf::Model& model_;
   std::string path_;
   std::vector<int64_t> materials_;
+  std::vector<bool> visited_;
   int64_t defaultMaterial_ = -1;
   size_t skippedPrimitives_ = 0, clampedMaterials_ = 0;
   bool texturesIgnored_ = false;
@@ -101,10 +102,23 @@ const unsigned char* GltfReader::elements(const tinygltf::Accessor& a, size_t el
     throw InputError(at(where), fmt::format("bufferView refers to missing buffer {}", view.buffer));
   const tinygltf::Buffer& buffer = model_.buffers[size_t(view.buffer)];
   stride = view.byteStride ? view.byteStride : elementSize;
-  const size_t needed = a.count == 0 ? 0 : (a.count - 1) * stride + elementSize;
-  if (view.byteOffset + view.byteLength > buffer.data.size() || a.byteOffset + needed > view.byteLength)
-    throw InputError(at(where), fmt::format("accessor of {} elements runs past the end of its buffer "
-                                            "({} bytes)", a.count, buffer.data.size()));
+  if (stride < elementSize)
+    throw InputError(at(where), fmt::format("bufferView byteStride {} is smaller than an element "
+                                            "({} bytes)",
+                                            stride, elementSize));
+  // Every offset, count and stride is the file's word: the arithmetic must not wrap.
+  const std::optional<size_t> viewEnd = checkedAdd(view.byteOffset, view.byteLength);
+  const std::optional<size_t> span =
+      a.count == 0
+          ? std::optional<size_t>(0)
+          : checkedAdd(checkedMultiply(a.count - 1, stride).value_or(SIZE_MAX), elementSize);
+  const std::optional<size_t> accessorEnd = span ? checkedAdd(a.byteOffset, *span) : std::nullopt;
+  if (!viewEnd || *viewEnd > buffer.data.size() || !accessorEnd || *accessorEnd > view.byteLength)
+    throw InputError(at(where), fmt::format("accessor of {} elements (offset {}, stride {}) runs "
+                                            "past the end of its bufferView ({} bytes at offset {} "
+                                            "of a {}-byte buffer)",
+                                            a.count, a.byteOffset, stride, view.byteLength,
+                                            view.byteOffset, buffer.data.size()));
   return buffer.data.data() + view.byteOffset + a.byteOffset;
 }
 
@@ -123,9 +137,15 @@ std::vector<uint32_t> GltfReader::indices(int index, const std::string& where) c
   const tinygltf::Accessor& a = accessor(index, where);
   size_t size = 0;
   switch (a.componentType) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: size = 1; break;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: size = 2; break;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: size = 4; break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      size = 1;
+      break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      size = 2;
+      break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      size = 4;
+      break;
     default:
       throw InputError(at(where), "indices must be unsigned byte, short or int");
   }
@@ -135,9 +155,14 @@ std::vector<uint32_t> GltfReader::indices(int index, const std::string& where) c
   std::vector<uint32_t> out(a.count);
   for (size_t i = 0; i < a.count; ++i) {
     const unsigned char* p = data + i * stride;
-    if (size == 1) out[i] = *p;
-    else if (size == 2) { uint16_t v; std::memcpy(&v, p, 2); out[i] = v; }
-    else std::memcpy(&out[i], p, 4);
+    if (size == 1)
+      out[i] = *p;
+    else if (size == 2) {
+      uint16_t v;
+      std::memcpy(&v, p, 2);
+      out[i] = v;
+    } else
+      std::memcpy(&out[i], p, 4);
   }
   return out;
 }
@@ -215,8 +240,8 @@ void GltfReader::addMesh(int meshIndex, const glm::mat4& world, uint32_t object)
     for (const Vec3& v : points) builder_.addVertex(Vec3(world * glm::vec4(v, 1.0f)), at(where));
     for (size_t i = 0; i < idx.size(); ++i) {
       if (idx[i] >= points.size())
-        throw InputError(at(where + "/indices"), fmt::format("index {} out of range ({} vertices)",
-                                                             idx[i], points.size()));
+        throw InputError(at(where + "/indices"),
+                         fmt::format("index {} out of range ({} vertices)", idx[i], points.size()));
       idx[i] += base;
     }
     if (mirrored)
@@ -229,7 +254,15 @@ void GltfReader::visit(int nodeIndex, const glm::mat4& parent, int depth) {
   const std::string where = fmt::format("/nodes/{}", nodeIndex);
   if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size())
     throw InputError(at(where), "node does not exist");
-  if (depth > 256) throw InputError(at(where), "node hierarchy deeper than 256 (a cycle?)");
+  if (depth > 256) throw InputError(at(where), "node hierarchy deeper than 256 levels");
+  // glTF nodes form strict trees: a node reached twice is a cycle, or a shared subtree whose
+  // instances could multiply exponentially with depth.
+  visited_.resize(model_.nodes.size(), false);
+  if (visited_[size_t(nodeIndex)])
+    throw InputError(at(where),
+                     "node is reached twice (a cycle, or a child of two parents); glTF "
+                     "nodes must form strict trees");
+  visited_[size_t(nodeIndex)] = true;
   const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
   const glm::mat4 world = parent * localTransform(node);
   if (node.mesh >= 0) {
@@ -252,7 +285,8 @@ void GltfReader::finish() {
 std::vector<int> rootNodes(const tinygltf::Model& model) {
   if (!model.scenes.empty()) {
     const int s = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size()
-                      ? model.defaultScene : 0;
+                      ? model.defaultScene
+                      : 0;
     return model.scenes[size_t(s)].nodes;
   }
   std::set<int> children;
@@ -263,21 +297,59 @@ std::vector<int> rootNodes(const tinygltf::Model& model) {
   return roots;
 }
 
+// The JSON of a glTF file: the whole text, or a GLB's first chunk (bounds checked).
+std::string_view gltfJson(std::string_view bytes) {
+  if (bytes.size() < 20 || bytes.substr(0, 4) != "glTF") return bytes;
+  uint32_t chunkLength = 0;
+  std::memcpy(&chunkLength, bytes.data() + 12, 4);
+  return bytes.substr(20, chunkLength);
+}
+
+// External buffers are read with the same size limit as the file, and their URIs are taken
+// as they are (tinygltf's default expands them as shell words).
+bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                      void*) {
+  try {
+    const std::string bytes = readTextFile(path, "glTF buffer");
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const InputError& e) {
+    *err = e.what();
+    return false;
+  }
+}
+
+std::string pathAsWritten(const std::string& path, void*) {
+  return path;
+}
+
 }  // namespace
 
 void loadGltf(SceneBuilder& builder, const std::string& path, const glm::mat4& transform) {
-  std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (!std::ifstream(path, std::ios::binary))
-    throw InputError(path, "cannot open glTF file (missing or unreadable)");
+  // tinygltf takes a 32-bit length.
+  const std::string bytes = readTextFile(path, "glTF file", std::numeric_limits<uint32_t>::max());
+  const std::string_view json = gltfJson(bytes);
+  if (const std::optional<size_t> deep = jsonNestingOverflow(json))
+    throw InputError(path, fmt::format("invalid glTF: JSON nested deeper than {} levels (at byte "
+                                       "{})",
+                                       kMaxJsonNesting, *deep));
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&skipImage, nullptr);
+  loader.SetFsCallbacks({&tinygltf::FileExists, &pathAsWritten, &readExternalFile,
+                         &tinygltf::WriteWholeFile, nullptr});
   tinygltf::Model model;
   std::string err, warn;
-  const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                                : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  const bool binary = bytes.size() >= 4 && std::string_view(bytes).substr(0, 4) == "glTF";
+  const std::string baseDir = parentDirectory(path);
+  const bool ok =
+      binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                           reinterpret_cast<const unsigned char*>(bytes.data()),
+                                           unsigned(bytes.size()), baseDir)
+             : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()),
+                                          baseDir);
   if (!ok || !err.empty())
-    throw InputError(path, "invalid glTF: " + (err.empty() ? std::string("cannot parse") : oneLine(err)));
+    throw InputError(path,
+                     "invalid glTF: " + (err.empty() ? std::string("cannot parse") : oneLine(err)));
   if (!warn.empty()) builder.warn(path, oneLine(warn));
   GltfReader reader(builder, model, path);
   for (int root : rootNodes(model)) reader.visit(root, transform, 0);

@@ -13,19 +13,20 @@
 //   laterally (Ashdown: "laterally symmetric ... first 0, last 90").
 // - Type C horizontal angles increase from +x toward +y (VALIDATION.md 4.5 "codable mapping").
 
+#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/ies_profile.h>
-
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <optional>
 #include <sstream>
+
+#include "core/message_text.h"
+#include "scene/io/text_file.h"
 
 namespace rad {
 
@@ -33,6 +34,8 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kAngleEps = 1e-6;
+// The largest photometric files in use (road lighting, 0.5-degree grids) are a few hundred KB.
+constexpr size_t kMaxIesFileBytes = size_t(64) << 20;
 
 struct Token {
   std::string text;
@@ -79,7 +82,8 @@ class NumberStream {
   /// Reads `count` numbers naming the block `what` ("vertical angles") for messages.
   std::vector<double> block(size_t count, const std::string& what) {
     std::vector<double> values;
-    values.reserve(count);
+    // The count is the file's word: reserve no more than the numbers the file holds.
+    values.reserve(std::min(count, tokens_.size() - pos_));
     for (size_t i = 0; i < count; ++i) {
       std::optional<double> v = tryNext();
       if (!v)
@@ -106,8 +110,8 @@ class NumberStream {
   /// Throws if numbers remain after the candela table.
   void expectEnd(const std::string& expected) {
     if (pos_ < tokens_.size())
-      throw InputError(where(), fmt::format("unexpected extra value '{}' after {}",
-                                            tokens_[pos_].text, expected));
+      throw InputError(where(), fmt::format("unexpected extra value {} after {}",
+                                            quotedToken(tokens_[pos_].text), expected));
   }
 
   std::string lineOfPrevious() const {
@@ -131,7 +135,7 @@ class NumberStream {
     return fmt::format("{}:{}", source_, line);
   }
   std::string foundSuffix() const {
-    return pos_ < tokens_.size() ? fmt::format(" (next is '{}')", tokens_[pos_].text)
+    return pos_ < tokens_.size() ? fmt::format(" (next is {})", quotedToken(tokens_[pos_].text))
                                  : " before the end of the file";
   }
 
@@ -141,11 +145,12 @@ class NumberStream {
   size_t pos_ = 0;
 };
 
-void requireAscending(const std::vector<double>& a, const std::string& what, const std::string& at) {
+void requireAscending(const std::vector<double>& a, const std::string& what,
+                      const std::string& at) {
   for (size_t i = 1; i < a.size(); ++i)
     if (!(a[i] > a[i - 1]))
-      throw InputError(at, fmt::format("{} must be strictly ascending ({} follows {})", what, a[i],
-                                       a[i - 1]));
+      throw InputError(
+          at, fmt::format("{} must be strictly ascending ({} follows {})", what, a[i], a[i - 1]));
 }
 
 // Cell of `x` in ascending `nodes`: indices i0, i1 and weight t of i1. False when outside.
@@ -204,11 +209,14 @@ double IesProfile::candelaToward(double dx, double dy, double dz) const {
   const double firstH = horizontalAngles.front(), lastH = horizontalAngles.back();
   double v = 0.0, h = 0.0;
   if (type == PhotometricType::C) {
-    if (horizontalAngles.size() == 1) dx = std::hypot(dx, dy), dy = 0.0;
-    else if (std::abs(lastH - 90.0) < kAngleEps) dx = std::abs(dx), dy = std::abs(dy);
+    if (horizontalAngles.size() == 1)
+      dx = std::hypot(dx, dy), dy = 0.0;
+    else if (std::abs(lastH - 90.0) < kAngleEps)
+      dx = std::abs(dx), dy = std::abs(dy);
     else if (std::abs(firstH - 90.0) < kAngleEps && std::abs(lastH - 270.0) < kAngleEps)
       dx = -std::abs(dx);
-    else if (std::abs(lastH - 180.0) < kAngleEps) dy = std::abs(dy);
+    else if (std::abs(lastH - 180.0) < kAngleEps)
+      dy = std::abs(dy);
     v = std::acos(std::clamp(-dz, -1.0, 1.0)) / kDeg;
     h = std::atan2(dy, dx) / kDeg;
     if (h < 0.0) h += 360.0;
@@ -262,7 +270,8 @@ double IesProfile::totalFlux() const {
   const bool sinWeight = type == PhotometricType::C;
   std::vector<double> f(nh);
   for (size_t h = 0; h < nh; ++h) {
-    const std::vector<double> row(candela.begin() + long(h * nv), candela.begin() + long(h * nv + nv));
+    const std::vector<double> row(candela.begin() + long(h * nv),
+                                  candela.begin() + long(h * nv + nv));
     f[h] = curveIntegral(verticalAngles, row, sinWeight);
   }
   if (type == PhotometricType::A) {
@@ -288,8 +297,9 @@ namespace {
 void parseTilt(NumberStream& numbers, IesProfile& p) {
   const int geometry = numbers.integer("lamp-to-luminaire geometry (1, 2 or 3)");
   if (geometry < 1 || geometry > 3)
-    throw InputError(numbers.lineOfPrevious(),
-                     fmt::format("lamp-to-luminaire geometry {} out of range (1, 2 or 3)", geometry));
+    throw InputError(
+        numbers.lineOfPrevious(),
+        fmt::format("lamp-to-luminaire geometry {} out of range (1, 2 or 3)", geometry));
   const int pairs = numbers.integer("number of tilt angle/factor pairs");
   if (pairs < 1 || pairs > 100000)
     throw InputError(numbers.lineOfPrevious(),
@@ -361,26 +371,23 @@ IesProfile parseIesProfile(const std::string& text, const std::string& source) {
   const size_t eq = tilt.find('=');
   const std::string where = fmt::format("{}:{}", source, tiltLine + 1);
   if (eq == std::string::npos)
-    throw InputError(where, fmt::format("malformed '{}' (expected TILT=NONE or TILT=INCLUDE)", tilt));
+    throw InputError(
+        where, fmt::format("malformed {} (expected TILT=NONE or TILT=INCLUDE)", quotedToken(tilt)));
   tilt = trim(tilt.substr(eq + 1));
   NumberStream numbers(lines, tiltLine + 1, source);
   if (tilt == "INCLUDE") {
     parseTilt(numbers, p);
   } else if (tilt != "NONE") {
     throw InputError(where, fmt::format("TILT={} (a separate tilt file) is not supported; use "
-                                        "TILT=NONE or TILT=INCLUDE", tilt));
+                                        "TILT=NONE or TILT=INCLUDE",
+                                        quotedToken(tilt)));
   }
   parseTable(numbers, p);
   return p;
 }
 
 IesProfile loadIesProfile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open the IES file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path, "cannot read the IES file");
-  return parseIesProfile(text.str(), path);
+  return parseIesProfile(readTextFile(path, "IES file", kMaxIesFileBytes), path);
 }
 
 }  // namespace rad

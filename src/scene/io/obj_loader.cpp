@@ -4,27 +4,33 @@
 
 #include "scene/io/obj_loader.h"
 
-#include "scene/io/text_file.h"
-
-#include <radiosity/error.h>
-
 #include <fmt/format.h>
-#include <glm/mat3x3.hpp>
-#include <glm/matrix.hpp>
-#include <glm/vec4.hpp>
+#include <radiosity/error.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+#include <glm/vec4.hpp>
 #include <map>
 #include <set>
+
+#include "core/message_text.h"
+#include "scene/io/text_file.h"
 
 namespace rad {
 
 namespace {
 
-std::string at(const std::string& path, size_t line) { return fmt::format("{}:{}", path, line); }
+constexpr size_t kMaxFaceCorners = 255;
+// A material library of a million materials is a few hundred MB less than this.
+constexpr size_t kMaxMtlFileBytes = size_t(256) << 20;
+
+std::string at(const std::string& path, size_t line) {
+  return fmt::format("{}:{}", path, line);
+}
 
 /// Line numbers of the statements the geometry is built from, in file order.
 struct ObjScan {
@@ -52,7 +58,8 @@ void forEachStatement(const std::string& text, F&& visit) {
 
 /// Checks that words[1..] are between minCount and maxCount finite numbers.
 std::vector<double> numbers(const std::vector<std::string_view>& words, size_t minCount,
-                            size_t maxCount, const std::string& where, const std::string& expected) {
+                            size_t maxCount, const std::string& where,
+                            const std::string& expected) {
   const size_t count = words.size() - 1;
   if (count < minCount || count > maxCount)
     throw InputError(where, fmt::format("'{}' has {} value{}, expected {}", words[0], count,
@@ -61,11 +68,13 @@ std::vector<double> numbers(const std::vector<std::string_view>& words, size_t m
   for (size_t i = 1; i < words.size(); ++i) {
     const std::optional<double> v = parseNumber(words[i]);
     if (!v)
-      throw InputError(where, fmt::format("'{}' is not a number in '{}' (expected {})", words[i],
-                                          words[0], expected));
-    if (!std::isfinite(*v))
-      throw InputError(where, fmt::format("'{}' value {} is not finite (expected {})", words[0],
-                                          words[i], expected));
+      throw InputError(where, fmt::format("{} is not a number in {} (expected {})",
+                                          quotedToken(words[i]), quotedToken(words[0]), expected));
+    // The geometry and materials are kept in 32-bit floats: 1e39 is finite only as a double.
+    if (!std::isfinite(*v) || !std::isfinite(float(*v)))
+      throw InputError(where, fmt::format("'{}' value {} is not finite as a 32-bit float (expected "
+                                          "{})",
+                                          words[0], quotedToken(words[i]), expected));
     values.push_back(*v);
   }
   return values;
@@ -77,9 +86,11 @@ void checkIndex(std::string_view token, size_t available, const std::string& kin
   long value = 0;
   auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (ec != std::errc() || end != token.data() + token.size())
-    throw InputError(where, fmt::format("face {} index '{}' is not an integer", kind, token));
+    throw InputError(where,
+                     fmt::format("face {} index {} is not an integer", kind, quotedToken(token)));
   if (value == 0)
-    throw InputError(where, fmt::format("face {} index 0 is invalid (OBJ indices start at 1)", kind));
+    throw InputError(where,
+                     fmt::format("face {} index 0 is invalid (OBJ indices start at 1)", kind));
   const long n = long(available);
   if (value > n || value < -n)
     throw InputError(where, fmt::format("face {} index {} out of range (1..{} or -1..-{} so far)",
@@ -89,7 +100,13 @@ void checkIndex(std::string_view token, size_t available, const std::string& kin
 void checkFace(const std::vector<std::string_view>& words, size_t v, size_t vt, size_t vn,
                const std::string& where) {
   if (words.size() < 4)
-    throw InputError(where, fmt::format("face has {} corners, expected at least 3", words.size() - 1));
+    throw InputError(where,
+                     fmt::format("face has {} corners, expected at least 3", words.size() - 1));
+  // tinyobjloader keeps a face's corner count in one byte: a longer face would come out mangled.
+  if (words.size() - 1 > kMaxFaceCorners)
+    throw InputError(where, fmt::format("face has {} corners, at most {} are supported (split or "
+                                        "triangulate it in the exporter)",
+                                        words.size() - 1, kMaxFaceCorners));
   for (size_t i = 1; i < words.size(); ++i) {
     std::vector<std::string_view> parts;
     std::string_view ref = words[i];
@@ -99,7 +116,8 @@ void checkFace(const std::vector<std::string_view>& words, size_t v, size_t vt, 
     }
     parts.push_back(ref);
     if (parts.size() > 3)
-      throw InputError(where, fmt::format("face corner '{}' is not v, v/vt, v//vn or v/vt/vn", words[i]));
+      throw InputError(where, fmt::format("face corner {} is not v, v/vt, v//vn or v/vt/vn",
+                                          quotedToken(words[i])));
     checkIndex(parts[0], v, "vertex", where);
     if (parts.size() > 1 && !parts[1].empty()) checkIndex(parts[1], vt, "texture", where);
     if (parts.size() > 2) checkIndex(parts[2], vn, "normal", where);
@@ -143,17 +161,18 @@ std::set<std::string> scanMtl(const std::string& text, const std::string& path) 
       current = std::string(w[1]);
     } else if (key == "Ka" || key == "Kd" || key == "Ks" || key == "Ke" || key == "Tf") {
       if (w.size() > 1 && (w[1] == "spectral" || w[1] == "xyz"))
-        throw InputError(where, fmt::format("'{} {}' is not supported (expected r g b)", key, w[1]));
+        throw InputError(where, fmt::format("'{} {}' is not supported (expected r g b)", key,
+                                            std::string(w[1])));
       const std::vector<double> c = numbers(w, 1, 3, where, "1 or 3 finite numbers (r g b)");
       if (c.size() == 2)
         throw InputError(where, fmt::format("'{}' has 2 values, expected 1 or 3 (r g b)", key));
       for (double x : c) {
         if (key == "Kd" && !(x >= 0.0 && x < 1.0))
-          throw InputError(where, fmt::format("rho (Kd) {} of material '{}' must be in [0, 1)", x,
-                                              current));
+          throw InputError(where, fmt::format("rho (Kd) {} of material {} must be in [0, 1)", x,
+                                              quotedToken(current)));
         if (key == "Ke" && x < 0.0)
-          throw InputError(where, fmt::format("emission (Ke) {} of material '{}' must be >= 0", x,
-                                              current));
+          throw InputError(where, fmt::format("emission (Ke) {} of material {} must be >= 0", x,
+                                              quotedToken(current)));
       }
       if (key == "Kd") withKd.insert(current);
     } else if (key == "Ns" || key == "Ni" || key == "d" || key == "Tr" || key == "illum") {
@@ -172,7 +191,7 @@ void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& tr
   std::set<std::string> withKd;
   for (const std::string& lib : scan.mtllibs) {
     const std::string mtlPath = resolvePath(parentDirectory(path), lib);
-    const std::string text = readTextFile(mtlPath, "MTL file");
+    const std::string text = readTextFile(mtlPath, "MTL file", kMaxMtlFileBytes);
     withKd.merge(scanMtl(text, mtlPath));
     mtlText += text + "\n";
   }
@@ -207,7 +226,8 @@ void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& tr
       const tinyobj::material_t& m = mtls[size_t(id)];
       Material mat;
       mat.name = m.name;
-      mat.rho = withKd.count(m.name) ? Color(m.diffuse[0], m.diffuse[1], m.diffuse[2]) : Color(0.5f);
+      mat.rho =
+          withKd.count(m.name) ? Color(m.diffuse[0], m.diffuse[1], m.diffuse[2]) : Color(0.5f);
       mat.emission = Color(m.emission[0], m.emission[1], m.emission[2]);
       sceneMaterial[size_t(id)] = builder.addMaterial(std::move(mat));
     }
@@ -239,11 +259,12 @@ void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& tr
   if (facesWithoutMaterial > 0)
     builder.warn(path, fmt::format("{} face{} without a material use the default grey (rho 0.5)",
                                    facesWithoutMaterial, facesWithoutMaterial == 1 ? "" : "s"));
-  const size_t noKd = std::count_if(mtls.begin(), mtls.end(),
-                                    [&](const tinyobj::material_t& m) { return !withKd.count(m.name); });
+  const size_t noKd = std::count_if(mtls.begin(), mtls.end(), [&](const tinyobj::material_t& m) {
+    return !withKd.count(m.name);
+  });
   if (noKd > 0)
-    builder.warn(path, fmt::format("{} material{} without Kd use rho 0.5", noKd,
-                                   noKd == 1 ? "" : "s"));
+    builder.warn(path,
+                 fmt::format("{} material{} without Kd use rho 0.5", noKd, noKd == 1 ? "" : "s"));
 }
 
 }  // namespace rad

@@ -13,11 +13,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtx/component_wise.hpp>
 #include <glm/gtx/transform.hpp>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "core/json_nesting.h"
+#include "core/message_text.h"
 #include "scene/io/gltf_loader.h"
 #include "scene/io/obj_loader.h"
 #include "scene/io/text_file.h"
@@ -28,6 +31,14 @@ namespace {
 
 using Json = nlohmann::json;
 
+/// A value from the file for a message: compact JSON, cut short when long.
+std::string brief(const Json& j) {
+  constexpr size_t kMaxShown = 60;
+  const std::string text = j.dump(-1, ' ', true, Json::error_handler_t::replace);
+  if (text.size() <= kMaxShown) return text;
+  return fmt::format("{}... ({} bytes)", text.substr(0, kMaxShown), text.size());
+}
+
 // W/sr per candela for IES lights when the file gives no "scale": 1 / WHTEFFICACY, Radiance's
 // luminous efficacy of uniform white light, 179 lm/W (VALIDATION.md 4.6).
 constexpr double kDefaultIesScale = 1.0 / 179.0;
@@ -37,7 +48,10 @@ class JsonReader {
   explicit JsonReader(std::string path) : path_(std::move(path)) {}
 
   [[noreturn]] void fail(const std::string& ptr, const std::string& what) const {
-    throw InputError(path_ + ": " + (ptr.empty() ? "/" : ptr), what);
+    // A pointer holds the file's keys, which may be of any length.
+    constexpr size_t kMaxPointer = 160;
+    const std::string shown = ptr.size() <= kMaxPointer ? ptr : ptr.substr(0, kMaxPointer) + "...";
+    throw InputError(path_ + ": " + (ptr.empty() ? "/" : shown), what);
   }
 
   void requireObject(const Json& j, const std::string& ptr) const {
@@ -64,10 +78,10 @@ class JsonReader {
   int64_t integer(const Json& j, const std::string& ptr, int64_t lo, int64_t hi) const {
     if (!j.is_number_integer() &&
         !(j.is_number() && j.get<double>() == std::floor(j.get<double>())))
-      fail(ptr, fmt::format("expected an integer in [{}, {}], got {}", lo, hi, j.dump()));
+      fail(ptr, fmt::format("expected an integer in [{}, {}], got {}", lo, hi, brief(j)));
     const double v = j.get<double>();
     if (v < double(lo) || v > double(hi))
-      fail(ptr, fmt::format("{} out of range [{}, {}]", j.dump(), lo, hi));
+      fail(ptr, fmt::format("{} out of range [{}, {}]", brief(j), lo, hi));
     return j.is_number_unsigned() ? int64_t(j.get<uint64_t>()) : j.get<int64_t>();
   }
 
@@ -83,10 +97,23 @@ class JsonReader {
 
   Vec3 vec3(const Json& j, const std::string& ptr) const {
     if (!j.is_array() || j.size() != 3)
-      fail(ptr, fmt::format("expected an array of 3 numbers, got {}", j.dump()));
+      fail(ptr, fmt::format("expected an array of 3 numbers, got {}", brief(j)));
     Vec3 v;
-    for (int i = 0; i < 3; ++i) v[i] = float(number(j[size_t(i)], fmt::format("{}/{}", ptr, i)));
+    for (int i = 0; i < 3; ++i) {
+      const std::string at = fmt::format("{}/{}", ptr, i);
+      v[i] = float(number(j[size_t(i)], at));
+      if (!std::isfinite(v[i])) fail(at, "expected a number within the 32-bit float range");
+    }
     return v;
+  }
+
+  /// A position in the scene: within kMaxSceneCoordinate, like the geometry's vertices.
+  Vec3 point(const Json& j, const std::string& ptr) const {
+    const Vec3 p = vec3(j, ptr);
+    if (glm::compMax(glm::abs(p)) > kMaxSceneCoordinate)
+      fail(ptr, fmt::format("({}, {}, {}) is beyond {:g} scene units", p.x, p.y, p.z,
+                            kMaxSceneCoordinate));
+    return p;
   }
 
   /// A colour whose components must lie in [lo, hi) (or [lo, inf) when hi is infinite).
@@ -149,9 +176,9 @@ void readMeshFile(const JsonReader& r, const Json& g, const std::string& ptr,
   else if (ext == ".gltf" || ext == ".glb")
     loadGltf(builder, file, m);
   else
-    r.fail(ptr + "/file", fmt::format("unsupported geometry extension '{}' (expected .obj, "
+    r.fail(ptr + "/file", fmt::format("unsupported geometry extension {} (expected .obj, "
                                       ".gltf or .glb)",
-                                      ext));
+                                      quotedToken(ext)));
 }
 
 void readGeometry(const JsonReader& r, const Json& list, SceneBuilder& builder) {
@@ -179,7 +206,7 @@ std::vector<ObjectKeyframe> readObjectPath(const JsonReader& r, const Json& j,
     if (!path.empty() && !(key.t > path.back().t))
       r.fail(at + "/t", fmt::format("t {} must be greater than the previous keyframe's {}", key.t,
                                     path.back().t));
-    if (k.contains("position")) key.position = r.vec3(k["position"], at + "/position");
+    if (k.contains("position")) key.position = r.point(k["position"], at + "/position");
     if (k.contains("rotation_deg"))
       key.rotationDeg = r.vec3(k["rotation_deg"], at + "/rotation_deg");
     path.push_back(key);
@@ -225,8 +252,8 @@ void readMaterials(const JsonReader& r, const Json& j, Scene& scene) {
     if (!found) {
       std::set<std::string> names;
       for (const Material& mat : scene.materials) names.insert(mat.name);
-      r.fail(ptr, fmt::format("no material named '{}' in the geometry (available: {})", name,
-                              fmt::join(names, ", ")));
+      r.fail(ptr, fmt::format("no material named {} in the geometry (available: {})",
+                              quotedToken(name), fmt::join(names, ", ")));
     }
   }
 }
@@ -243,7 +270,7 @@ Vec3 readDirection(const JsonReader& r, const Json& j, const std::string& ptr) {
 std::vector<LightKeyframe> readPath(const JsonReader& r, const Json& j, const std::string& ptr,
                                     LightType type) {
   if (!j.is_array() || j.empty())
-    r.fail(ptr, fmt::format("expected a non-empty array of keyframes, got {}", j.dump()));
+    r.fail(ptr, fmt::format("expected a non-empty array of keyframes, got {}", brief(j)));
   std::vector<LightKeyframe> path;
   for (size_t i = 0; i < j.size(); ++i) {
     const std::string at = fmt::format("{}/{}", ptr, i);
@@ -262,7 +289,7 @@ std::vector<LightKeyframe> readPath(const JsonReader& r, const Json& j, const st
     if (!path.empty() && !(key.t > path.back().t))
       r.fail(at + "/t", fmt::format("t {} must be greater than the previous keyframe's {}", key.t,
                                     path.back().t));
-    if (k.contains("position")) key.position = r.vec3(k["position"], at + "/position");
+    if (k.contains("position")) key.position = r.point(k["position"], at + "/position");
     if (k.contains("direction"))
       key.direction = readDirection(r, k["direction"], at + "/direction");
     if (k.contains("intensity"))
@@ -292,13 +319,13 @@ Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
     light.type = LightType::Ies;
   } else {
     r.fail(ptr + "/type",
-           fmt::format("unknown light type '{}' (expected point, spot or ies)", type));
+           fmt::format("unknown light type {} (expected point, spot or ies)", quotedToken(type)));
   }
   auto required = [&](const char* key) -> const Json& {
     if (!j.contains(key)) r.fail(ptr, fmt::format("missing key \"{}\" for a {} light", key, type));
     return j[key];
   };
-  light.position = r.vec3(required("position"), ptr + "/position");
+  light.position = r.point(required("position"), ptr + "/position");
   if (j.contains("direction"))
     light.direction = readDirection(r, j["direction"], ptr + "/direction");
   if (j.contains("spin_deg_per_s"))
@@ -307,8 +334,8 @@ Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
   if (j.contains("group")) {
     light.group = r.string(j["group"], ptr + "/group");
     if (light.group.empty() || light.group.find_first_of("=,") != std::string::npos)
-      r.fail(ptr + "/group",
-             fmt::format("group name '{}' must be non-empty, without '=' or ','", light.group));
+      r.fail(ptr + "/group", fmt::format("group name {} must be non-empty, without '=' or ','",
+                                         quotedToken(light.group)));
   }
   if (light.type != LightType::Ies)
     light.intensity =
@@ -344,8 +371,8 @@ Camera readCamera(const JsonReader& r, const Json& j) {
   const std::string ptr = "/camera";
   r.checkKeys(j, ptr, {"eye", "target", "up", "fov_deg", "width", "height"});
   Camera c;
-  if (j.contains("eye")) c.eye = r.vec3(j["eye"], ptr + "/eye");
-  if (j.contains("target")) c.target = r.vec3(j["target"], ptr + "/target");
+  if (j.contains("eye")) c.eye = r.point(j["eye"], ptr + "/eye");
+  if (j.contains("target")) c.target = r.point(j["target"], ptr + "/target");
   if (j.contains("up")) c.up = readDirection(r, j["up"], ptr + "/up");
   if (j.contains("fov_deg")) {
     c.fovDeg = float(r.number(j["fov_deg"], ptr + "/fov_deg"));
@@ -399,18 +426,25 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
 }
 
 Json parseJson(const std::string& text, const std::string& path) {
+  if (const std::optional<size_t> deep = jsonNestingOverflow(text))
+    throw InputError(fmt::format("{}:{}", path, textPosition(text, *deep)),
+                     fmt::format("JSON nested deeper than {} levels", kMaxJsonNesting));
   try {
     return Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    // nlohmann reports a byte offset (1-based, just past the error); give line and column.
-    const size_t end = std::min(e.byte == 0 ? size_t(0) : e.byte - 1, text.size());
-    const size_t line = size_t(std::count(text.begin(), text.begin() + long(end), '\n')) + 1;
-    const size_t lineStart = text.rfind('\n', end == 0 ? 0 : end - 1);
-    const size_t column = lineStart == std::string::npos || end == 0 ? end + 1 : end - lineStart;
+  } catch (const Json::exception& e) {
+    // nlohmann reports a byte offset (1-based, just past the error) for syntax errors; a number
+    // too large for a double (out_of_range 406) comes without one.
     std::string what = e.what();
-    if (const size_t colon = what.find(": "); colon != std::string::npos)
+    if (const size_t colon = what.find("] "); colon != std::string::npos)
       what = what.substr(colon + 2);
-    throw InputError(fmt::format("{}:{}:{}", path, line, column), "invalid JSON: " + what);
+    if (const auto* parse = dynamic_cast<const Json::parse_error*>(&e)) {
+      if (const size_t colon = what.find(": "); colon != std::string::npos)
+        what = what.substr(colon + 2);
+      const size_t end = parse->byte == 0 ? 0 : parse->byte - 1;
+      throw InputError(fmt::format("{}:{}", path, textPosition(text, end)),
+                       "invalid JSON: " + what);
+    }
+    throw InputError(path, "invalid JSON: " + what);
   }
 }
 

@@ -1,25 +1,46 @@
 #include "scene/io/text_file.h"
 
+#include <fmt/format.h>
 #include <radiosity/error.h>
 
+#include <algorithm>
 #include <charconv>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <system_error>
 
 namespace rad {
 
-std::string readTextFile(const std::string& path, const std::string& what) {
+std::string readTextFile(const std::string& path, const std::string& what, size_t maxBytes) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError(path, "cannot open " + what + ": it is a directory");
+  const auto tooLarge = [&] {
+    return InputError(path, fmt::format("{} is larger than {} MiB, the most read into memory", what,
+                                        maxBytes >> 20));
+  };
+  if (const auto size = std::filesystem::file_size(path, ec); !ec && size > maxBytes)
+    throw tooLarge();
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot open " + what + " (missing or unreadable)");
-  std::ostringstream text;
-  text << in.rdbuf();
+  // Read in chunks up to the limit: a device or a pipe has no size to check beforehand.
+  std::string text;
+  std::vector<char> chunk(size_t(1) << 20);
+  while (in) {
+    in.read(chunk.data(), std::streamsize(chunk.size()));
+    text.append(chunk.data(), size_t(in.gcount()));
+    if (text.size() > maxBytes) throw tooLarge();
+  }
   if (in.bad()) throw InputError(path, "cannot read " + what);
-  return text.str();
+  return text;
+}
+
+std::string textPosition(std::string_view text, size_t offset) {
+  offset = std::min(offset, text.size());
+  const size_t line = size_t(std::count(text.begin(), text.begin() + long(offset), '\n')) + 1;
+  const size_t lineStart = offset == 0 ? std::string_view::npos : text.rfind('\n', offset - 1);
+  const size_t column = lineStart == std::string_view::npos ? offset + 1 : offset - lineStart;
+  return fmt::format("{}:{}", line, column);
 }
 
 std::vector<std::string_view> splitWords(std::string_view line) {
@@ -48,7 +69,9 @@ std::string parentDirectory(const std::string& path) {
   return std::filesystem::path(path).parent_path().string();
 }
 
-std::string fileStem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+std::string fileStem(const std::string& path) {
+  return std::filesystem::path(path).stem().string();
+}
 
 std::string resolvePath(const std::string& directory, const std::string& relative) {
   const std::filesystem::path p(relative);

@@ -9,8 +9,17 @@
 
 namespace rad {
 
-/// The whole file as bytes. Throws InputError(path, "cannot open ...") if it cannot be read.
-std::string readTextFile(const std::string& path, const std::string& what);
+/// Largest scene, OBJ or MTL file read into memory (an OBJ of 30 million triangles).
+constexpr size_t kMaxTextFileBytes = size_t(2) << 30;
+
+/// The whole file as bytes. Throws InputError(path, "cannot open ...") if it cannot be read, and
+/// InputError naming the limit if it holds more than `maxBytes` (a device such as /dev/zero
+/// is read no further than that).
+std::string readTextFile(const std::string& path, const std::string& what,
+                         size_t maxBytes = kMaxTextFileBytes);
+
+/// "line:column" (1-based) of a byte offset in a text, for messages about where parsing stopped.
+std::string textPosition(std::string_view text, size_t offset);
 
 /// Splits a line on blanks (spaces, tabs, CR).
 std::vector<std::string_view> splitWords(std::string_view line);
