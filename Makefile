@@ -4,7 +4,7 @@ BUILD   := build/$(PRESET)
 JOBS    ?= $(shell nproc)
 OUT     ?= out
 
-.PHONY: all deps configure build run test bench format clean
+.PHONY: all deps configure build run test bench fuzz format clean
 
 all: build
 
@@ -41,6 +41,11 @@ test: build
 bench: build
 	@$(BUILD)/radiosity bench all
 	@$(BUILD)/radiosity_benchmarks
+
+# Each fuzz target for FUZZ_SECONDS (default 60) on a corpus that grows from run to run.
+FUZZ_SECONDS ?= 60
+fuzz: build
+	@scripts/fuzz $(FUZZ_SECONDS) $(BUILD)
 
 format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.h')

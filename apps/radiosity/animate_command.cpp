@@ -74,6 +74,7 @@ int runAnimate(AnimateOptions& o, Console& console) {
   Stopwatch total;
   const FrameFiles frameFiles(o.output);
   if (!o.video.empty()) checkVideoOutput(o.video, frameFiles);
+  checkOutputPath("--stats", o.stats);
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.start, console, stats);
   o.method.resolve(scene, o.solution, console);
@@ -188,15 +189,15 @@ void addAnimateCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--probe-move-threshold", o->picture.probeMoveThreshold,
                   "Capture a dynamic object's probes again once it moved more than this (scene "
                   "units; default 0: whenever it moved) or the lights changed")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegativeNumber());
   sub->add_option("--relight-threshold", o->relight.threshold,
                   "Bring a patch's direct light up to date when it changed by more than this "
                   "fraction of the brightest patch's (default 1e-4)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(finiteNumberIn(0.0, 1.0));
   sub->add_option("--relight-tolerance", o->relight.tolerance,
                   "Shoot each change until the unshot power is below this fraction of the light "
                   "put in (default 2e-4)")
-      ->check(CLI::Range(1e-9, 1.0));
+      ->check(finiteNumberIn(1e-9, 1.0));
   o->picture.addTo(*sub);
   addStatsOption(*sub, o->stats);
   sub->callback(

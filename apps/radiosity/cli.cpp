@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/version.h>
 #include <tbb/global_control.h>
@@ -9,6 +10,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <thread>
 
 #include "command_support.h"
 #include "commands.h"
@@ -29,7 +31,8 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   app.set_version_flag("--version", "radiosity " RADIOSITY_VERSION " (" RADIOSITY_BUILD_TYPE ")");
   int threads = 0;
   bool quiet = false, verbose = false;
-  app.add_option("--threads", threads, "Worker threads (default: all cores)")
+  app.add_option("--threads", threads,
+                 "Worker threads (default and 0: all cores; at most the cores)")
       ->check(nonNegativeNumber());
   app.add_flag("-q,--quiet", quiet, "Print errors only");
   app.add_flag("-v,--verbose", verbose, "Print the banner, timings and details");
@@ -63,6 +66,12 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   console.setVerbose(verbose);
   console.detail("radiosity " RADIOSITY_VERSION " (" RADIOSITY_BUILD_TYPE " build)");
   std::optional<tbb::global_control> threadLimit;
+  const int cores = int(std::thread::hardware_concurrency());
+  if (cores > 0 && threads > cores) {
+    console.warn(fmt::format("--threads {} is more than the {} cores here; using {}", threads,
+                             cores, cores));
+    threads = cores;
+  }
   if (threads > 0)
     threadLimit.emplace(tbb::global_control::max_allowed_parallelism, size_t(threads));
   try {

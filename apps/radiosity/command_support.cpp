@@ -1,9 +1,14 @@
 #include "command_support.h"
 
+#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/scene_loader.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 
 #include "core/memory_usage.h"
@@ -31,14 +36,21 @@ void addTimeOption(CLI::App& command, double& seconds) {
 
 // A check that the option's value is a number at least zero.
 const CLI::Validator& nonNegativeNumber() {
-  static const CLI::Validator check(
-      [](std::string& input) -> std::string {
+  static const CLI::Validator check = finiteNumberIn(0.0, HUGE_VAL).name("NONNEGATIVE");
+  return check;
+}
+
+CLI::Validator finiteNumberIn(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& input) -> std::string {
         double value = 0.0;
         if (!CLI::detail::lexical_cast(input, value)) return "'" + input + "' is not a number";
-        return value >= 0.0 ? "" : input + " is below 0";
+        if (!std::isfinite(value)) return input + " is not a finite number";
+        if (value < lo) return fmt::format("{} is below {}", input, lo);
+        if (value > hi) return fmt::format("{} is above {}", input, hi);
+        return "";
       },
-      "NONNEGATIVE");
-  return check;
+      std::isinf(hi) ? fmt::format("NUMBER >= {}", lo) : fmt::format("NUMBER in [{}, {}]", lo, hi));
 }
 
 Scene loadSceneForCommand(const std::string& name, double seconds, Console& console,
@@ -53,13 +65,30 @@ Scene loadSceneForCommand(const std::string& name, double seconds, Console& cons
   return scene;
 }
 
-void checkSolutionOutput(const std::string& path) {
-  const std::filesystem::path file(path);
-  if (file.extension() != ".rad") throw InputError("--save " + path, "expected a .rad file");
-  const std::filesystem::path dir = file.parent_path();
+void checkOutputPath(const std::string& option, const std::string& path) {
+  if (path.empty()) return;
+  namespace fs = std::filesystem;
+  const fs::path file(path);
+  const fs::path dir = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+  const std::string where = option + " " + path;
   std::error_code ec;
-  if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
-    throw InputError("--save " + path, "its directory " + dir.string() + " does not exist");
+  if (!fs::is_directory(dir, ec))
+    throw InputError(where, "its directory " + dir.string() + " does not exist");
+  const fs::file_status status = fs::status(file, ec);
+  if (fs::is_directory(status) || file.filename().empty())
+    throw InputError(where, "is a directory, expected a file name");
+  // Outputs are written to a temporary in the directory and renamed (core/atomic_file.h); a
+  // device or a pipe is written in place.
+  const bool inPlace = fs::exists(status) && !fs::is_regular_file(status);
+  if (::access(inPlace ? file.c_str() : dir.c_str(), W_OK) != 0)
+    throw InputError(where, fmt::format("cannot write {}: {}", inPlace ? "it" : "its directory",
+                                        std::strerror(errno)));
+}
+
+void checkSolutionOutput(const std::string& path) {
+  if (std::filesystem::path(path).extension() != ".rad")
+    throw InputError("--save " + path, "expected a .rad file");
+  checkOutputPath("--save", path);
 }
 
 void writeStatsFile(const std::string& path, const Scene& scene, const std::string& sceneName,

@@ -27,6 +27,9 @@ void addTimeOption(CLI::App& command, double& seconds);
 /// below 0"), where CLI11's NonNegativeNumber prints its range's bound (a 309-digit largest
 /// double). The methods' settings have their declarations' checks (solver_settings.h).
 const CLI::Validator& nonNegativeNumber();
+/// The same for a finite number in [lo, hi] (CLI11's Range lets "nan" through: every comparison
+/// with it is false).
+CLI::Validator finiteNumberIn(double lo, double hi);
 
 /// Loads the scene with its lights as they are `seconds` into their animation, prints its
 /// warnings, refuses a scene with nothing that emits (a black result), and records the load time
@@ -34,8 +37,12 @@ const CLI::Validator& nonNegativeNumber();
 Scene loadSceneForCommand(const std::string& name, double seconds, Console& console,
                           RunStats& stats);
 
-/// Refuses, before any work, a solution file name (--save) that is not .rad or whose directory
-/// does not exist.
+/// Refuses, before any work, an output path (`option` names it in the message: "--stats") whose
+/// directory does not exist or cannot be written, or that is a directory: an hour's solve must
+/// not end in "cannot write". Empty paths (the output not asked for) pass.
+void checkOutputPath(const std::string& option, const std::string& path);
+
+/// checkOutputPath for a solution file name (--save), which must also be .rad.
 void checkSolutionOutput(const std::string& path);
 
 /// Completes the stats (scene, method, emitted power, total time, peak memory) and writes them.

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "command_support.h"
 #include "console.h"
+#include "core/memory_usage.h"
 #include "lighting/dynamic_objects.h"
 #include "method_options.h"
 
@@ -15,6 +17,9 @@ namespace rad::cli {
 namespace {
 
 constexpr long kMaxSide = 1l << 15;  ///< pixels along either side of a picture
+// A picture's memory at its peak: its linear radiance (12 bytes), the per-pixel estimates of the
+// surface renderer or the path tracer, and the 8-bit copy and encoding of the PNG.
+constexpr double kPictureBytesPerPixel = 40.0;
 
 }  // namespace
 
@@ -27,7 +32,8 @@ void PictureOptions::addTo(CLI::App& c) {
                "Image height in pixels (default: the scene camera's; given alone, the width "
                "keeps the camera's aspect ratio)")
       ->check(CLI::Range(1l, kMaxSide));
-  c.add_option("--exposure", exposure, "PNG exposure in EV (radiance x 2^EV)");
+  c.add_option("--exposure", exposure, "PNG exposure in EV (radiance x 2^EV)")
+      ->check(finiteNumberIn(-64.0, 64.0));
   c.add_flag("--exr-float", exrFloat, "Write 32-bit float EXR instead of half");
   c.add_option("--direct", direct,
                "patch, voxel: direct light by shadow rays at each pixel (per-pixel, default: "
@@ -43,7 +49,7 @@ void PictureOptions::addTo(CLI::App& c) {
   c.add_option("--probe-spacing", probeSpacing,
                "patch, voxel: a dynamic object larger than this gets a grid of probes at most this "
                "far apart (scene units; default 0: one probe at its centre)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegativeNumber());
   c.add_option("--probe-way", probeWay,
                "patch, voxel: a dynamic object's vertex irradiance from its probe: exact, harmonic "
                "(default) or pattern (the published sampling)")
@@ -58,6 +64,9 @@ Camera PictureOptions::camera(const Scene& scene) const {
   auto side = [](double pixels) { return int(std::clamp(std::lround(pixels), 1l, kMaxSide)); };
   if (width > 0 && height == 0) camera.height = side(double(width) / aspect);
   if (height > 0 && width == 0) camera.width = side(double(height) * aspect);
+  requireMemory(double(camera.width) * double(camera.height) * kPictureBytesPerPixel, "picture",
+                fmt::format("{} x {} pixels", camera.width, camera.height),
+                "render a smaller picture (--width, --height)");
   return camera;
 }
 

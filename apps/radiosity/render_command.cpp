@@ -88,6 +88,8 @@ int runRender(RenderOptions& o, Console& console) {
   if (o.output.empty()) o.output = defaultOutput(o.scene, o.method.method());
   if (!isSupportedImageFormat(o.output))
     throw InputError("-o " + o.output, "unsupported image format (supported: .png, .exr, .pfm)");
+  checkOutputPath("-o", o.output);
+  checkOutputPath("--stats", o.stats);
 
   const Camera camera = o.picture.camera(scene);
   InterruptGuard interruptible;

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <thread>
 
@@ -117,7 +118,7 @@ void addServeCommand(CLI::App& app, Console& console, CommandAction& action) {
                   "Start from the solution a .rad file keeps (solve --save) instead of solving");
   sub->add_option("--display-edge", o->displayEdge,
                   "Longest edge of the displayed triangles (default: half the patch size)")
-      ->check(CLI::PositiveNumber);
+      ->check(finiteNumberIn(1e-30, HUGE_VAL));
   sub->add_option("--web-dir", o->webDir, "The page's folder (default: the source tree's web/)");
   addTimeOption(*sub, o->time);
   sub->callback(

@@ -109,6 +109,8 @@ int runSolve(SolveOptions& o, Console& console) {
     throw InputError("--export " + o.exportPath,
                      "unsupported export format (supported: .csv, .ply, .glb)");
   if (!o.save.empty()) checkSolutionOutput(o.save);
+  checkOutputPath("--export", o.exportPath);
+  checkOutputPath("--stats", o.stats);
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
   o.method.resolve(scene);

@@ -1,6 +1,7 @@
 #include "core/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -8,6 +9,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 #include <system_error>
 
@@ -42,6 +45,35 @@ void removeQuietly(const fs::path& file) {
   fs::remove(file, ignored);
 }
 
+// The pid in a temporary's name (".<name>.tmp-<pid>-<n>"), or 0 when the name is not one.
+pid_t writerOf(const std::string& name) {
+  const size_t tag = name.rfind(".tmp-");
+  if (name.empty() || name[0] != '.' || tag == std::string::npos) return 0;
+  const std::string rest = name.substr(tag + 5);
+  const size_t dash = rest.find('-');
+  if (dash == 0 || dash == std::string::npos || dash + 1 == rest.size() ||
+      rest.find_first_not_of("0123456789-") != std::string::npos)
+    return 0;
+  return pid_t(std::stol(rest.substr(0, dash)));
+}
+
+// Temporaries whose writer was killed (kill -9, a power cut) are removed the next time anything
+// is written to their directory: once per directory and process, since that costs a listing.
+void removeStaleTemporaries(const fs::path& directory) {
+  static std::mutex mutex;
+  static std::set<fs::path> swept;
+  {
+    const std::lock_guard lock(mutex);
+    if (!swept.insert(fs::absolute(directory)).second) return;
+  }
+  std::error_code ec;
+  for (fs::directory_iterator it(directory, ec), end; !ec && it != end; it.increment(ec)) {
+    const pid_t pid = writerOf(it->path().filename().string());
+    if (pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH)
+      removeQuietly(it->path());
+  }
+}
+
 }  // namespace
 
 void writeFileAtomically(const fs::path& target,
@@ -54,6 +86,15 @@ void writeFileAtomically(const fs::path& target,
     throw std::runtime_error("cannot write '" + target.string() + "': directory '" +
                              directory.string() + "' does not exist");
 
+  const fs::file_status status = fs::status(target, ec);
+  if (fs::is_directory(status))
+    throw std::runtime_error("cannot write '" + target.string() + "': it is a directory");
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    // A device or a pipe (/dev/null, /dev/stdout, a FIFO) is written to, never replaced.
+    write(target);
+    return;
+  }
+  removeStaleTemporaries(directory);
   const fs::path temporary = temporaryPathFor(target);
   try {
     write(temporary);

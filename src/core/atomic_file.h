@@ -15,7 +15,10 @@ namespace rad {
 /// flushes the file it wrote to disk and renames it over `target`. If `write` throws, or the
 /// rename fails, the temporary is removed, `target` is left as it was and the exception
 /// propagates. Throws std::runtime_error naming `target` if its directory does not exist or
-/// `write` created no file. Safe to call from several threads at once.
+/// `write` created no file, or if `target` is a directory. A target that exists and is not a
+/// regular file (a device such as /dev/null, a FIFO) is written directly, not replaced.
+/// Temporaries left in the directory by writers that were killed are removed. Safe to call from
+/// several threads at once.
 void writeFileAtomically(const std::filesystem::path& target,
                          const std::function<void(const std::filesystem::path& temporary)>& write);
 

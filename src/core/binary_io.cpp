@@ -63,7 +63,11 @@ void ByteReader::need(size_t size, uint64_t count) const {
 
 bool readWholeFile(const std::filesystem::path& file, std::string& bytes) {
   std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) return false;
+  const std::filesystem::file_status status = std::filesystem::status(file, ec);
+  if (!std::filesystem::exists(status)) return false;
+  bytes.clear();
+  // A directory cannot be read, and opening a FIFO would wait for a writer forever.
+  if (!std::filesystem::is_regular_file(status)) return true;
   std::ifstream in(file, std::ios::binary);
   bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   if (!in.good() && !in.eof()) bytes.clear();

@@ -64,7 +64,7 @@ T get(const std::string& in, size_t& at) {
 template <typename T>
 std::vector<T> getArray(const std::string& in, size_t& at, size_t count) {
   std::vector<T> v(count);
-  std::memcpy(v.data(), in.data() + at, count * sizeof(T));
+  if (count > 0) std::memcpy(v.data(), in.data() + at, count * sizeof(T));  // data() may be null
   at += count * sizeof(T);
   return v;
 }
@@ -107,8 +107,8 @@ inline void putText(std::string& out, const std::string& s) {
   out += s;
 }
 
-/// The whole file into `bytes`; false if it does not exist (an unreadable one leaves `bytes`
-/// empty and returns true).
+/// The whole file into `bytes`; false if it does not exist (an unreadable one, or one that is not
+/// a regular file such as a directory or a FIFO, leaves `bytes` empty and returns true).
 bool readWholeFile(const std::filesystem::path& file, std::string& bytes);
 
 }  // namespace rad

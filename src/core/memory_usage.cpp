@@ -1,5 +1,7 @@
 #include "core/memory_usage.h"
 
+#include <fmt/format.h>
+#include <radiosity/error.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -87,6 +89,14 @@ uint64_t currentResidentBytes() {
 
 uint64_t virtualBytes() {
   return statusFieldBytes("VmSize");
+}
+
+void requireMemory(double bytes, const std::string& where, const std::string& what,
+                   const std::string& advice) {
+  const uint64_t available = availableMemoryBytes();
+  if (available == 0 || bytes <= double(available)) return;
+  throw InputError(where, fmt::format("{} need about {:.2f} GB and {:.2f} GB is available; {}",
+                                      what, bytes / 1e9, double(available) / 1e9, advice));
 }
 
 }  // namespace rad

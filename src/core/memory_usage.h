@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -53,5 +54,11 @@ uint64_t virtualBytes();
 /// when the process's control group (a container) has a lower limit or its address-space limit
 /// (ulimit -v) leaves less; 0 if unknown.
 uint64_t availableMemoryBytes();
+
+/// Refuses a computation whose memory would not fit before anything large is allocated: throws
+/// InputError(where, "<what> need about X GB and Y GB is available; <advice>") when `bytes` is
+/// more than availableMemoryBytes(); passes when that is unknown.
+void requireMemory(double bytes, const std::string& where, const std::string& what,
+                   const std::string& advice);
 
 }  // namespace rad

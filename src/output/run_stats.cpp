@@ -82,8 +82,8 @@ nlohmann::json toJson(const RunStats& s) {
   if (!s.methodDetails.empty()) j[s.method] = s.methodDetails;
   if (!s.settings.empty()) {
     nlohmann::json settings = nlohmann::json::object();
-    for (const auto& [name, value] : s.settings)
-      std::visit([&](const auto& v) { settings[name] = v; }, value);
+    for (const auto& setting : s.settings)
+      std::visit([&](const auto& v) { settings[setting.first] = v; }, setting.second);
     j["settings"] = settings;
   }
   return j;

@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <optional>
-#include <ranges>
 
 #include "core/rng.h"
 #include "geometry/sampling.h"
@@ -84,7 +84,8 @@ FormFactorRows exactFormFactors(const PatchMesh& mesh, const RayCaster& caster,
                                 const FormFactorSettings& settings,
                                 const ProgressCallback& progress) {
   const ExactKernel kernel(mesh, caster);
-  const auto all = std::views::iota(uint32_t(0), uint32_t(mesh.size()));
+  std::vector<uint32_t> all(mesh.size());
+  std::iota(all.begin(), all.end(), 0u);
   FormFactorRows rows(mesh.size());
   ProgressTicker ticker(progress, rows.size());
   tbb::parallel_for(size_t(0), rows.size(), [&](size_t i) {

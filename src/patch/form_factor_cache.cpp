@@ -63,6 +63,11 @@ CacheFileStart readCacheFileStart(const std::filesystem::path& file, const char 
 
 // Appends the checksum and writes atomically; a warning if that failed.
 std::string writeCacheFile(const std::filesystem::path& file, std::string& out) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(file, ec);
+  // Written in place, a FIFO would wait for a reader forever; a directory cannot be replaced.
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    return fmt::format("form-factor cache not written: {} is not a regular file", file.string());
   put(out, checksum(out.data(), out.size()));
   try {
     std::filesystem::create_directories(file.parent_path());
@@ -85,6 +90,16 @@ std::string checkTable(const std::vector<uint64_t>& offsets, const std::vector<u
   // (FormFactorTable::applyThreshold), which can exceed 1 where the table does not lose light.
   for (float v : values)
     if (!(v >= 0.0f && std::isfinite(v))) return "form factor negative or not finite";
+  // A row's sum is the fraction of the patch's light that reaches other patches: a forged row
+  // far above 1 makes the solver diverge (a residual of NaN after its last sweep).
+  for (size_t i = 0; i + 1 < offsets.size(); ++i) {
+    double sum = 0.0;
+    for (uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) sum += values[k];
+    if (sum > kMaxCachedRowSum)
+      return fmt::format(
+          "row {} sums to {:.3g}, above {} (a patch's form factors sum to 1 at most)", i, sum,
+          kMaxCachedRowSum);
+  }
   return "";
 }
 
@@ -152,14 +167,17 @@ MasterRowsLoad loadMasterRows(const std::filesystem::path& file, const FormFacto
   if (!(f.key == key)) return reject("computed for other geometry or settings");
   MasterRows rows;
   at = first;
+  // Weights are form factors: each finite and non-negative, a row's sum at most about 1.
   auto read = [&](std::vector<HemisphereHit>& out, uint32_t n) {
     out.resize(n);
+    double sum = 0.0;
     for (HemisphereHit& h : out) {
       h.key = get<uint64_t>(bytes, at);
       h.weight = get<float>(bytes, at);
       if (!(h.weight >= 0.0f && std::isfinite(h.weight))) return false;
+      sum += h.weight;
     }
-    return true;
+    return sum <= kMaxCachedRowSum;
   };
   for (uint64_t r = 0; r < count; ++r) {
     const uint64_t address = get<uint64_t>(bytes, at);
@@ -170,7 +188,8 @@ MasterRowsLoad loadMasterRows(const std::filesystem::path& file, const FormFacto
     row.hasExact = flags & 2;
     const uint32_t hits = get<uint32_t>(bytes, at), exact = get<uint32_t>(bytes, at);
     if (!read(row.hits, hits) || !read(row.exact, exact))
-      return reject("form factor negative or not finite");
+      return reject(fmt::format("a form factor negative or not finite, or a row summing above {}",
+                                kMaxCachedRowSum));
   }
   result.rows = std::move(rows);
   return result;

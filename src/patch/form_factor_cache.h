@@ -62,6 +62,10 @@ std::filesystem::path defaultFormFactorCacheDir();
 std::filesystem::path formFactorCacheFile(const std::filesystem::path& dir,
                                           const FormFactorCacheKey& key);
 
+/// The largest row sum a cached table may have: 1 plus the estimators' noise (the exact
+/// estimator's point-to-polygon formula overshoots for patches large against their distance).
+constexpr double kMaxCachedRowSum = 1.5;
+
 struct FormFactorCacheLoad {
   std::optional<FormFactorTable> table;
   std::string warning;  ///< why an existing file was not used; empty if none or it was used

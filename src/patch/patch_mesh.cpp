@@ -79,24 +79,39 @@ Vec2 inverseBilinear(Vec2 p, Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
 
 }  // namespace
 
-float PatchMesh::patchSizeFor(const Scene& scene, size_t target) {
-  std::vector<std::pair<float, int>> roots;  // longest edge, sides
+namespace {
+
+// Each root's longest edge and its sides (2 for a two-sided face): what the patch count of a
+// patch size follows from.
+std::vector<std::pair<float, int>> rootEdges(const Scene& scene) {
+  std::vector<std::pair<float, int>> roots;
   for (const Face& face : scene.faces) {
     const int sides = scene.materials[face.material].twoSided ? 2 : 1;
     for (const auto& corners : rootCorners(scene, face))
       roots.push_back({longestEdge(scene, corners), sides});
   }
-  auto count = [&](float size) {
-    double n = 0.0;
-    for (const auto& [edge, sides] : roots)
-      n += double(sides) * std::pow(4.0, depthFor(edge, size));
-    return n;
-  };
+  return roots;
+}
+
+double patchCount(const std::vector<std::pair<float, int>>& roots, float size) {
+  double n = 0.0;
+  for (const auto& [edge, sides] : roots) n += double(sides) * std::pow(4.0, depthFor(edge, size));
+  return n;
+}
+
+}  // namespace
+
+double PatchMesh::patchCountFor(const Scene& scene, float patchSize) {
+  return patchCount(rootEdges(scene), patchSize);
+}
+
+float PatchMesh::patchSizeFor(const Scene& scene, size_t target) {
+  const std::vector<std::pair<float, int>> roots = rootEdges(scene);
   // The largest size that still gives at least `target` patches (count falls as size grows).
   double lo = std::log(std::max(scene.bounds().diagonal(), 1e-30f) * 1e-5), hi = lo + std::log(2e5);
   for (int it = 0; it < 60; ++it) {
     const double mid = 0.5 * (lo + hi);
-    (count(float(std::exp(mid))) >= double(target) ? lo : hi) = mid;
+    (patchCount(roots, float(std::exp(mid))) >= double(target) ? lo : hi) = mid;
   }
   return float(std::exp(lo));
 }

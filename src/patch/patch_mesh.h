@@ -75,6 +75,8 @@ class PatchMesh {
 
   /// The longest-edge limit that gives about `target` patches (never more than 4x it).
   static float patchSizeFor(const Scene& scene, size_t target);
+  /// The number of base patches a patch size gives, counted without meshing.
+  static double patchCountFor(const Scene& scene, float patchSize);
 
   float patchSize() const { return patchSize_; }
   const std::vector<Vec3>& vertices() const { return vertices_; }

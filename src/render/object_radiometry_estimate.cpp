@@ -12,6 +12,7 @@
 #include <chrono>
 #include <glm/gtc/constants.hpp>
 
+#include "core/memory_usage.h"
 #include "geometry/sampling.h"
 #include "render/path_integrator.h"
 #include "render/path_tracer_settings.h"
@@ -87,6 +88,9 @@ std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, const
 
   const size_t n = size_t(pointsPerObject);
   const size_t totalPoints = surfaces.size() * n;
+  requireMemory(double(totalPoints) * 2.0 * sizeof(Color), "object points",
+                fmt::format("{} points on each of {} objects", n, surfaces.size()),
+                "use fewer points per object");
   std::vector<Color> irradiance(totalPoints, Color(0.0f)), radiosity(totalPoints, Color(0.0f));
   ProgressTicker ticker(progress, totalPoints);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, totalPoints), [&](const auto& range) {

@@ -1,11 +1,8 @@
 #include "voxel/discrete_line_sweep.h"
 
-#include "voxel/half_colors.h"
-
-#include <radiosity/error.h>
-
 #include <fmt/format.h>
 #include <immintrin.h>
+#include <radiosity/error.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -19,6 +16,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+
+#include "voxel/half_colors.h"
+#include "voxel/half_float.h"
 
 namespace rad {
 
@@ -53,7 +53,7 @@ inline void forEach(uint32_t begin, uint32_t end, bool ascending, F&& f) {
 template <typename Band, typename Row>
 std::pair<uint32_t, uint32_t> withinBand(std::pair<uint32_t, uint32_t> range, const Band& band,
                                          Row&& row) {
-  auto [begin, end] = range;
+  const uint32_t begin = range.first, end = range.second;
   if (begin == end) return range;
   const int64_t first = row(begin), last = row(end - 1);
   // Most ranges of a narrow band (a mostly empty box cuts many) lie wholly outside it.
@@ -113,9 +113,8 @@ void DiscreteLineSweep::prepareBands() {
 }
 
 size_t DiscreteLineSweep::threadCount() {
-  return std::min(
-      size_t(std::max(1, tbb::this_task_arena::max_concurrency())),
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  return std::min(size_t(std::max(1, tbb::this_task_arena::max_concurrency())),
+                  tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 }
 
 uint32_t DiscreteLineSweep::rowFirstLine(size_t row) const {
@@ -131,8 +130,7 @@ void DiscreteLineSweep::cutBands(size_t count) {
   if (count > 1) {
     prepareBands();
     for (const auto& [x, y, z] : sampleCells_)
-      ++perRow[(lineTable_[0][size_t(x)] + lineTable_[1][size_t(y)] +
-                lineTable_[2][size_t(z)]) >>
+      ++perRow[(lineTable_[0][size_t(x)] + lineTable_[1][size_t(y)] + lineTable_[2][size_t(z)]) >>
                32];
   }
   auto cut = [&](size_t begin, size_t end) {
@@ -159,8 +157,8 @@ void DiscreteLineSweep::cutBands(size_t count) {
   if (begin < rows || bands_.empty()) cut(begin, rows);
 }
 
-void DiscreteLineSweep::layoutLines(const IVec3& dims, const IVec3& step,
-                                    const LineOffset& offset, LineLayout& layout) {
+void DiscreteLineSweep::layoutLines(const IVec3& dims, const IVec3& step, const LineOffset& offset,
+                                    LineLayout& layout) {
   // The dominant component a after signing; the other two, b and c, in either order (the lines
   // are the same). A row of the table holds the lines of one U, so V is taken along the
   // innermost axis a pass walks (z, or y when z is dominant): the cells of a row then meet line
@@ -347,8 +345,7 @@ DiscreteLineSweep::Slot slotOf(__m128i packed, float offset) {
 }
 
 // Side e, whose centroid is c, as a look meets it: its plane and the radiosity it sends.
-DiscreteLineSweep::Slot sideSlot(const DiscreteLineSweep::Source& source, size_t e,
-                                 const Vec3& c) {
+DiscreteLineSweep::Slot sideSlot(const DiscreteLineSweep::Source& source, size_t e, const Vec3& c) {
   static_assert(offsetof(DiscreteLineSweep::Slot, radiosity) == 6 &&
                 offsetof(DiscreteLineSweep::Slot, offset) == 12);
   // The normal in 16-bit lanes 0-2, the radiosity moved up into lanes 3-5.
@@ -363,8 +360,8 @@ template <typename View>
 Vec3 centroidOf(const View& view, size_t e) {
   constexpr int64_t kMask = (int64_t(1) << 21) - 1;
   const __m256i bits = _mm256_set1_epi64x(int64_t(view.centroid[e].bits));
-  const __m256i fields = _mm256_and_si256(
-      _mm256_srlv_epi64(bits, _mm256_setr_epi64x(0, 21, 42, 0)), _mm256_set1_epi64x(kMask));
+  const __m256i fields = _mm256_and_si256(_mm256_srlv_epi64(bits, _mm256_setr_epi64x(0, 21, 42, 0)),
+                                          _mm256_set1_epi64x(kMask));
   const __m128i low = _mm256_castsi256_si128(
       _mm256_permutevar8x32_epi32(fields, _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0)));
   // The origin and the step, one load: (x, y, z, step).
@@ -403,8 +400,7 @@ DiscreteLineSweep::Source DiscreteLineSweep::packSides(const VoxelGrid& grid,
     }
     b *= inverse;
     for (size_t e = begin; e < end; ++e)
-      for (int k = 0; k < 3; ++k)
-        sides[e].radiosity[k] = _cvtss_sh(b[k], _MM_FROUND_TO_NEAREST_INT);
+      for (int k = 0; k < 3; ++k) sides[e].radiosity[k] = toHalf(b[k]);
     begin = end;
   }
   return {grid.orientation.data(), sides, scale};
@@ -433,8 +429,8 @@ inline Sight DiscreteLineSweep::look(const Vec3& centroid, const Slot& s, const 
     return sight;
   }
   const Vec3 n = slotNormal(s);
-  const Sight sight =
-      planeSight(glm::dot(n, centroid) - s.offset, glm::dot(n, unit), visibility_->planeTolerance());
+  const Sight sight = planeSight(glm::dot(n, centroid) - s.offset, glm::dot(n, unit),
+                                 visibility_->planeTolerance());
   if (sight == Sight::Source) light = halfColor(s);
   return sight;
 }
@@ -486,8 +482,7 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
     } else {
       sight = look(c, recentSlot(state), view.unit, view.source, light);
     }
-    if (kTangentCorrection && sight == Sight::Through)
-      sight = lookOlder(view, c, state, light);
+    if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(view, c, state, light);
     if (sight == Sight::Source) view.gathered[e] += light * (-facing * view.weight);
   } else if (facing > 0.0f) {
     wait(view, state, e, continues && state.pending == state.recentRef);
@@ -563,8 +558,7 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
       Color light(0.0f);
       const Vec3 c = centroidOf(view, e);
       Sight sight = look(c, recent, unit, source, light);
-      if (kTangentCorrection && sight == Sight::Through)
-        sight = lookOlder(view, c, state, light);
+      if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(view, c, state, light);
       if (sight == Sight::Source) view.gathered[e] += light * w;
     }
   }

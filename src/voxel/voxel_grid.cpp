@@ -1,11 +1,10 @@
 #include "voxel/voxel_grid.h"
 
-#include "core/memory_usage.h"
-
-#include <immintrin.h>
-
 #include <algorithm>
 #include <cmath>
+
+#include "core/memory_usage.h"
+#include "voxel/half_float.h"
 
 namespace rad {
 
@@ -80,7 +79,7 @@ PackedPoint VoxelGrid::pack(const Vec3d& p) const {
 }
 
 float VoxelGrid::areaOf(size_t entry) const {
-  return _cvtsh_ss(faceArea[entry]) * (voxelSize * voxelSize);
+  return fromHalf(faceArea[entry]) * (voxelSize * voxelSize);
 }
 
 size_t VoxelGrid::memoryBytes() const {

@@ -1,7 +1,6 @@
 #include "voxel/voxel_solver.h"
 
 #include <fmt/format.h>
-#include <immintrin.h>
 #include <radiosity/error.h>
 #include <radiosity/ray_caster.h>
 #include <tbb/parallel_for.h>
@@ -19,6 +18,7 @@
 #include "lighting/direct_lighting.h"
 #include "render/progress_ticker.h"
 #include "voxel/direction_set.h"
+#include "voxel/half_float.h"
 
 namespace rad {
 
@@ -80,8 +80,7 @@ std::vector<uint16_t> facingWeights(const VoxelGrid& grid, const DirectionSet& d
     }
   });
   std::vector<uint16_t> weights(grid.entryCount());
-  for (size_t e = 0; e < weights.size(); ++e)
-    weights[e] = _cvtss_sh(weightOf[normalOf[e]] - 1.0f, _MM_FROUND_TO_NEAREST_INT);
+  for (size_t e = 0; e < weights.size(); ++e) weights[e] = toHalf(weightOf[normalOf[e]] - 1.0f);
   return weights;
 }
 
@@ -205,14 +204,9 @@ uint64_t solveBytes(const VoxelGrid& grid, size_t lines, const VoxelSolverSettin
 // A grid whose solve does not fit is an input error before the first shot, not a kill by the
 // OOM killer an hour in.
 void checkMemory(const VoxelGrid& grid, size_t lines, const VoxelSolverSettings& settings) {
-  const uint64_t needed = solveBytes(grid, lines, settings);
-  const uint64_t available = availableMemoryBytes();
-  constexpr double kGB = 1e9;
-  if (available > 0 && needed > available)
-    throw InputError("voxel grid",
-                     fmt::format("{} voxel sides need about {:.2f} GB to sweep and {:.2f} GB is "
-                                 "available; use a larger voxel size or fewer voxels",
-                                 grid.entryCount(), double(needed) / kGB, double(available) / kGB));
+  requireMemory(double(solveBytes(grid, lines, settings)), "voxel grid",
+                fmt::format("{} voxel sides (to sweep)", grid.entryCount()),
+                "use a larger voxel size or fewer voxels");
 }
 
 // The light of every side as the iterations go: H so far (the first shot's direct light, then
@@ -293,7 +287,7 @@ class SideLight {
   Vec3d power(size_t e, const Color& c) const { return double(grid_.areaOf(e)) * Vec3d(c); }
   /// The light the last iteration's sweeps brought side e, normalized.
   Color lastBounce(size_t e) const {
-    const float weight = weights_.empty() ? 1.0f : 1.0f + _cvtsh_ss(weights_[e]);
+    const float weight = weights_.empty() ? 1.0f : 1.0f + fromHalf(weights_[e]);
     return gathered_[e] / (weight > 0.0f ? weight : 1.0f);
   }
 

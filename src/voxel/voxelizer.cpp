@@ -1,7 +1,6 @@
 #include "voxel/voxelizer.h"
 
 #include <fmt/format.h>
-#include <immintrin.h>
 #include <radiosity/error.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -15,6 +14,7 @@
 #include <tuple>
 
 #include "core/memory_usage.h"
+#include "voxel/half_float.h"
 
 namespace rad {
 
@@ -207,7 +207,7 @@ void appendSide(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& surfaceIndex, c
       {PackedNormal::pack(Vec3(glm::normalize(side.normalSum))), sharesPrevious});
   grid.centroid.push_back(grid.pack(side.centroidSum / side.weight));
   const float faces = float(side.area / (double(grid.voxelSize) * grid.voxelSize));
-  grid.faceArea.push_back(_cvtss_sh(faces, _MM_FROUND_TO_NEAREST_INT));
+  grid.faceArea.push_back(toHalf(faces));
   const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};
   grid.surface.push_back(internSurface(
       grid, surfaceIndex, {m, side.object, side.backArea > 0.5 * side.area, side.emitter}));
@@ -327,14 +327,10 @@ VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
   // Refused before the fragments are made, rather than killed for memory while making them.
   const double expected = settings.voxelSize > 0.0f ? expectedVoxelCount(scene, grid.voxelSize)
                                                     : double(settings.targetVoxels);
-  const uint64_t available = availableMemoryBytes();
-  if (available > 0 && expected * kVoxelizeBytesPerVoxel > double(available))
-    throw InputError(scene.name,
-                     fmt::format("voxel size {:g} gives about {:.0f} voxels, which need "
-                                 "about {:.2f} GB to voxelize and {:.2f} GB is available; "
-                                 "use a larger voxel size or fewer voxels",
-                                 grid.voxelSize, expected, expected * kVoxelizeBytesPerVoxel / 1e9,
-                                 double(available) / 1e9));
+  requireMemory(
+      expected * kVoxelizeBytesPerVoxel, scene.name,
+      fmt::format("voxel size {:g} gives about {:.0f} voxels, which", grid.voxelSize, expected),
+      "use a larger voxel size or fewer voxels");
 
   // Each triangle's fragments are counted first, then made again straight into their place in
   // one array, in triangle order (deterministic): clipping twice (0.6 s at 2M voxels) is cheaper

@@ -1,12 +1,17 @@
 #include "core/atomic_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -131,3 +136,45 @@ TEST_F(AtomicFileTest, RepeatedWritesUseDistinctTemporaries) {
 }
 
 }  // namespace
+
+// A writer killed with kill -9 leaves its temporary behind; the next write into the directory
+// removes those of dead processes (here: a child that has exited) and keeps a live writer's.
+TEST_F(AtomicFileTest, TemporariesOfDeadWritersAreRemovedOnTheNextWrite) {
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  ASSERT_GT(child, 0);
+  ASSERT_EQ(waitpid(child, nullptr, 0), child);
+  const std::string dead = ".cache.bin.tmp-" + std::to_string(child) + "-3";
+  const std::string live = ".cache.bin.tmp-" + std::to_string(getppid()) + "-0";
+  for (const std::string& name : {dead, live, ".notes.tmp-x-1"s, "plain.txt"s})
+    std::ofstream(dir_ / name) << "left over";
+  rad::writeTextAtomically(dir_ / "out.txt", "new");
+  std::vector<std::string> names = listing();
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{live, ".notes.tmp-x-1", "out.txt", "plain.txt"}));
+}
+
+// A device or a pipe given as the output (--stats /dev/stdout, a FIFO) is written to; replacing
+// it by a regular file, as a rename would, broke /dev/null for every other program.
+TEST_F(AtomicFileTest, AFifoIsWrittenToNotReplaced) {
+  const fs::path fifo = dir_ / "pipe";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::string received;
+  std::thread reader([&] { received = contents(fifo); });
+  rad::writeTextAtomically(fifo, "through the pipe");
+  reader.join();
+  EXPECT_EQ(received, "through the pipe");
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_EQ(listing(), std::vector<std::string>{"pipe"});
+}
+
+TEST_F(AtomicFileTest, ADirectoryTargetIsAnErrorNamingIt) {
+  fs::create_directories(dir_ / "folder.png");
+  try {
+    rad::writeTextAtomically(dir_ / "folder.png", "x");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("folder.png': it is a directory"), std::string::npos)
+        << e.what();
+  }
+}

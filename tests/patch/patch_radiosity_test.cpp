@@ -4,12 +4,15 @@
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
 #include <radiosity/scene_loader.h>
+#include <sys/stat.h>
 
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 
+#include "core/binary_io.h"
 #include "output/run_stats.h"
 #include "patch/form_factor_estimators.h"
 #include "patch/form_factor_table.h"
@@ -165,6 +168,32 @@ void expectSecondRunLoadsAndBadFilesRecomputed(PatchFormFactorEstimator estimato
       "old version", [](std::string& b) { b[8] = 0; }, "version");
   damageAndCheck(
       "foreign", [](std::string& b) { b.replace(0, 8, "NOTOURS!"); }, "not a form-factor");
+  // A forged file whose checksum matches: its last form factor (a whole table's last value, a
+  // master table's last hit weight, both just before the checksum) raised to 50. Before, a
+  // table accepted so diverged: 1000 sweeps, a residual of NaN, inf in the outputs.
+  damageAndCheck(
+      "forged",
+      [](std::string& b) {
+        const float forged = 50.0f;
+        std::memcpy(b.data() + b.size() - 12, &forged, 4);
+        const uint64_t sum = checksum(b.data(), b.size() - 8);
+        std::memcpy(b.data() + b.size() - 8, &sum, 8);
+      },
+      estimator == PatchFormFactorEstimator::Hemisphere ? "row summing above" : "sums to");
+  // A directory or a FIFO where the file should be: a warning and a recompute, never a hang.
+  for (const bool fifo : {false, true}) {
+    fs::remove(file);
+    if (fifo)
+      ASSERT_EQ(mkfifo(file.c_str(), 0600), 0);
+    else
+      fs::create_directories(file);
+    PatchRadiosityStats s;
+    expectSame(solveWith(scene, dir, s, estimator), reference);
+    EXPECT_FALSE(s.cacheLoaded);
+    ASSERT_FALSE(s.warnings.empty());
+    EXPECT_NE(s.warnings[0].find("unreadable"), std::string::npos) << s.warnings[0];
+    fs::remove_all(file);
+  }
   fs::remove_all(dir);
 }
 

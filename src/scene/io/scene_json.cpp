@@ -61,7 +61,8 @@ class JsonReader {
   void checkKeys(const Json& j, const std::string& ptr,
                  std::initializer_list<const char*> allowed) const {
     requireObject(j, ptr);
-    for (const auto& [key, value] : j.items()) {
+    for (const auto& item : j.items()) {
+      const std::string& key = item.key();
       if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; }))
         fail(ptr + "/" + key,
              fmt::format("unknown key (expected one of: {})", fmt::join(allowed, ", ")));
