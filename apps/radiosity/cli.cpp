@@ -80,9 +80,11 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     console.finishProgress();
     err << "radiosity: " << e.what() << "\n";
     return 2;
-  } catch (const Cancelled&) {
+  } catch (const Cancelled& e) {
     console.finishProgress();
-    err << "radiosity: interrupted; no output written\n";
+    const std::string howToGoOn = e.what();
+    err << "radiosity: interrupted; no output written"
+        << (howToGoOn == "cancelled" ? "" : "; " + howToGoOn) << "\n";
     return 130;
   } catch (const std::bad_alloc&) {
     // Past the solvers' own estimates (an address-space limit, another process taking memory).

@@ -91,6 +91,12 @@ void checkSolutionOutput(const std::string& path) {
   checkOutputPath("--save", path);
 }
 
+int statusAfterOutputs(Console& console) {
+  if (!InterruptGuard::interrupted()) return 0;
+  console.warn("interrupted while the outputs were written; those written are whole");
+  return 130;
+}
+
 void writeStatsFile(const std::string& path, const Scene& scene, const std::string& sceneName,
                     const std::string& method, double totalSeconds, RunStats& stats) {
   stats.scene = sceneName;

@@ -45,6 +45,10 @@ void checkOutputPath(const std::string& option, const std::string& path);
 /// checkOutputPath for a solution file name (--save), which must also be .rad.
 void checkSolutionOutput(const std::string& path);
 
+/// The exit status of a command once its outputs are written: 0, or 130 with a message when
+/// Ctrl-C came while they were written (each is whole: outputs are written atomically).
+int statusAfterOutputs(Console& console);
+
 /// Completes the stats (scene, method, emitted power, total time, peak memory) and writes them.
 void writeStatsFile(const std::string& path, const Scene& scene, const std::string& sceneName,
                     const std::string& method, double totalSeconds, RunStats& stats);

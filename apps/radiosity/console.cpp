@@ -1,6 +1,7 @@
 #include "console.h"
 
 #include <fmt/format.h>
+#include <radiosity/error.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -102,6 +103,10 @@ InterruptGuard::~InterruptGuard() {
 
 bool InterruptGuard::interrupted() {
   return gInterrupted.load();
+}
+
+void InterruptGuard::throwIfInterrupted() {
+  if (interrupted()) throw Cancelled();
 }
 
 }  // namespace rad::cli

@@ -45,6 +45,9 @@ class InterruptGuard {
   InterruptGuard(const InterruptGuard&) = delete;
   InterruptGuard& operator=(const InterruptGuard&) = delete;
   static bool interrupted();
+  /// Throws rad::Cancelled if Ctrl-C came: called before the outputs are written, so that an
+  /// interrupted run writes none of them.
+  static void throwIfInterrupted();
 };
 
 /// A duration as a progress line shows it: "42 s", "3 min 05 s", "2 h 07 min".

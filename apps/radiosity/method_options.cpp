@@ -215,7 +215,11 @@ VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
       solveShowingProgress<VoxelModel>(scene, caster, settings, source, "voxel solve", console);
   RunStats& stats = report.stats;
   const VoxelRadiosityStats& v = solution.stats();
+  if (v.resumedIterations > 0)
+    console.info(fmt::format("went on from a checkpoint: {} iteration{} were done before",
+                             v.resumedIterations, v.resumedIterations == 1 ? "" : "s"));
   stats.methodDetails = {
+      {"resumed_iterations", v.resumedIterations},
       {"voxel_size", v.voxelSize},
       {"cells", v.voxels},
       {"sides", v.sides},

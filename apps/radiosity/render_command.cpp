@@ -114,6 +114,7 @@ int runRender(RenderOptions& o, Console& console) {
                            solveVoxels(scene, caster, voxelSettingsFor(o),
                                        {groups, o.solution, o.time}, console, report),
                            o, console, stats);
+  InterruptGuard::throwIfInterrupted();
   writeImage(o.output, image, o.picture.writeOptions());
   if (!o.stats.empty()) {
     stats.settings = settingsOf(o.method.settings());
@@ -122,7 +123,7 @@ int runRender(RenderOptions& o, Console& console) {
   console.info(fmt::format("rendered {} {}x{} with {} in {:.2f} s -> {}{}", o.scene, camera.width,
                            camera.height, o.method.method(), total.seconds(), o.output,
                            o.stats.empty() ? "" : ", stats -> " + o.stats));
-  return 0;
+  return statusAfterOutputs(console);
 }
 
 }  // namespace

@@ -86,6 +86,7 @@ void exportGlbWithObjects(const SolveOptions& o, const Scene& scene,
 template <class Solution>
 int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solution,
                 const std::string& ext, const Stopwatch& total, RunStats& stats, Console& console) {
+  InterruptGuard::throwIfInterrupted();
   if (ext == ".csv") solution.exportCsv(o.exportPath);
   if (ext == ".ply") solution.exportPly(o.exportPath);
   if (ext == ".glb") exportGlbWithObjects(o, scene, solution);
@@ -99,7 +100,7 @@ int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solut
                            o.exportPath.empty() ? "" : " -> " + o.exportPath,
                            o.save.empty() ? "" : ", solution -> " + o.save,
                            o.stats.empty() ? "" : ", stats -> " + o.stats));
-  return 0;
+  return statusAfterOutputs(console);
 }
 
 int runSolve(SolveOptions& o, Console& console) {

@@ -21,6 +21,9 @@ class InputError : public std::runtime_error {
 class Cancelled : public std::runtime_error {
  public:
   Cancelled() : std::runtime_error("cancelled") {}
+  /// `howToGoOn` tells the user how the work continues ("goes on from iteration 3 when run
+  /// again"); what() returns it.
+  explicit Cancelled(const std::string& howToGoOn) : std::runtime_error(howToGoOn) {}
 };
 
 }  // namespace rad

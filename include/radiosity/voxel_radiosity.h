@@ -43,6 +43,10 @@ struct VoxelRadiositySettings {
   /// setGroupScales() rescales them without a solve.
   bool lightGroups = false;
   uint64_t seed = 1;
+  /// Where the solve keeps a checkpoint after every iteration (written atomically, removed when
+  /// it is done) and goes on from one when solved again after a kill or Ctrl-C, to the same
+  /// answer (bit for bit with the same threads); empty: none.
+  std::string checkpointDir;
 };
 
 struct VoxelRadiosityStats {
@@ -64,6 +68,7 @@ struct VoxelRadiosityStats {
   /// Threads that shared each direction's sweep (results are the same for any number).
   size_t sweepThreads = 0;
   std::vector<std::string> warnings;  ///< settings that lose light or speed, and why
+  int resumedIterations = 0;  ///< iterations a checkpoint brought (0: solved from the start)
 };
 
 class VoxelRadiosity;

@@ -19,8 +19,13 @@ namespace {
 
 constexpr int kTileSize = 16;
 
+// Samples between two questions to the progress callback: at a million samples a pixel takes
+// seconds, and Ctrl-C must stop the render within one.
+constexpr int kSamplesBetweenPolls = 1024;
+
 void renderTile(const PathIntegrator& integrator, const PinholeCamera& camera,
-                const PathTracerSettings& settings, int tile, int tilesX, Image& image) {
+                const PathTracerSettings& settings, int tile, int tilesX, Image& image,
+                ProgressTicker& ticker) {
   Rng rng(settings.seed, uint64_t(tile));
   const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
   const int x1 = std::min(x0 + kTileSize, image.width);
@@ -30,10 +35,12 @@ void renderTile(const PathIntegrator& integrator, const PinholeCamera& camera,
     for (int x = x0; x < x1; ++x) {
       Color sum(0.0f);
       for (int s = 0; s < settings.samplesPerPixel; ++s) {
+        if (s % kSamplesBetweenPolls == kSamplesBetweenPolls - 1 && ticker.pollCancelled()) return;
         const Vec2 offset = uniformSquare(rng);
         sum += integrator.radiance(camera.ray(x, y, offset), rng);
       }
       image.at(x, y) = sum * weight;
+      ticker.tick();
     }
 }
 
@@ -59,12 +66,11 @@ PathTracedImage renderPathTraced(const Scene& scene, const RayCaster& caster, co
   result.image = Image(camera.width, camera.height);
   const int tilesX = (camera.width + kTileSize - 1) / kTileSize;
   const int tilesY = (camera.height + kTileSize - 1) / kTileSize;
-  ProgressTicker ticker(progress, size_t(tilesX) * size_t(tilesY));
+  ProgressTicker ticker(progress, size_t(camera.width) * size_t(camera.height));
   tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY), [&](const auto& range) {
     for (int tile = range.begin(); tile != range.end(); ++tile) {
       if (ticker.cancelled()) return;
-      renderTile(integrator, pinhole, settings, tile, tilesX, result.image);
-      ticker.tick();
+      renderTile(integrator, pinhole, settings, tile, tilesX, result.image, ticker);
     }
   });
   ticker.throwIfCancelled();

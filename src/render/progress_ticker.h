@@ -5,7 +5,9 @@
 #include <radiosity/error.h>
 #include <radiosity/progress.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <mutex>
 
@@ -29,6 +31,21 @@ class ProgressTicker {
   }
 
   bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
+
+  /// Asks the callback whether to stop, at most every 100 ms (from whichever thread comes first):
+  /// for items that each take long (a pixel at a million samples, a voxel side's thousands of
+  /// shadow rays), where tick() alone would ask too late for Ctrl-C.
+  bool pollCancelled() {
+    if (cancelled() || !callback_) return cancelled();
+    using namespace std::chrono;
+    const int64_t now = duration_cast<milliseconds>(steady_clock::now().time_since_epoch()).count();
+    int64_t last = lastPollMs_.load(std::memory_order_relaxed);
+    if (now - last < 100 || !lastPollMs_.compare_exchange_strong(last, now)) return false;
+    std::lock_guard lock(mutex_);
+    const double fraction = double(done_.load(std::memory_order_relaxed)) / double(total_);
+    if (!callback_(std::min(fraction, 1.0))) cancelled_.store(true);
+    return cancelled();
+  }
   /// Throws Cancelled if the callback asked to stop.
   void throwIfCancelled() const {
     if (cancelled()) throw Cancelled();
@@ -40,6 +57,7 @@ class ProgressTicker {
   std::atomic<size_t> done_{0};
   std::atomic<int> reported_{-1};
   std::atomic<bool> cancelled_{false};
+  std::atomic<int64_t> lastPollMs_{0};
   std::mutex mutex_;
 };
 

@@ -60,6 +60,7 @@ VoxelSolverSettings solverSettings(const VoxelRadiositySettings& settings) {
   solver.keepDirect = settings.keepDirectLight && settings.directFirstShot;
   solver.sweep.tangentCorrection = settings.tangentCorrection;
   solver.seed = settings.seed;
+  solver.checkpointDir = settings.checkpointDir;
   return solver;
 }
 
@@ -68,8 +69,11 @@ VoxelSolverSettings solverSettings(const VoxelRadiositySettings& settings) {
 std::pair<VoxelSolution, std::vector<Color>> VoxelRadiosity::Impl::solve(
     std::span<const Light> lights, const VoxelSolverSettings& solver,
     const ProgressCallback& progress) const {
+  // A checkpoint's key is the scene's: not for a first shot shadowed by placed dynamic objects.
+  VoxelSolverSettings settings = solver;
+  if (shadowCaster) settings.checkpointDir.clear();
   VoxelSolution solved = solveVoxelRadiosity(
-      *scene, grid, shadowCaster ? *shadowCaster : *model->caster, lights, solver, progress);
+      *scene, grid, shadowCaster ? *shadowCaster : *model->caster, lights, settings, progress);
   std::vector<Color> h;
   if (solver.keepDirect) {
     h = solved.irradiance;
@@ -102,6 +106,8 @@ void VoxelRadiosity::Impl::solveGroups(VoxelSolverSettings solver,
       all.residuals.insert(all.residuals.end(), solved.residuals.begin(), solved.residuals.end());
       all.iterationSeconds.insert(all.iterationSeconds.end(), solved.iterationSeconds.begin(),
                                   solved.iterationSeconds.end());
+      all.resumedIterations += solved.resumedIterations;
+      all.warnings.insert(all.warnings.end(), solved.warnings.begin(), solved.warnings.end());
     }
   }
   combineGroups();
@@ -191,6 +197,8 @@ VoxelRadiosity::VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model,
   s.sweepSeconds = solution.sweepSeconds;
   s.iterationSeconds = solution.iterationSeconds;
   s.memoryBytes = impl_->grid.memoryBytes() + solution.workingBytes;
+  s.resumedIterations = solution.resumedIterations;
+  s.warnings.insert(s.warnings.end(), solution.warnings.begin(), solution.warnings.end());
 }
 
 VoxelRadiosity::VoxelRadiosity(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

@@ -19,6 +19,7 @@
 #include "render/progress_ticker.h"
 #include "voxel/direction_set.h"
 #include "voxel/half_float.h"
+#include "voxel/voxel_checkpoint.h"
 
 namespace rad {
 
@@ -29,27 +30,36 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 // Direct irradiance at every entry's centroid: the analytic lights once (exact, one shadow ray
-// each), the emitters' light averaged over `directSamples` area samples.
+// each), the emitters' light averaged over `directSamples` area samples. Throws Cancelled when
+// `progress` asks, within a fraction of a second even at thousands of samples a side.
 std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
                                     const RayCaster& caster, std::span<const Light> lights,
-                                    const VoxelSolverSettings& settings, uint64_t& rays) {
+                                    const VoxelSolverSettings& settings, uint64_t& rays,
+                                    const ProgressCallback& progress) {
+  constexpr int kSamplesBetweenPolls = 256;
   const uint64_t raysBefore = caster.raysCast();
   const DirectLighting direct(scene, caster, lights, settings.emissionScales);
   std::vector<Color> h(grid.entryCount());
+  ProgressTicker ticker(progress, grid.entryCount());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.entryCount(), 256), [&](const auto& r) {
-    for (size_t e = r.begin(); e != r.end(); ++e) {
+    for (size_t e = r.begin(); e != r.end() && !ticker.cancelled(); ++e) {
       const Vec3 p = grid.centroidOf(e), n = grid.unitNormal(e);
       Color fromEmitters(0.0f);
       if (direct.hasEmitters()) {
         Rng rng(settings.seed, e);
         Vec3d sum(0.0);
-        for (int s = 0; s < settings.directSamples; ++s)
+        for (int s = 0; s < settings.directSamples; ++s) {
+          if (s % kSamplesBetweenPolls == kSamplesBetweenPolls - 1 && ticker.pollCancelled())
+            return;
           sum += Vec3d(direct.sampleEmitters(p, n, rng));
+        }
         fromEmitters = Color(sum / double(settings.directSamples));
       }
       h[e] = direct.hasLights() ? fromEmitters + direct.fromLights(p, n) : fromEmitters;
+      ticker.tick();
     }
   });
+  ticker.throwIfCancelled();
   rays = caster.raysCast() - raysBefore;
   return h;
 }
@@ -313,6 +323,47 @@ uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& setti
   return solveBytes(grid, widestLineTable(grid, SweepDirections(settings)), settings);
 }
 
+namespace {
+
+// The checkpoint of the solve's file to go on from, if it has one that fits; its numbers so far
+// go into `solution`.
+std::optional<VoxelCheckpoint> resumeFrom(const std::filesystem::path& file, size_t sides,
+                                          VoxelSolution& solution) {
+  if (file.empty()) return std::nullopt;
+  std::string warning;
+  std::optional<VoxelCheckpoint> c = loadVoxelCheckpoint(file, sides, warning);
+  if (!warning.empty()) solution.warnings.push_back(warning);
+  if (!c) return std::nullopt;
+  solution.resumedIterations = c->iterationsDone;
+  solution.residuals = c->residuals;
+  solution.iterationSeconds = c->iterationSeconds;
+  solution.cellVisits = c->cellVisits;
+  solution.shadowRays = c->shadowRays;
+  solution.directSeconds = c->directSeconds;
+  return c;
+}
+
+// Writes the state after `done` iterations (0: the first shot alone) to the solve's file; true
+// when it is there to go on from.
+bool keepCheckpoint(const std::filesystem::path& file, int done, SideLight& light,
+                    VoxelCheckpoint& kept, VoxelSolution& solution) {
+  if (file.empty()) return false;
+  kept.iterationsDone = done;
+  kept.irradiance = light.irradiances();
+  kept.bounce = light.gathered();
+  kept.direct = solution.direct;
+  kept.residuals = solution.residuals;
+  kept.iterationSeconds = solution.iterationSeconds;
+  kept.cellVisits = solution.cellVisits;
+  kept.shadowRays = solution.shadowRays;
+  kept.directSeconds = solution.directSeconds;
+  const std::string warning = saveVoxelCheckpoint(file, kept);
+  if (!warning.empty()) solution.warnings.push_back(warning);
+  return warning.empty();
+}
+
+}  // namespace
+
 VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
                                   const RayCaster& caster, std::span<const Light> lights,
                                   const VoxelSolverSettings& settings,
@@ -328,24 +379,39 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   DiscreteLineSweep::checkLineCount(grid, lines);
   checkMemory(grid, lines, settings);
   solution.sweepThreads = DiscreteLineSweep::threadCount();
-  std::vector<Color> direct(grid.entryCount(), Color(0.0f));
-  if (settings.directFirstShot) {
+  const std::filesystem::path checkpoint = voxelCheckpointFile(scene, grid, lights, settings);
+  std::optional<VoxelCheckpoint> resumed = resumeFrom(checkpoint, grid.entryCount(), solution);
+  const int firstIteration = resumed ? resumed->iterationsDone : 0;
+  VoxelCheckpoint kept;  // the iterations' powers, for the tail and the next checkpoint
+  std::vector<Color> h(grid.entryCount(), Color(0.0f));
+  if (resumed) {
+    h = std::move(resumed->irradiance);  // exact: H's 24-bit floats round-trip through floats
+    solution.direct = std::move(resumed->direct);
+    kept.bouncePower = std::move(resumed->bouncePower);
+    kept.totalPower = resumed->totalPower;
+  } else if (settings.directFirstShot) {
     const auto start = std::chrono::steady_clock::now();
-    direct = directIrradiance(scene, grid, caster, lights, settings, solution.shadowRays);
+    h = directIrradiance(scene, grid, caster, lights, settings, solution.shadowRays, progress);
     solution.directSeconds = secondsSince(start);
-    if (settings.keepDirect) solution.direct = direct;
+    if (settings.keepDirect) solution.direct = h;
   }
-  SideLight light(grid, settings, directions, std::move(direct));
+  SideLight light(grid, settings, directions, std::move(h));
+  if (resumed) light.gathered() = std::move(resumed->bounce);
+  if (firstIteration >= 2 && sweepDirections.coarser) light.normalizeFor(laterDirections);
+  bool canResume = resumed.has_value();
+  if (!resumed && settings.directFirstShot)
+    canResume = keepCheckpoint(checkpoint, 0, light, kept, solution);
   auto sweep = std::make_unique<DiscreteLineSweep>(grid, settings.sweep);
   sweep->reserveLines(lines);
   std::vector<DiscreteLineSweep::SentLight> packed(grid.entryCount());
-  const size_t laterIterations = size_t(std::max(settings.iterations - 1, 0));
-  ProgressTicker ticker(progress,
-                        directions.pairCount() + laterDirections.pairCount() * laterIterations);
-  std::vector<Vec3d> bouncePower;
-  Vec3d totalPower(0.0);
+  const size_t laterIterations =
+      size_t(std::max(settings.iterations - std::max(firstIteration, 1), 0));
+  ProgressTicker ticker(progress, (firstIteration == 0 ? directions.pairCount() : 0) +
+                                      laterDirections.pairCount() * laterIterations);
+  bool converged = !solution.residuals.empty() && settings.tolerance > 0.0 &&
+                   solution.residuals.back() < settings.tolerance;
   const auto start = std::chrono::steady_clock::now();
-  for (int iteration = 0; iteration < settings.iterations; ++iteration) {
+  for (int iteration = firstIteration; iteration < settings.iterations && !converged; ++iteration) {
     const auto iterationStart = std::chrono::steady_clock::now();
     const bool first = iteration == 0;
     const DirectionSet& swept = first ? directions : laterDirections;
@@ -354,22 +420,33 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     // Packed with the weights of the sweep that gathered it, the last bounce is spent: the
     // next one is normalized for the sphere it is swept on.
     if (iteration == 1 && sweepDirections.coarser) light.normalizeFor(laterDirections);
-    gatherAllDirections(swept, *sweep, light.gathered(), source, settings, iteration, ticker);
+    try {
+      gatherAllDirections(swept, *sweep, light.gathered(), source, settings, iteration, ticker);
+    } catch (const Cancelled&) {
+      if (!canResume) throw;
+      throw Cancelled(
+          fmt::format("the solve goes on from iteration {} of {} when run again "
+                      "(checkpoint {})",
+                      iteration + 1, settings.iterations, checkpoint.string()));
+    }
     const auto [added, total] = light.addBounce();
-    bouncePower.push_back(added);
-    totalPower = total;
+    kept.bouncePower.push_back(added);
+    kept.totalPower = total;
     solution.residuals.push_back(luminance(total) > 0.0 ? luminance(added) / luminance(total)
                                                         : 0.0);
     solution.iterationSeconds.push_back(secondsSince(iterationStart));
     solution.cellVisits += uint64_t(grid.cellCount()) * swept.size();
-    if (settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance) break;
+    converged = settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance;
+    if (iteration + 1 < settings.iterations && !converged)
+      canResume = keepCheckpoint(checkpoint, iteration + 1, light, kept, solution) || canResume;
   }
   solution.sweepSeconds = secondsSince(start);
+  const std::vector<Vec3d>& bouncePower = kept.bouncePower;
   const Color tail = settings.estimateTail ? tailFactor(bouncePower) : Color(0.0f);
   if (tail != Color(0.0f)) {
     light.addLastBounceTimes(tail);
     const double added = luminance(Vec3d(tail) * bouncePower.back());
-    solution.tailShare = added / (luminance(totalPower) + added);
+    solution.tailShare = added / (luminance(kept.totalPower) + added);
   }
   solution.workingBytes =
       grid.entryCount() * voxelSolverBytesPerSide(settings) + sweep->workingBytes();
@@ -379,6 +456,10 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   light.releaseBounce();
   solution.radiosity = light.radiosities();
   solution.irradiance = light.irradiances();
+  if (!checkpoint.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove(checkpoint, ignored);  // done: nothing to go on from
+  }
   return solution;
 }
 

@@ -14,6 +14,7 @@
 #include <radiosity/scene.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <vector>
@@ -40,6 +41,9 @@ struct VoxelSolverSettings {
   std::vector<Color> emissionScales;
   SweepSettings sweep;
   uint64_t seed = 1;
+  /// Where the solve keeps a checkpoint after every iteration and resumes from one
+  /// (voxel_checkpoint.h); empty: none.
+  std::filesystem::path checkpointDir;
 };
 
 struct VoxelSolution {
@@ -56,8 +60,10 @@ struct VoxelSolution {
   uint64_t shadowRays = 0;
   double directSeconds = 0.0, sweepSeconds = 0.0;
   std::vector<double> iterationSeconds;  ///< the sweeps' time in each iteration
-  size_t workingBytes = 0;  ///< solver arrays beyond the grid (accumulators, line tables)
-  size_t sweepThreads = 0;  ///< threads that shared each direction's sweep
+  size_t workingBytes = 0;    ///< solver arrays beyond the grid (accumulators, line tables)
+  size_t sweepThreads = 0;    ///< threads that shared each direction's sweep
+  int resumedIterations = 0;  ///< iterations a checkpoint brought (0: solved from the start)
+  std::vector<std::string> warnings;  ///< a checkpoint not read or not written, and why
 };
 
 /// What the solver holds per side besides the grid and the sweep's working memory (the bounce

@@ -1,0 +1,108 @@
+#include "voxel/voxel_checkpoint.h"
+
+#include <fmt/format.h>
+
+#include <cstring>
+
+#include "core/atomic_file.h"
+#include "scene/scene_hash.h"
+
+namespace rad {
+
+namespace {
+
+constexpr char kMagic[8] = {'R', 'A', 'D', 'V', 'C', 'K', 'P', 'T'};
+constexpr uint32_t kVersion = 1;
+
+}  // namespace
+
+std::filesystem::path voxelCheckpointFile(const Scene& scene, const VoxelGrid& grid,
+                                          std::span<const Light> lights,
+                                          const VoxelSolverSettings& s) {
+  if (s.checkpointDir.empty()) return {};
+  Hasher h;
+  h.value(kVersion);
+  hashGeometry(h, scene);
+  hashMaterials(h, scene);
+  hashLights(h, lights);
+  h.value(grid.voxelSize);
+  h.value(grid.dims);
+  h.value(uint64_t(grid.entryCount()));
+  for (const int v : {s.sphereRadius, s.laterSphereRadius, s.iterations, s.directSamples})
+    h.value(v);
+  h.value(s.tolerance);
+  for (const bool b : {s.estimateTail, s.directFirstShot, s.normalize, s.jitterLines, s.keepDirect,
+                       s.sweep.tangentCorrection})
+    h.value(uint8_t(b));
+  h.value(uint64_t(s.emissionScales.size()));
+  for (const Color& c : s.emissionScales) h.value(c);
+  h.value(s.seed);
+  return s.checkpointDir / ("voxel-" + h.key().hex() + ".checkpoint");
+}
+
+std::string saveVoxelCheckpoint(const std::filesystem::path& file, const VoxelCheckpoint& c) {
+  std::string out(kMagic, 8);
+  put(out, kVersion);
+  put(out, int32_t(c.iterationsDone));
+  put(out, uint64_t(c.irradiance.size()));
+  putArray<Color>(out, c.irradiance);
+  putArray<Color>(out, c.bounce);
+  put(out, uint64_t(c.direct.size()));
+  putArray<Color>(out, c.direct);
+  put(out, uint64_t(c.bouncePower.size()));
+  putArray<Vec3d>(out, c.bouncePower);
+  putArray<double>(out, c.residuals);
+  putArray<double>(out, c.iterationSeconds);
+  put(out, c.totalPower);
+  put(out, c.cellVisits);
+  put(out, c.shadowRays);
+  put(out, c.directSeconds);
+  put(out, checksum(out.data(), out.size()));
+  try {
+    std::filesystem::create_directories(file.parent_path());
+    writeBytesAtomically(file, out);
+  } catch (const std::exception& e) {
+    return fmt::format("voxel checkpoint not written: {}", e.what());
+  }
+  return "";
+}
+
+std::optional<VoxelCheckpoint> loadVoxelCheckpoint(const std::filesystem::path& file, size_t sides,
+                                                   std::string& warning) {
+  std::string bytes;
+  if (!readWholeFile(file, bytes)) return std::nullopt;
+  auto reject = [&](const std::string& why) -> std::optional<VoxelCheckpoint> {
+    warning = fmt::format("voxel checkpoint {} not used ({}); solving from the start",
+                          file.string(), why);
+    return std::nullopt;
+  };
+  if (bytes.size() < 8 + 4 + 8 || std::memcmp(bytes.data(), kMagic, 8) != 0)
+    return reject("not a voxel checkpoint");
+  if (!checksumMatches(bytes)) return reject("truncated or corrupt");
+  VoxelCheckpoint c;
+  try {
+    ByteReader in(bytes, 8, bytes.size() - 8);
+    if (const uint32_t version = in.get<uint32_t>(); version != kVersion)
+      return reject(fmt::format("format version {}, expected {}", version, kVersion));
+    c.iterationsDone = in.get<int32_t>();
+    if (in.get<uint64_t>() != sides) return reject("made for another grid");
+    c.irradiance = in.array<Color>(sides);
+    c.bounce = in.array<Color>(sides);
+    c.direct = in.array<Color>(in.get<uint64_t>());
+    const uint64_t iterations = in.get<uint64_t>();
+    c.bouncePower = in.array<Vec3d>(iterations);
+    c.residuals = in.array<double>(iterations);
+    c.iterationSeconds = in.array<double>(iterations);
+    c.totalPower = in.get<Vec3d>();
+    c.cellVisits = in.get<uint64_t>();
+    c.shadowRays = in.get<uint64_t>();
+    c.directSeconds = in.get<double>();
+    if (!in.atEnd() || c.iterationsDone < 0 || uint64_t(c.iterationsDone) != iterations)
+      return reject("inconsistent");
+  } catch (const std::out_of_range&) {
+    return reject("truncated");
+  }
+  return c;
+}
+
+}  // namespace rad

@@ -1,0 +1,170 @@
+// Ctrl-C stops a long computation within about a second in every phase, with status 130 and no
+// output written: the binary itself, interrupted as a user would (SIGINT).
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cstring>
+#include <thread>
+
+#include "cli_run.h"
+
+extern char** environ;
+
+namespace rad::test {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Interrupted {
+  int status = -1;       ///< exit status, or -1 if it had to be killed
+  double secondsToExit;  ///< from SIGINT to exit
+};
+
+// Starts radiosity with `args`, sends SIGINT after `after` seconds, and waits up to 20 s for it
+// to exit (then kills it, so that a regression fails the test instead of hanging the suite).
+Interrupted interruptAfter(std::vector<std::string> args, double after) {
+  args.insert(args.begin(), std::string(RADIOSITY_BINARY_DIR) + "/radiosity");
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return {};
+  std::this_thread::sleep_for(std::chrono::duration<double>(after));
+  ::kill(pid, SIGINT);
+  const auto sent = Clock::now();
+  int status = 0;
+  while (::waitpid(pid, &status, WNOHANG) == 0) {
+    if (Clock::now() - sent > std::chrono::seconds(20)) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      return {-1, 20.0};
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - sent).count();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, seconds};
+}
+
+// Before: the path tracer asked whether to stop once per 16x16 tile, so an 8x8 picture at a
+// million samples a pixel ran on for minutes (76 s measured).
+TEST(Interrupt, ThePathTracerStopsWithinASecondEvenInOneTile) {
+  const fs::path dir = freshDir("interrupt_pathtrace");
+  const Interrupted r =
+      interruptAfter({"render", "cornell", "--method", "pathtrace", "--width", "8", "--height", "8",
+                      "--spp", "1048576", "-o", (dir / "x.png").string(), "--quiet"},
+                     1.0);
+  EXPECT_EQ(r.status, 130);
+  EXPECT_LT(r.secondsToExit, 1.5);
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// Before: the voxel method's first shot (shadow rays toward the emitters, per side) never asked.
+TEST(Interrupt, TheVoxelFirstShotStopsWithinASecond) {
+  const fs::path dir = freshDir("interrupt_first_shot");
+  const Interrupted r = interruptAfter(
+      {"solve", "cornell", "--method", "voxel", "--voxels", "2000", "--direct-samples", "1048576",
+       "--export", (dir / "x.csv").string(), "--quiet"},
+      1.0);
+  EXPECT_EQ(r.status, 130);
+  EXPECT_LT(r.secondsToExit, 1.5);
+  EXPECT_FALSE(fs::exists(dir / "x.csv"));
+}
+
+// The voxel solve keeps a checkpoint after every iteration: killed with kill -9 after its second
+// iteration and run again, it goes on from there and exports the same file as a run that was
+// never interrupted, byte for byte.
+TEST(Interrupt, AVoxelSolveKilledAfterTwoIterationsGoesOnToTheSameAnswer) {
+  const fs::path dir = freshDir("interrupt_kill9");
+  auto solve = [&](const std::string& cache, const std::string& csv) {
+    return std::vector<std::string>{std::string(RADIOSITY_BINARY_DIR) + "/radiosity",
+                                    "solve",
+                                    "cornell",
+                                    "--method",
+                                    "voxel",
+                                    "--voxels",
+                                    "50000",
+                                    "--sphere-radius",
+                                    "20",
+                                    "--iterations",
+                                    "4",
+                                    "--cache-dir",
+                                    (dir / cache).string(),
+                                    "--export",
+                                    (dir / csv).string(),
+                                    "--quiet"};
+  };
+  auto runToEnd = [](std::vector<std::string> args) {
+    args.erase(args.begin());
+    return run(args);
+  };
+  ASSERT_EQ(runToEnd(solve("whole", "whole.csv")).status, 0);
+
+  // Started, then killed once its checkpoint says two iterations are done.
+  std::vector<std::string> args = solve("cache", "resumed.csv");
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+  auto iterationsInCheckpoint = [&]() -> int {
+    std::error_code ec;
+    for (fs::directory_iterator it(dir / "cache", ec), end; !ec && it != end; it.increment(ec)) {
+      if (it->path().extension() != ".checkpoint") continue;
+      const std::string bytes = readBytes(it->path().string());
+      int32_t done = 0;
+      if (bytes.size() >= 16) std::memcpy(&done, bytes.data() + 12, 4);
+      return done;
+    }
+    return -1;
+  };
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  while (iterationsInCheckpoint() < 2 && Clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  ASSERT_EQ(iterationsInCheckpoint(), 2) << "the solve ended before it could be killed";
+  EXPECT_FALSE(fs::exists(dir / "resumed.csv"));
+
+  const CliResult resumed = runToEnd(solve("cache", "resumed.csv"));
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_EQ(readBytes((dir / "resumed.csv").string()), readBytes((dir / "whole.csv").string()));
+  EXPECT_EQ(iterationsInCheckpoint(), -1) << "the checkpoint outlived its solve";
+}
+
+TEST(Interrupt, CtrlCDuringTheSweepsSaysHowToGoOn) {
+  const fs::path dir = freshDir("interrupt_sweeps");
+  std::vector<std::string> args = {"solve",           "cornell",
+                                   "--method",        "voxel",
+                                   "--voxels",        "50000",
+                                   "--sphere-radius", "38",
+                                   "--iterations",    "6",
+                                   "--cache-dir",     (dir / "cache").string(),
+                                   "--export",        (dir / "x.csv").string()};
+  // Through the binary, with stderr captured in a file.
+  std::string command = std::string(RADIOSITY_BINARY_DIR) + "/radiosity";
+  for (const std::string& a : args) command += " " + a;
+  command += " 2> " + (dir / "err.txt").string();
+  std::vector<std::string> shell = {"/bin/sh", "-c", "exec " + command};
+  std::vector<char*> argv;
+  for (std::string& a : shell) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  const std::string err = readBytes((dir / "err.txt").string());
+  EXPECT_NE(err.find("interrupted; no output written; the solve goes on from iteration"),
+            std::string::npos)
+      << err;
+  EXPECT_FALSE(fs::exists(dir / "x.csv"));
+}
+
+}  // namespace
+}  // namespace rad::test
