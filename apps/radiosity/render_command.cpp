@@ -45,6 +45,10 @@ Image renderWithPathTracer(const Scene& scene, const RayCaster& caster, const Ca
   PathTracedImage result =
       renderPathTraced(scene, caster, camera, o.method.pathTracer(), console.progress("render"));
   console.finishProgress();
+  for (const std::string& w : result.stats.warnings) console.warn(w);
+  if (result.stats.resumedTiles > 0)
+    console.info(fmt::format("went on from a checkpoint: {} tiles were done before",
+                             result.stats.resumedTiles));
   stats.timingsSeconds.render = renderTime.seconds();
   stats.counts.rays = result.stats.rays;
   if (!o.stats.empty() && o.objectPoints > 0) {

@@ -11,6 +11,7 @@
 #include <radiosity/scene.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace rad {
@@ -19,12 +20,17 @@ struct PathTracerSettings {
   int samplesPerPixel = 64;
   int maxDepth = 256;  ///< bounce limit; Russian roulette ends paths long before it in practice
   uint64_t seed = 1;
+  /// Where a render keeps its finished tiles (every half minute, and when stopped) and goes on
+  /// from them when run again after a kill or Ctrl-C, to the same picture; empty: nowhere.
+  std::string checkpointDir;
 };
 
 struct PathTracerStats {
   uint64_t rays = 0;   ///< closest-hit and shadow rays cast
   uint64_t paths = 0;  ///< camera paths or irradiance samples traced
   double seconds = 0.0;
+  size_t resumedTiles = 0;            ///< tiles a checkpoint brought (16 x 16 pixels each)
+  std::vector<std::string> warnings;  ///< a checkpoint not read or not written, and why
 };
 
 struct PathTracedImage {

@@ -8,8 +8,8 @@
 #include <cstring>
 #include <fstream>
 
-#include "core/atomic_file.h"
 #include "core/binary_io.h"
+#include "core/checksummed_file.h"
 #include "scene/scene_hash.h"
 
 namespace rad {
@@ -68,14 +68,7 @@ std::string writeCacheFile(const std::filesystem::path& file, std::string& out) 
   // Written in place, a FIFO would wait for a reader forever; a directory cannot be replaced.
   if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
     return fmt::format("form-factor cache not written: {} is not a regular file", file.string());
-  put(out, checksum(out.data(), out.size()));
-  try {
-    std::filesystem::create_directories(file.parent_path());
-    writeBytesAtomically(file, out);
-  } catch (const std::exception& e) {
-    return fmt::format("form-factor cache not written: {}", e.what());
-  }
-  return "";
+  return saveChecksummed(file, out, "form-factor cache");
 }
 
 // The reason a table read from disk cannot be right for `patches` rows, or "".

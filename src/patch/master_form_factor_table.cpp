@@ -118,24 +118,8 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
   const HitKey keyOf = [&](uint32_t triangle, bool front, const Vec3& at) {
     return mesh.finestKey(triangle, front, at, levels_);
   };
-  std::vector<std::vector<HemisphereHit>> hits(missing.size());
-  ProgressTicker ticker(progress, missing.size());
-  tbb::parallel_for(size_t(0), missing.size(), [&](size_t i) {
-    if (ticker.cancelled()) return;
-    hits[i] = hemisphereHits(mesh, caster, missing[i], rays_, seed_, streamOf(missing[i]), keyOf);
-    ticker.tick();
-  });
-  ticker.throwIfCancelled();
-  {
-    // Another solve may have cast the same row meanwhile: the first one kept stays.
-    std::lock_guard lock(mutex_);
-    for (size_t i = 0; i < missing.size(); ++i) {
-      MasterRow& row = rows_[address(missing[i])];
-      if (!row.hasHits) row.hits = std::move(hits[i]);
-      row.hasHits = true;
-      hitsOf[missing[i]] = &row.hits;
-      cast[missing[i]] = 1;
-    }
+  // The emitters' exact entries computed above, into their rows (under the lock).
+  auto keepExactRows = [&] {
     for (uint32_t p = 0; exact && p < mesh.size(); ++p) {
       if (!exactCast[p]) continue;
       cast[p] = 1;
@@ -146,6 +130,40 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
       for (const FormFactorEntry& e : exact->toExact[p])
         row.exact.push_back({address(e.column), e.value});
     }
+  };
+  std::vector<std::vector<HemisphereHit>> hits(missing.size());
+  std::vector<uint8_t> done(missing.size(), 0);
+  ProgressTicker ticker(progress, missing.size());
+  tbb::parallel_for(size_t(0), missing.size(), [&](size_t i) {
+    if (ticker.cancelled()) return;
+    hits[i] = hemisphereHits(mesh, caster, missing[i], rays_, seed_, streamOf(missing[i]), keyOf);
+    done[i] = 1;
+    ticker.tick();
+  });
+  if (ticker.cancelled()) {
+    // The rows cast so far are kept (each depends on its own random stream alone), so that the
+    // caller can save them and the next solve casts only the rest.
+    std::lock_guard lock(mutex_);
+    for (size_t i = 0; i < missing.size(); ++i) {
+      if (!done[i]) continue;
+      MasterRow& row = rows_[address(missing[i])];
+      if (!row.hasHits) row.hits = std::move(hits[i]);
+      row.hasHits = true;
+    }
+    keepExactRows();
+    throw Cancelled();
+  }
+  {
+    // Another solve may have cast the same row meanwhile: the first one kept stays.
+    std::lock_guard lock(mutex_);
+    for (size_t i = 0; i < missing.size(); ++i) {
+      MasterRow& row = rows_[address(missing[i])];
+      if (!row.hasHits) row.hits = std::move(hits[i]);
+      row.hasHits = true;
+      hitsOf[missing[i]] = &row.hits;
+      cast[missing[i]] = 1;
+    }
+    keepExactRows();
   }
   Rows out;
   out.computed = size_t(std::count(cast.begin(), cast.end(), 1));

@@ -185,14 +185,16 @@ std::vector<SettingDeclaration> declare() {
   d.push_back(field("ff_threshold", kPatch, &M::patch, &P::formFactorThreshold,
                     "Drop form factors below this, passing their light to the patch's largest", 0,
                     1, false, true));
-  d.push_back(field("cache_dir", kGeneral, &M::patch, &P::cacheDir,
-                    "Cache directory: form-factor tables (patch), checkpoints to resume a killed "
-                    "solve from (voxel); none: no cache"));
+  d.push_back(
+      field("cache_dir", kGeneral, &M::patch, &P::cacheDir,
+            "Cache directory: form-factor tables (patch), checkpoints to go on from after a "
+            "kill or Ctrl-C (voxel, pathtrace); none: no cache"));
   d.back().defaultText = "$XDG_CACHE_HOME/radiosity, else ~/.cache/radiosity";
   d.back().apply = [](M& m, const SettingValue& v) {
     const std::string& dir = std::get<std::string>(v);
     m.patch.cacheDir = dir == "none" ? "" : dir;
     m.voxel.checkpointDir = m.patch.cacheDir;
+    m.pathTracer.checkpointDir = m.patch.cacheDir;
   };
   d.push_back(choice("solver", kPatch, &M::patch, &P::solver, kPatchSolverNames, "Linear solver"));
   d.push_back(field("max_iterations", kPatch, &M::patch, &P::maxIterations,
@@ -353,6 +355,7 @@ MethodSettings resolveMethodSettings(const SolverSettings& scene, const SolverSe
   MethodSettings m;
   m.patch.cacheDir = defaultPatchCacheDir();
   m.voxel.checkpointDir = m.patch.cacheDir;
+  m.pathTracer.checkpointDir = m.patch.cacheDir;
   for (const SolverSettings* layer : {&scene, &given})
     for (const auto& [name, value] : layer->values) {
       const SettingDeclaration* d = findSolverSetting(name);

@@ -2,9 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <cstring>
-
-#include "core/atomic_file.h"
+#include "core/checksummed_file.h"
 #include "scene/scene_hash.h"
 
 namespace rad {
@@ -57,28 +55,20 @@ std::string saveVoxelCheckpoint(const std::filesystem::path& file, const VoxelCh
   put(out, c.cellVisits);
   put(out, c.shadowRays);
   put(out, c.directSeconds);
-  put(out, checksum(out.data(), out.size()));
-  try {
-    std::filesystem::create_directories(file.parent_path());
-    writeBytesAtomically(file, out);
-  } catch (const std::exception& e) {
-    return fmt::format("voxel checkpoint not written: {}", e.what());
-  }
-  return "";
+  return saveChecksummed(file, out, "voxel checkpoint");
 }
 
 std::optional<VoxelCheckpoint> loadVoxelCheckpoint(const std::filesystem::path& file, size_t sides,
                                                    std::string& warning) {
-  std::string bytes;
-  if (!readWholeFile(file, bytes)) return std::nullopt;
+  const ChecksummedFile f = readChecksummed(file, kMagic, "voxel checkpoint");
+  if (!f.exists) return std::nullopt;
   auto reject = [&](const std::string& why) -> std::optional<VoxelCheckpoint> {
     warning = fmt::format("voxel checkpoint {} not used ({}); solving from the start",
                           file.string(), why);
     return std::nullopt;
   };
-  if (bytes.size() < 8 + 4 + 8 || std::memcmp(bytes.data(), kMagic, 8) != 0)
-    return reject("not a voxel checkpoint");
-  if (!checksumMatches(bytes)) return reject("truncated or corrupt");
+  if (!f.rejected.empty()) return reject(f.rejected);
+  const std::string& bytes = f.bytes;
   VoxelCheckpoint c;
   try {
     ByteReader in(bytes, 8, bytes.size() - 8);

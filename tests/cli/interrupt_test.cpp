@@ -55,7 +55,8 @@ TEST(Interrupt, ThePathTracerStopsWithinASecondEvenInOneTile) {
   const fs::path dir = freshDir("interrupt_pathtrace");
   const Interrupted r =
       interruptAfter({"render", "cornell", "--method", "pathtrace", "--width", "8", "--height", "8",
-                      "--spp", "1048576", "-o", (dir / "x.png").string(), "--quiet"},
+                      "--spp", "1048576", "-o", (dir / "x.png").string(), "--cache-dir",
+                      (dir / "cache").string(), "--quiet"},
                      1.0);
   EXPECT_EQ(r.status, 130);
   EXPECT_LT(r.secondsToExit, 1.5);
@@ -67,7 +68,7 @@ TEST(Interrupt, TheVoxelFirstShotStopsWithinASecond) {
   const fs::path dir = freshDir("interrupt_first_shot");
   const Interrupted r = interruptAfter(
       {"solve", "cornell", "--method", "voxel", "--voxels", "2000", "--direct-samples", "1048576",
-       "--export", (dir / "x.csv").string(), "--quiet"},
+       "--export", (dir / "x.csv").string(), "--cache-dir", (dir / "cache").string(), "--quiet"},
       1.0);
   EXPECT_EQ(r.status, 130);
   EXPECT_LT(r.secondsToExit, 1.5);

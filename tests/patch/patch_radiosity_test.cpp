@@ -1,6 +1,7 @@
 // The patch method end to end: the Cornell box against the path tracer, the disk cache, and
 // radiance queries.
 #include <gtest/gtest.h>
+#include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
 #include <radiosity/scene_loader.h>
@@ -203,6 +204,36 @@ TEST(PatchCache, SecondRunLoadsAndBadMasterTablesAreRecomputed) {
 
 TEST(PatchCache, SecondRunLoadsAndBadWholeTablesAreRecomputed) {
   expectSecondRunLoadsAndBadFilesRecomputed(PatchFormFactorEstimator::Pairwise);
+}
+
+// Stopped (as Ctrl-C does) half way through casting its form factors, a solve keeps the rows
+// cast so far in the cache; solved again, it casts only the rest and gets the answer of a solve
+// never stopped, bit for bit (each row has its own random stream).
+TEST(PatchCache, RowsCastBeforeAStopAreKept) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "radiosity_patch_cache_stop";
+  fs::remove_all(dir);
+  const Scene scene = loadScene("cornell");
+  PatchRadiositySettings settings;
+  settings.targetPatches = 400;
+  settings.cacheDir = dir.string();
+  bool stopped = false;
+  try {
+    PatchRadiosity(scene, settings, [](double f) { return f < 0.5; });
+  } catch (const Cancelled& e) {
+    stopped = true;
+    EXPECT_NE(std::string(e.what()).find("rows cast so far are kept"), std::string::npos)
+        << e.what();
+  }
+  ASSERT_TRUE(stopped);
+  const PatchRadiosity resumed(scene, settings);
+  settings.cacheDir.clear();
+  const PatchRadiosity whole(scene, settings);
+  EXPECT_GT(resumed.stats().rowsReused, 0u);
+  EXPECT_LT(resumed.stats().rowsComputed, whole.stats().rowsComputed);
+  ASSERT_EQ(resumed.elementCount(), whole.elementCount());
+  for (size_t p = 0; p < whole.elementCount(); ++p)
+    ASSERT_EQ(resumed.element(p).radiosity, whole.element(p).radiosity) << "patch " << p;
+  fs::remove_all(dir);
 }
 
 // Smooth shading: radiance is continuous across patch boundaries (a point just either side of an

@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 #include <radiosity/error.h>
 #include <radiosity/path_tracer.h>
+#include <radiosity/scene_loader.h>
 #include <tbb/task_arena.h>
 
 #include <cmath>
+#include <filesystem>
 #include <glm/gtc/constants.hpp>
 
 #include "render/test_scenes.h"
@@ -240,6 +242,44 @@ TEST(PathTracer, RejectsBadSettings) {
   PathTracerSettings settings;
   settings.samplesPerPixel = 0;
   EXPECT_THROW(renderPathTraced(furnace(Color(1.0f), 0.5f), insideCube(4), settings), InputError);
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+// Stopped (as Ctrl-C does) half way, a render keeps its finished tiles; rendered again, it
+// renders only the rest and makes the picture of a render never stopped, bit for bit (each tile
+// has its own random stream). The checkpoint goes once the picture is done.
+TEST(PathTracerCheckpoint, AStoppedRenderGoesOnToTheSamePicture) {
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "radiosity_render_checkpoint";
+  std::filesystem::remove_all(dir);
+  const Scene scene = loadScene("cornell");
+  Camera camera = scene.cameraOrDefault();
+  camera.width = camera.height = 64;  // 16 tiles
+  PathTracerSettings settings;
+  settings.samplesPerPixel = 16;
+  settings.checkpointDir = dir.string();
+  bool stopped = false;
+  try {
+    renderPathTraced(scene, camera, settings, [](double f) { return f < 0.5; });
+  } catch (const Cancelled& e) {
+    stopped = true;
+    EXPECT_NE(std::string(e.what()).find("tiles finished are kept"), std::string::npos) << e.what();
+  }
+  ASSERT_TRUE(stopped);
+  const PathTracedImage resumed = renderPathTraced(scene, camera, settings);
+  EXPECT_GE(resumed.stats.resumedTiles, 4u);
+  EXPECT_LT(resumed.stats.resumedTiles, 16u);
+  EXPECT_TRUE(resumed.stats.warnings.empty());
+  settings.checkpointDir.clear();
+  const PathTracedImage whole = renderPathTraced(scene, camera, settings);
+  EXPECT_EQ(resumed.image.pixels, whole.image.pixels);
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

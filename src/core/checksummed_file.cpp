@@ -1,0 +1,34 @@
+#include "core/checksummed_file.h"
+
+#include <cstring>
+
+#include "core/atomic_file.h"
+#include "core/binary_io.h"
+
+namespace rad {
+
+std::string saveChecksummed(const std::filesystem::path& file, std::string& bytes,
+                            const std::string& what) {
+  put(bytes, checksum(bytes.data(), bytes.size()));
+  try {
+    std::filesystem::create_directories(file.parent_path());
+    writeBytesAtomically(file, bytes);
+  } catch (const std::exception& e) {
+    return what + " not written: " + e.what();
+  }
+  return "";
+}
+
+ChecksummedFile readChecksummed(const std::filesystem::path& file, const char (&magic)[8],
+                                const std::string& what) {
+  ChecksummedFile f;
+  f.exists = readWholeFile(file, f.bytes);
+  if (!f.exists) return f;
+  if (f.bytes.size() < 8 + 8 || std::memcmp(f.bytes.data(), magic, 8) != 0)
+    f.rejected = "not a " + what;
+  else if (!checksumMatches(f.bytes))
+    f.rejected = "truncated or corrupt";
+  return f;
+}
+
+}  // namespace rad
