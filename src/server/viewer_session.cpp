@@ -4,11 +4,13 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/scene_builder.h>
 #include <tbb/parallel_for.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <glm/gtx/component_wise.hpp>
 
 #include "output/gltf_export.h"
 #include "output/surface_samples.h"
@@ -194,6 +196,8 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
           if (key == "id") continue;
           if (key == "position") {
             light.position = vec3(value, at + "/position");
+            if (glm::compMax(glm::abs(light.position)) > kMaxSceneCoordinate)
+              refuse(at + "/position", fmt::format("beyond {:g} scene units", kMaxSceneCoordinate));
           } else if (key == "direction") {
             const Vec3 d = vec3(value, at + "/direction");
             if (!(glm::length(d) > 0.0f)) refuse(at + "/direction", "zero length");

@@ -163,6 +163,9 @@ TEST_F(ViewerServerTest, BadRequestsAre400AndChangeNothing) {
         R"({"lights": [{"id": 0, "position": [1, 2]}]})",
         R"({"lights": [{"id": 0, "direction": [0, 0, 0]}]})",
         R"({"lights": [{"id": 0, "intensity": [-1, 0, 0]}]})",
+        R"({"lights": [{"id": 0, "position": [1e30, 0, 0]}]})",  // beyond kMaxSceneCoordinate
+        "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[["
+        "[[[]]",
         R"({"lights": [{"id": 0, "position": [1, 2, 3]}, {"id": 0, "colour": 1}]})",
         R"({"groups": {"nope": 1}})", R"({"groups": {"light0": "dim"}})"}) {
     const auto r = post(bad);
