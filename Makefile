@@ -4,7 +4,7 @@ BUILD   := build/$(PRESET)
 JOBS    ?= $(shell nproc)
 OUT     ?= out
 
-.PHONY: all deps configure build run test bench fuzz format clean
+.PHONY: all deps configure build tool run test bench fuzz format clean
 
 all: build
 
@@ -17,7 +17,11 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
-run: build
+# Only the tool: the tests, benchmarks and fuzz targets are built by `make test` / `make bench`.
+tool: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target radiosity_app
+
+run: tool
 	@mkdir -p $(OUT)
 	@$(BUILD)/radiosity render cornell --method pathtrace --width 256 --height 256 --spp 64 \
 		-o $(OUT)/cornell_pathtrace.png --stats $(OUT)/cornell_pathtrace.json

@@ -57,30 +57,37 @@ double secondsLeft(double startFraction, double fraction, double seconds) {
 }
 
 ProgressCallback Console::progress(const std::string& label) {
-  const bool draw = !quiet_ && &err_ == &std::cerr && isatty(STDERR_FILENO);
+  // A bar redrawn in place on a terminal; in a log (stderr to a file or a pipe: a batch job, CI)
+  // a line every few seconds, so that a long run is never silent and a short one stays quiet.
+  constexpr double kSecondsBetweenLines = 5.0;
+  const bool toStderr = !quiet_ && &err_ == &std::cerr;
+  const bool draw = toStderr && isatty(STDERR_FILENO), log = toStderr && !draw;
   // The time left is judged from the first report on, so that setup before it (voxelizing, a
   // first shot) does not count as the computation's own pace.
   struct Pace {
-    Stopwatch sinceCreated;
+    Stopwatch sinceCreated, sinceLine;
     std::optional<Stopwatch> sinceFirst;
     double firstFraction = 0.0;
   };
   auto pace = std::make_shared<Pace>();
-  return [this, draw, label, pace](double fraction) {
+  return [this, draw, log, label, pace](double fraction) {
     if (!pace->sinceFirst) {
       pace->sinceFirst.emplace();
       pace->firstFraction = fraction;
     }
+    const double left = secondsLeft(pace->firstFraction, fraction, pace->sinceFirst->seconds());
+    const std::string times = durationText(pace->sinceCreated.seconds()) +
+                              (left >= 0.0 ? ", about " + durationText(left) + " left" : "");
     if (draw) {
       constexpr int kWidth = 40;
       const int filled = int(fraction * kWidth + 0.5);
-      const double left = secondsLeft(pace->firstFraction, fraction, pace->sinceFirst->seconds());
-      err_ << fmt::format("\r{} [{}{}] {:5.1f}% {:>10}{}\x1b[K", label, std::string(filled, '='),
-                          std::string(kWidth - filled, ' '), 100.0 * fraction,
-                          durationText(pace->sinceCreated.seconds()),
-                          left >= 0.0 ? ", about " + durationText(left) + " left" : "")
+      err_ << fmt::format("\r{} [{}{}] {:5.1f}% {:>10}\x1b[K", label, std::string(filled, '='),
+                          std::string(kWidth - filled, ' '), 100.0 * fraction, times)
            << std::flush;
       barDrawn_ = true;
+    } else if (log && pace->sinceLine.seconds() >= kSecondsBetweenLines) {
+      err_ << fmt::format("{}: {:.1f}% done, {}\n", label, 100.0 * fraction, times) << std::flush;
+      pace->sinceLine = Stopwatch();
     }
     return !InterruptGuard::interrupted();
   };

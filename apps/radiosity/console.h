@@ -23,7 +23,8 @@ class Console {
   void info(const std::string& message);    ///< unless --quiet
   void detail(const std::string& message);  ///< only with --verbose
   /// A progress callback for a long computation named `label`: draws a bar on stderr when it
-  /// is a terminal, and cancels (returns false) once the user has pressed Ctrl-C.
+  /// is a terminal, else prints a line every 5 s (neither with --quiet), and cancels (returns
+  /// false) once the user has pressed Ctrl-C.
   ProgressCallback progress(const std::string& label);
   /// Ends a progress bar's line.
   void finishProgress();
