@@ -1,5 +1,6 @@
 #include "core/checksummed_file.h"
 
+#include <cstdlib>
 #include <cstring>
 
 #include "core/atomic_file.h"
@@ -29,6 +30,15 @@ ChecksummedFile readChecksummed(const std::filesystem::path& file, const char (&
   else if (!checksumMatches(f.bytes))
     f.rejected = "truncated or corrupt";
   return f;
+}
+
+double checkpointIntervalSeconds() {
+  constexpr double kDefault = 30.0;
+  const char* text = std::getenv("RADIOSITY_CHECKPOINT_SECONDS");
+  if (!text) return kDefault;
+  char* end = nullptr;
+  const double seconds = std::strtod(text, &end);
+  return end != text && *end == '\0' && seconds >= 0.0 ? seconds : kDefault;
 }
 
 }  // namespace rad

@@ -23,4 +23,8 @@ struct ChecksummedFile {
 ChecksummedFile readChecksummed(const std::filesystem::path& file, const char (&magic)[8],
                                 const std::string& what);
 
+/// Seconds between two checkpoints of a long computation (the path tracer's tiles, the patch
+/// method's form-factor rows): $RADIOSITY_CHECKPOINT_SECONDS when set to a number >= 0, else 30.
+double checkpointIntervalSeconds();
+
 }  // namespace rad

@@ -1,11 +1,16 @@
 #include "patch/master_form_factor_table.h"
 
+#include <fmt/format.h>
+#include <radiosity/error.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
+#include <chrono>
 #include <unordered_map>
 
+#include "core/checksummed_file.h"
 #include "render/progress_ticker.h"
 
 namespace rad {
@@ -132,26 +137,45 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
     }
   };
   std::vector<std::vector<HemisphereHit>> hits(missing.size());
-  std::vector<uint8_t> done(missing.size(), 0);
+  std::vector<std::atomic<uint8_t>> done(missing.size());
+  // The rows cast so far (each depends on its own random stream alone) into the table, and the
+  // table to disk, so that a solve stopped or killed now casts only the rest when run again.
+  auto keepRowsCast = [&] {
+    {
+      std::lock_guard lock(mutex_);
+      for (size_t i = 0; i < missing.size(); ++i) {
+        if (!done[i].load(std::memory_order_acquire)) continue;
+        MasterRow& row = rows_[address(missing[i])];
+        if (!row.hasHits) row.hits = hits[i];
+        row.hasHits = true;
+      }
+      keepExactRows();
+    }
+    return !diskFile_.empty() && save(diskFile_, diskKey_).empty();
+  };
+  const double interval = checkpointIntervalSeconds();
+  std::mutex saving;
+  auto lastSave = std::chrono::steady_clock::now();
   ProgressTicker ticker(progress, missing.size());
   tbb::parallel_for(size_t(0), missing.size(), [&](size_t i) {
     if (ticker.cancelled()) return;
     hits[i] = hemisphereHits(mesh, caster, missing[i], rays_, seed_, streamOf(missing[i]), keyOf);
-    done[i] = 1;
+    done[i].store(1, std::memory_order_release);
     ticker.tick();
+    if (diskFile_.empty()) return;
+    std::unique_lock lock(saving, std::try_to_lock);
+    const auto now = std::chrono::steady_clock::now();
+    if (!lock.owns_lock() || std::chrono::duration<double>(now - lastSave).count() < interval)
+      return;
+    keepRowsCast();
+    lastSave = now;
   });
   if (ticker.cancelled()) {
-    // The rows cast so far are kept (each depends on its own random stream alone), so that the
-    // caller can save them and the next solve casts only the rest.
-    std::lock_guard lock(mutex_);
-    for (size_t i = 0; i < missing.size(); ++i) {
-      if (!done[i]) continue;
-      MasterRow& row = rows_[address(missing[i])];
-      if (!row.hasHits) row.hits = std::move(hits[i]);
-      row.hasHits = true;
-    }
-    keepExactRows();
-    throw Cancelled();
+    if (!keepRowsCast()) throw Cancelled();
+    throw Cancelled(
+        fmt::format("the form-factor rows cast so far are kept in {}: solved again, "
+                    "it casts only the rest",
+                    diskFile_.string()));
   }
   {
     // Another solve may have cast the same row meanwhile: the first one kept stays.
@@ -208,6 +232,12 @@ std::string MasterFormFactorTable::save(const std::filesystem::path& file,
                                         const FormFactorCacheKey& key) const {
   std::lock_guard lock(mutex_);
   return saveMasterRows(file, key, rows_);
+}
+
+void MasterFormFactorTable::keepOnDisk(const std::filesystem::path& file,
+                                       const FormFactorCacheKey& key) {
+  diskFile_ = file;
+  diskKey_ = key;
 }
 
 }  // namespace rad

@@ -52,12 +52,18 @@ class MasterFormFactorTable {
   std::string load(const std::filesystem::path& file, const FormFactorCacheKey& key);
   /// Writes every row (atomically); a failure is a warning (returned).
   std::string save(const std::filesystem::path& file, const FormFactorCacheKey& key) const;
+  /// Where rowsFor keeps the rows while it casts them (every checkpointIntervalSeconds, and
+  /// when stopped), so that a solve killed or stopped part way casts only the rest when run
+  /// again. Not called: nowhere.
+  void keepOnDisk(const std::filesystem::path& file, const FormFactorCacheKey& key);
 
  private:
   int levels_, rays_;
   uint64_t seed_;
   mutable std::mutex mutex_;
   MasterRows rows_;
+  std::filesystem::path diskFile_;
+  FormFactorCacheKey diskKey_;
 };
 
 }  // namespace rad

@@ -77,6 +77,7 @@ std::shared_ptr<PatchModel::State> meshedState(const Scene& scene,
                                              settings.formFactorRays, settings.seed);
       state->masterFile = masterTableCacheFile(settings.cacheDir, state->masterKey);
       state->masterWarning = state->master->load(state->masterFile, state->masterKey);
+      state->master->keepOnDisk(state->masterFile, state->masterKey);
       state->masterLoaded = state->master->rows() > 0;
     }
   }

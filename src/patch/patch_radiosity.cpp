@@ -110,19 +110,8 @@ FormFactorTable PatchRadiosity::Impl::loadOrComputeFormFactors(const RayCaster& 
                                                                const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   if (model->master) {
-    MasterFormFactorTable::Rows rows;
-    try {
-      rows = model->master->rowsFor(*mesh, caster, model->basePatchOf, ff, progress);
-    } catch (const Cancelled&) {
-      // The rows cast before Ctrl-C go to the cache: solved again, only the rest is cast.
-      if (model->masterFile.empty() ||
-          !model->master->save(model->masterFile, model->masterKey).empty())
-        throw;
-      throw Cancelled(
-          fmt::format("the {} form-factor rows cast so far are kept in {}: solved "
-                      "again, it casts only the rest",
-                      model->master->rows(), model->masterFile.string()));
-    }
+    MasterFormFactorTable::Rows rows =
+        model->master->rowsFor(*mesh, caster, model->basePatchOf, ff, progress);
     stats.rowsComputed = rows.computed;
     stats.rowsReused = rows.reused;
     stats.masterRows = model->master->rows();

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <optional>
 
+#include "core/checksummed_file.h"
 #include "geometry/sampling.h"
 #include "render/camera_rays.h"
 #include "render/path_integrator.h"
@@ -28,8 +29,6 @@ constexpr int kTileSize = 16;
 // Samples between two questions to the progress callback: at a million samples a pixel takes
 // seconds, and Ctrl-C must stop the render within one.
 constexpr int kSamplesBetweenPolls = 1024;
-// How often the finished tiles are written to the checkpoint while the render runs.
-constexpr double kSecondsBetweenCheckpoints = 30.0;
 
 // Renders one tile; false if it was stopped before its last pixel.
 bool renderTile(const PathIntegrator& integrator, const PinholeCamera& camera,
@@ -75,12 +74,13 @@ class TileCheckpoint {
     return count;
   }
   bool done(int tile) const { return done_[size_t(tile)].load(std::memory_order_acquire); }
-  /// Marks a tile finished; writes the checkpoint when the last one is half a minute old.
+  /// Marks a tile finished; writes the checkpoint when the last one is old enough
+  /// (checkpointIntervalSeconds).
   void finished(int tile) {
     done_[size_t(tile)].store(1, std::memory_order_release);
-    if (file_.empty() || since_.seconds() < kSecondsBetweenCheckpoints) return;
+    if (file_.empty() || since_.seconds() < interval_) return;
     std::unique_lock lock(writing_, std::try_to_lock);
-    if (!lock.owns_lock() || since_.seconds() < kSecondsBetweenCheckpoints) return;
+    if (!lock.owns_lock() || since_.seconds() < interval_) return;
     write();
     since_ = {};
   }
@@ -125,6 +125,7 @@ class TileCheckpoint {
   std::vector<std::atomic<uint8_t>> done_;
   std::mutex writing_;
   Since since_;
+  const double interval_ = checkpointIntervalSeconds();
   std::string warning_;
 };
 

@@ -25,19 +25,25 @@ struct Interrupted {
   double secondsToExit;  ///< from SIGINT to exit
 };
 
-// Starts the radiosity binary with `args` (its stderr into `stderrFile` when given); 0 on failure.
-pid_t spawnRadiosity(std::vector<std::string> args, const fs::path& stderrFile = {}) {
+// Starts the radiosity binary with `args` (its stderr into `stderrFile` when given, `extraEnv`
+// added to its environment); 0 on failure.
+pid_t spawnRadiosity(std::vector<std::string> args, const fs::path& stderrFile = {},
+                     std::string extraEnv = {}) {
   args.insert(args.begin(), std::string(RADIOSITY_BINARY_DIR) + "/radiosity");
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  std::vector<char*> env;
+  for (char** e = environ; *e; ++e) env.push_back(*e);
+  if (!extraEnv.empty()) env.push_back(extraEnv.data());
+  env.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   if (!stderrFile.empty())
     posix_spawn_file_actions_addopen(&actions, 2, stderrFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
                                      0644);
   pid_t pid = 0;
-  const int failed = ::posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const int failed = ::posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), env.data());
   posix_spawn_file_actions_destroy(&actions);
   return failed ? 0 : pid;
 }
@@ -147,6 +153,73 @@ TEST(Interrupt, AVoxelSolveKilledAfterTwoIterationsGoesOnToTheSameAnswer) {
   ASSERT_EQ(resumed.status, 0) << resumed.err;
   EXPECT_EQ(readBytes((dir / "resumed.csv").string()), readBytes((dir / "whole.csv").string()));
   EXPECT_EQ(iterationsInCheckpoint(), -1) << "the checkpoint outlived its solve";
+}
+
+// A file in `dir` whose name starts with `prefix`, or "" (a checkpoint or cache the run wrote).
+fs::path fileStartingWith(const fs::path& dir, const std::string& prefix) {
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().filename().string().rfind(prefix, 0) == 0) return it->path();
+  return {};
+}
+
+// Runs `args` with checkpoints every 0.2 s, kills it (kill -9) once `prefix`'s file is in the
+// cache folder `cache`, and returns whether it was still running then.
+bool killOnceCheckpointed(const std::vector<std::string>& args, const fs::path& cache,
+                          const std::string& prefix) {
+  const pid_t pid = spawnRadiosity(args, {}, "RADIOSITY_CHECKPOINT_SECONDS=0.2");
+  if (pid == 0) return false;
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  while (fileStartingWith(cache, prefix).empty() && Clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const bool running = ::waitpid(pid, nullptr, WNOHANG) == 0;
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  return running;
+}
+
+// The path tracer keeps its finished tiles as it goes: killed part way and run again, it renders
+// only the rest, and the picture is the uninterrupted one, byte for byte.
+TEST(Interrupt, APathTracedRenderKilledPartWayGoesOnToTheSamePicture) {
+  const fs::path dir = freshDir("interrupt_kill_pathtrace");
+  auto render = [&](const std::string& cache, const std::string& out) {
+    return std::vector<std::string>{"render",      "cornell",
+                                    "--method",    "pathtrace",
+                                    "--width",     "96",
+                                    "--height",    "96",
+                                    "--spp",       "512",
+                                    "--cache-dir", (dir / cache).string(),
+                                    "-o",          (dir / out).string()};
+  };
+  ASSERT_EQ(run(render("none", "whole.pfm")).status, 0);
+  ASSERT_TRUE(killOnceCheckpointed(render("cache", "resumed.pfm"), dir / "cache", "pathtrace-"));
+  const CliResult r = run(render("cache", "resumed.pfm"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("went on from a checkpoint"), std::string::npos) << r.err;
+  EXPECT_EQ(readBytes((dir / "resumed.pfm").string()), readBytes((dir / "whole.pfm").string()));
+  EXPECT_TRUE(fileStartingWith(dir / "cache", "pathtrace-").empty());
+}
+
+// The patch method keeps the form-factor rows it casts as it goes: killed part way and run
+// again, it casts only the rest, and the solution is the uninterrupted one, byte for byte.
+TEST(Interrupt, APatchSolveKilledWhileCastingGoesOnToTheSameAnswer) {
+  const fs::path dir = freshDir("interrupt_kill_patch");
+  auto solve = [&](const std::string& cache, const std::string& out) {
+    return std::vector<std::string>{"solve",       "cornell",
+                                    "--method",    "patch",
+                                    "--patches",   "12000",
+                                    "--ff-rays",   "512",
+                                    "--cache-dir", (dir / cache).string(),
+                                    "--export",    (dir / out).string(),
+                                    "--stats",     (dir / (out + ".json")).string()};
+  };
+  ASSERT_EQ(run(solve("none", "whole.csv")).status, 0);
+  ASSERT_TRUE(killOnceCheckpointed(solve("cache", "resumed.csv"), dir / "cache", "masterff-"));
+  ASSERT_EQ(run(solve("cache", "resumed.csv")).status, 0);
+  const nlohmann::json stats = readJson((dir / "resumed.csv.json").string())["patch"];
+  EXPECT_GT(stats["rows_reused"].get<int>(), 0);    // kept before the kill
+  EXPECT_GT(stats["rows_computed"].get<int>(), 0);  // the kill came before the last row
+  EXPECT_EQ(readBytes((dir / "resumed.csv").string()), readBytes((dir / "whole.csv").string()));
 }
 
 TEST(Interrupt, CtrlCDuringTheSweepsSaysHowToGoOn) {
