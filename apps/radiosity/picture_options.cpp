@@ -1,10 +1,14 @@
 #include "picture_options.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <radiosity/error.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <tuple>
 
 #include "command_support.h"
 #include "console.h"
@@ -32,6 +36,16 @@ void PictureOptions::addTo(CLI::App& c) {
                "Image height in pixels (default: the scene camera's; given alone, the width "
                "keeps the camera's aspect ratio)")
       ->check(CLI::Range(1l, kMaxSide));
+  c.add_option("--camera", cameraName,
+               "One of the cameras the scene's glTF files carry, by name or index (default: the "
+               "scene file's camera, else the first of them)");
+  for (auto [flag, value, what] :
+       {std::tuple{"--eye", &eye, "Camera position X,Y,Z (overrides the scene's)"},
+        std::tuple{"--target", &target, "Point the camera looks at X,Y,Z"},
+        std::tuple{"--up", &up, "Camera up direction X,Y,Z"}})
+    c.add_option(flag, *value, what)->delimiter(',')->expected(3)->check(finiteNumberIn(-1e9, 1e9));
+  c.add_option("--fov", fovDeg, "Vertical field of view in degrees (overrides the camera's)")
+      ->check(finiteNumberIn(1e-3, 179.0));
   c.add_option("--exposure", exposure, "PNG exposure in EV (radiance x 2^EV)")
       ->check(finiteNumberIn(-64.0, 64.0));
   c.add_flag("--exr-float", exrFloat, "Write 32-bit float EXR instead of half");
@@ -56,8 +70,39 @@ void PictureOptions::addTo(CLI::App& c) {
       ->check(CLI::IsMember({"exact", "harmonic", "pattern"}));
 }
 
+namespace {
+
+// The camera --camera names: a name of the files' cameras, else an index into them.
+Camera namedCamera(const Scene& scene, const std::string& name) {
+  for (const auto& [cameraName, camera] : scene.cameras)
+    if (cameraName == name) return camera;
+  const std::optional<double> index =
+      name.find_first_not_of("0123456789") == std::string::npos && !name.empty()
+          ? std::optional<double>(std::stod(name))
+          : std::nullopt;
+  if (index && *index < double(scene.cameras.size())) return scene.cameras[size_t(*index)].second;
+  std::vector<std::string> names;
+  for (const auto& [cameraName, camera] : scene.cameras) names.push_back(cameraName);
+  throw InputError("--camera " + name,
+                   names.empty() ? "the scene's files carry no camera"
+                                 : fmt::format("no such camera (the scene's: {}, or an index "
+                                               "below {})",
+                                               fmt::join(names, ", "), names.size()));
+}
+
+}  // namespace
+
 Camera PictureOptions::camera(const Scene& scene) const {
-  Camera camera = scene.cameraOrDefault();
+  Camera camera = cameraName.empty() ? scene.cameraOrDefault() : namedCamera(scene, cameraName);
+  if (eye.size() == 3) camera.eye = Vec3(eye[0], eye[1], eye[2]);
+  if (target.size() == 3) camera.target = Vec3(target[0], target[1], target[2]);
+  if (up.size() == 3) camera.up = Vec3(up[0], up[1], up[2]);
+  if (fovDeg > 0.0f) camera.fovDeg = fovDeg;
+  const Vec3 view = camera.target - camera.eye;
+  if (!(glm::length(view) > 0.0f)) throw InputError("--eye/--target", "eye and target coincide");
+  if (!(glm::length(glm::cross(glm::normalize(view), camera.up)) > 1e-6f * glm::length(camera.up)))
+    throw InputError("--up", "up is zero or parallel to the viewing direction");
+  camera.up = glm::normalize(camera.up);
   const double aspect = double(camera.width) / double(camera.height);
   if (width > 0) camera.width = width;
   if (height > 0) camera.height = height;

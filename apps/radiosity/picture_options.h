@@ -8,6 +8,7 @@
 #include <radiosity/surface_solution.h>
 
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -28,10 +29,15 @@ struct PictureOptions {
   bool exrFloat = false;
   std::string direct = "per-pixel";
   int emitterSamples = SurfaceRenderSettings{}.emitterSamples;
+  std::string cameraName;              ///< --camera: one of the files' cameras, by name or index
+  std::vector<float> eye, target, up;  ///< --eye, --target, --up: 3 numbers each, or none
+  float fovDeg = 0.0f;                 ///< --fov: the vertical field of view; 0: the camera's
 
-  /// Adds --width, --height, --exposure, --exr-float, --direct and --emitter-samples.
+  /// Adds --width, --height, --exposure, --exr-float, --direct, --emitter-samples, --camera,
+  /// --eye, --target, --up and --fov.
   void addTo(CLI::App& command);
-  /// The scene's camera at the size asked.
+  /// The scene's camera (or the one --camera names) with what the flags set, at the size asked.
+  /// Throws InputError for a camera the scene does not have or a view that is no view.
   Camera camera(const Scene& scene) const;
   /// How a radiosity solution is drawn: camera rays and seed from the method's settings.
   SurfaceRenderSettings surfaceSettings(const MethodOptions& method) const;

@@ -9,6 +9,10 @@
 
 namespace rad {
 
+/// W/sr per candela for light given in photometric units (IES files without a "scale", glTF's
+/// KHR_lights_punctual): 1/179, Radiance's luminous efficacy of uniform white light (179 lm/W).
+constexpr double kWattsPerSrPerCandela = 1.0 / 179.0;
+
 enum class PhotometricType { C = 1, B = 2, A = 3 };
 
 struct IesProfile {

@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -159,6 +160,9 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<DynamicObject> dynamicObjects;
   std::optional<Camera> camera;  ///< none: the renderer frames the scene's bounds
+  /// The cameras the geometry files carry (glTF), in file order, by name ("camera<i>" when a
+  /// file gives none). The first is `camera` unless the scene file sets one.
+  std::vector<std::pair<std::string, Camera>> cameras;
   SolverSettings solver;
   std::vector<std::string> warnings;  ///< non-fatal problems found while loading
 

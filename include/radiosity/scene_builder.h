@@ -43,7 +43,8 @@ class SceneBuilder {
   /// Records a warning about the input `file`. Warnings are shown after the scene's name, so the
   /// file is named only when it is not the scene's own (a mesh a JSON scene includes).
   void warn(const std::string& file, const std::string& text);
-  /// Finishes the scene: records the degenerate-triangle warning and returns it.
+  /// Finishes the scene: records the degenerate-triangle warning, makes the first of the files'
+  /// cameras the scene's when it has none, and returns it.
   Scene build();
 
  private:

@@ -185,6 +185,7 @@ Scene SceneBuilder::build() {
         fmt::format("dropped {} degenerate triangle{} (zero or near-zero area)",
                     degenerateTriangles_, degenerateTriangles_ == 1 ? "" : "s"));
   degenerateTriangles_ = 0;
+  if (!scene_.camera && !scene_.cameras.empty()) scene_.camera = scene_.cameras.front().second;
   return std::move(scene_);
 }
 

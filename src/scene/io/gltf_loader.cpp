@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/ies_profile.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -74,6 +75,8 @@ class GltfReader {
   std::vector<uint32_t> indices(int index, const std::string& where) const;
   uint32_t material(int index);
   void addMesh(int meshIndex, const glm::mat4& world, uint32_t object);
+  void addCamera(int cameraIndex, const glm::mat4& world, const std::string& where);
+  void addLight(const tinygltf::Node& node, const glm::mat4& world, const std::string& where);
 
   SceneBuilder& builder_;
   const tinygltf::Model& model_;
@@ -81,7 +84,7 @@ class GltfReader {
   std::vector<int64_t> materials_;
   std::vector<bool> visited_;
   int64_t defaultMaterial_ = -1;
-  size_t skippedPrimitives_ = 0, clampedMaterials_ = 0;
+  size_t skippedPrimitives_ = 0, clampedMaterials_ = 0, skippedLights_ = 0;
   bool texturesIgnored_ = false;
 };
 
@@ -273,10 +276,79 @@ void GltfReader::visit(int nodeIndex, const glm::mat4& parent, int depth) {
     if (name.empty()) name = fmt::format("node{}", nodeIndex);
     addMesh(node.mesh, world, builder_.addObject(name));
   }
+  if (node.camera >= 0) addCamera(node.camera, world, where + "/camera");
+  addLight(node, world, where + "/extensions/KHR_lights_punctual");
   for (int child : node.children) visit(child, world, depth + 1);
 }
 
+// A perspective camera looks down its node's -z with +y up (glTF 2.0, 3.10); its yfov is the
+// vertical field of view, its aspect ratio (when given) sets the height for our default width.
+void GltfReader::addCamera(int cameraIndex, const glm::mat4& world, const std::string& where) {
+  if (size_t(cameraIndex) >= model_.cameras.size())
+    throw InputError(at(where), fmt::format("camera {} does not exist", cameraIndex));
+  const tinygltf::Camera& c = model_.cameras[size_t(cameraIndex)];
+  if (c.type != "perspective") {
+    builder_.warn(path_,
+                  fmt::format("camera {} is {}, not perspective: skipped", cameraIndex, c.type));
+    return;
+  }
+  Camera camera;
+  camera.eye = Vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  camera.target = camera.eye + glm::normalize(glm::mat3(world) * Vec3(0.0f, 0.0f, -1.0f));
+  camera.up = glm::normalize(glm::mat3(world) * Vec3(0.0f, 1.0f, 0.0f));
+  const double fov = glm::degrees(c.perspective.yfov);
+  if (!(fov > 0.0 && fov < 180.0))
+    throw InputError(at(fmt::format("/cameras/{}/perspective/yfov", cameraIndex)),
+                     fmt::format("{} rad is not a field of view in (0, pi)", c.perspective.yfov));
+  camera.fovDeg = float(fov);
+  if (c.perspective.aspectRatio > 0.0)
+    camera.height = std::max(1, int(std::lround(camera.width / c.perspective.aspectRatio)));
+  const std::string name = c.name.empty() ? fmt::format("camera{}", cameraIndex) : c.name;
+  builder_.scene().cameras.emplace_back(name, camera);
+}
+
+// KHR_lights_punctual: point and spot lights at their node, shining down its -z; intensity in
+// candela, converted to W/sr as IES files are (kWattsPerSrPerCandela), colour linear RGB.
+// Directional lights have no counterpart here.
+void GltfReader::addLight(const tinygltf::Node& node, const glm::mat4& world,
+                          const std::string& where) {
+  const auto ext = node.extensions.find("KHR_lights_punctual");
+  if (ext == node.extensions.end() || !ext->second.Get("light").IsInt()) return;
+  const int index = ext->second.Get("light").GetNumberAsInt();
+  if (index < 0 || size_t(index) >= model_.lights.size())
+    throw InputError(at(where + "/light"), fmt::format("light {} does not exist", index));
+  const tinygltf::Light& l = model_.lights[size_t(index)];
+  Light light;
+  if (l.type == "point") {
+    light.type = LightType::Point;
+  } else if (l.type == "spot") {
+    light.type = LightType::Spot;
+    light.innerAngleDeg = float(glm::degrees(l.spot.innerConeAngle));
+    light.outerAngleDeg = float(glm::degrees(l.spot.outerConeAngle));
+    if (!(light.innerAngleDeg >= 0.0f && light.innerAngleDeg <= light.outerAngleDeg &&
+          light.outerAngleDeg > 0.0f && light.outerAngleDeg <= 90.0f))
+      throw InputError(at(fmt::format("/extensions/KHR_lights_punctual/lights/{}/spot", index)),
+                       "cone angles must satisfy 0 <= inner <= outer <= pi/2");
+  } else {
+    ++skippedLights_;
+    return;
+  }
+  Color color(1.0f);
+  for (int k = 0; k < 3 && l.color.size() == 3; ++k) color[k] = float(l.color[size_t(k)]);
+  light.intensity = color * float(l.intensity * kWattsPerSrPerCandela);
+  if (!(minComponent(light.intensity) >= 0.0f) || !std::isfinite(maxComponent(light.intensity)))
+    throw InputError(at(fmt::format("/extensions/KHR_lights_punctual/lights/{}", index)),
+                     "intensity and colour must be finite and >= 0");
+  light.position = Vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  light.direction = glm::normalize(glm::mat3(world) * Vec3(0.0f, 0.0f, -1.0f));
+  builder_.scene().lights.push_back(light);
+}
+
 void GltfReader::finish() {
+  if (skippedLights_ > 0)
+    builder_.warn(path_, fmt::format("skipped {} directional light{} (not supported: use a distant "
+                                     "spot or an emitting surface)",
+                                     skippedLights_, skippedLights_ == 1 ? "" : "s"));
   if (skippedPrimitives_ > 0)
     builder_.warn(path_, fmt::format("skipped {} non-triangle primitive{} (points or lines)",
                                      skippedPrimitives_, skippedPrimitives_ == 1 ? "" : "s"));

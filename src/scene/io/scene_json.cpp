@@ -39,10 +39,6 @@ std::string brief(const Json& j) {
   return fmt::format("{}... ({} bytes)", text.substr(0, kMaxShown), text.size());
 }
 
-// W/sr per candela for IES lights when the file gives no "scale": 1 / WHTEFFICACY, Radiance's
-// luminous efficacy of uniform white light, 179 lm/W (VALIDATION.md 4.6).
-constexpr double kDefaultIesScale = 1.0 / 179.0;
-
 class JsonReader {
  public:
   explicit JsonReader(std::string path) : path_(std::move(path)) {}
@@ -354,7 +350,7 @@ Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
     light.iesFile =
         resolvePath(parentDirectory(r.path()), r.string(required("file"), ptr + "/file"));
     light.ies = std::make_shared<const IesProfile>(loadIesProfile(light.iesFile));
-    double scale = kDefaultIesScale;
+    double scale = kWattsPerSrPerCandela;  // when the file gives no "scale"
     if (j.contains("scale")) {
       scale = r.number(j["scale"], ptr + "/scale");
       if (!(scale > 0.0))
