@@ -27,6 +27,7 @@ struct SolveOptions {
   explicit SolveOptions(CLI::App& command) : method(command, {"voxel", "patch"}) {}
   MethodOptions method;
   double time = 0.0;
+  float exposure = 0.0f;
   std::string scene, exportPath, stats, save;
 };
 
@@ -74,12 +75,12 @@ std::string describeRun(const VoxelRadiosityStats& v, double seconds) {
 // The lit mesh as glTF; with dynamic objects, theirs too (placed at --time, a node each).
 void exportGlbWithObjects(const SolveOptions& o, const Scene& scene,
                           const SurfaceSolution& solution) {
-  if (scene.dynamicObjects.empty()) return solution.exportGlb(o.exportPath);
+  if (scene.dynamicObjects.empty()) return solution.exportGlb(o.exportPath, o.exposure);
   LitMesh mesh = solution.litMesh();
   const Scene placed = scene.withDynamicObjectsAt(o.time);
   const RayCaster staticCaster(scene), placedCaster(placed);
   DynamicObjectLighting(placed, solution, staticCaster, placedCaster).appendObjects(mesh);
-  writeLitMeshGlb(o.exportPath, mesh);
+  writeLitMeshGlb(o.exportPath, mesh, o.exposure);
 }
 
 // Exports the solution, writes the stats and prints the summary line.
@@ -88,7 +89,7 @@ int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solut
                 const std::string& ext, const Stopwatch& total, RunStats& stats, Console& console) {
   InterruptGuard::throwIfInterrupted();
   if (ext == ".csv") solution.exportCsv(o.exportPath);
-  if (ext == ".ply") solution.exportPly(o.exportPath);
+  if (ext == ".ply") solution.exportPly(o.exportPath, o.exposure);
   if (ext == ".glb") exportGlbWithObjects(o, scene, solution);
   if (!o.save.empty()) solution.save(o.save, solvedWith(o.method.settings()));
   if (!o.stats.empty()) {
@@ -142,6 +143,11 @@ void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
                   "Per-element results: .csv (a row per voxel side or patch), .ply (a point cloud) "
                   "or .glb (the lit mesh, vertex colours = radiance: the patches, or with --method "
                   "voxel the scene's triangles cut to the voxel size)");
+  sub->add_option(
+         "--exposure", o->exposure,
+         "Vertex colours of a .glb or .ply export: radiance x 2^EV before they are clamped "
+         "to [0, 1] (the .glb says which in its extras)")
+      ->check(finiteNumberIn(-64.0, 64.0));
   sub->add_option("--save", o->save,
                   "Save the solution (.rad) for render, solve and animate --solution: no solve "
                   "again; its light groups too (--light-groups)");

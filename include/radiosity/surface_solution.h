@@ -77,11 +77,13 @@ class SurfaceSolution : public SurfaceRadiance {
   std::vector<ObjectRadiometry> objectRadiometry() const;
   /// One row per element (the CSV columns of docs/ARCHITECTURE.md), written atomically.
   void exportCsv(const std::string& path) const;
-  /// A binary PLY point cloud: position, normal, sRGB colour of B / pi, radiosity B.
-  void exportPly(const std::string& path) const;
+  /// A binary PLY point cloud: position, normal, sRGB colour of B / pi x 2^exposureEV,
+  /// radiosity B.
+  void exportPly(const std::string& path, float exposureEV = 0.0f) const;
   /// litMesh() as binary glTF 2.0 (.glb), written atomically: one node per scene object,
-  /// COLOR_0 linear and clamped to [0, 1], under an unlit white material.
-  void exportGlb(const std::string& path) const;
+  /// COLOR_0 the radiance x 2^exposureEV, linear and clamped to [0, 1], under an unlit white
+  /// material; the asset's extras say which exposure.
+  void exportGlb(const std::string& path, float exposureEV = 0.0f) const;
 };
 
 /// The largest difference of two solutions' element radiosity (any channel), relative to the

@@ -110,6 +110,7 @@ class ModelBuilder {
   }
 
   const tinygltf::Model& model() const { return model_; }
+  void setAssetExtras(tinygltf::Value extras) { model_.asset.extras = std::move(extras); }
 
  private:
   tinygltf::Model model_;
@@ -163,7 +164,7 @@ std::vector<LitMeshGroup> groupsOf(const LitMesh& mesh) {
 
 // Each group becomes a mesh of its own vertices (so that a node stands alone, e.g. when Blender
 // splits the import into objects), one primitive.
-void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& group,
+void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& group, float scale,
               std::vector<uint32_t>& local) {
   GroupVertices own = groupVertices(mesh, group, local);
   if (own.vertices.empty()) return;  // a glTF mesh needs at least one primitive
@@ -171,7 +172,7 @@ void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& gr
   for (uint32_t v : own.vertices) {
     positions.push_back(mesh.positions[v]);
     normals.push_back(unitNormal(mesh.normals[v]));
-    const Color& c = mesh.colors[v];
+    const Color c = mesh.colors[v] * scale;
     colors.emplace_back(unitColor(c.r), unitColor(c.g), unitColor(c.b));
   }
   const std::vector<uint32_t>& indices = own.indices;
@@ -194,11 +195,19 @@ void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& gr
 
 }  // namespace
 
-std::string litMeshGlb(const LitMesh& mesh) {
+std::string litMeshGlb(const LitMesh& mesh, float exposureEV) {
   validate(mesh);
   ModelBuilder builder;
   std::vector<uint32_t> local(mesh.positions.size(), ~0u);
-  for (const LitMeshGroup& group : groupsOf(mesh)) addGroup(builder, mesh, group, local);
+  const float scale = std::exp2(exposureEV);
+  for (const LitMeshGroup& group : groupsOf(mesh)) addGroup(builder, mesh, group, scale, local);
+  tinygltf::Value::Object baked;
+  baked["exposure_ev"] = tinygltf::Value(double(exposureEV));
+  baked["colors"] =
+      tinygltf::Value(std::string("linear outgoing radiance x 2^exposure_ev, clamped to [0, 1]"));
+  tinygltf::Value::Object extras;
+  extras["radiosity"] = tinygltf::Value(baked);
+  builder.setAssetExtras(tinygltf::Value(extras));
   // Serialized in memory (the buffer as the .glb's BIN chunk, compact JSON): tinygltf's file
   // writer does not check its stream, writeBytesAtomically does.
   std::ostringstream glb(std::ios::binary);
@@ -217,10 +226,10 @@ std::vector<uint32_t> glbVertexOrder(const LitMesh& mesh) {
   return order;
 }
 
-void writeLitMeshGlb(const std::string& path, const LitMesh& mesh) {
+void writeLitMeshGlb(const std::string& path, const LitMesh& mesh, float exposureEV) {
   std::string bytes;
   try {
-    bytes = litMeshGlb(mesh);
+    bytes = litMeshGlb(mesh, exposureEV);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(fmt::format("{}: {}", path, e.what()));
   }

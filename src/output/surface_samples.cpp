@@ -81,19 +81,20 @@ void writeSurfaceElementsCsv(const std::string& path, const Scene& scene,
   writeTextAtomically(path, text);
 }
 
-void writeSurfaceElementsPly(const std::string& path, std::span<const SurfaceElement> samples) {
+void writeSurfaceElementsPly(const std::string& path, std::span<const SurfaceElement> samples,
+                             float exposureEV) {
   std::string out = fmt::format(
       "ply\nformat binary_little_endian 1.0\ncomment radiosity: one vertex per surface element\n"
       "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
       "property float nx\nproperty float ny\nproperty float nz\n"
       "property uchar red\nproperty uchar green\nproperty uchar blue\n"
       "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n"
-      "end_header\n",
-      samples.size());
+      "comment colour: sRGB of radiance B / pi x 2^{} (exposure {} EV)\nend_header\n",
+      samples.size(), exposureEV, exposureEV);
   for (const SurfaceElement& s : samples) {
     for (float v : {s.position.x, s.position.y, s.position.z, s.normal.x, s.normal.y, s.normal.z})
       append(out, v);
-    for (uint8_t c : toneMapPixel(s.radiosity / glm::pi<float>(), 0.0f)) append(out, c);
+    for (uint8_t c : toneMapPixel(s.radiosity / glm::pi<float>(), exposureEV)) append(out, c);
     for (float v : {s.radiosity.r, s.radiosity.g, s.radiosity.b}) append(out, v);
   }
   writeTextAtomically(path, out);

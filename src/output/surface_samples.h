@@ -30,7 +30,8 @@ std::string objectRadiometryCsv(std::span<const ObjectRadiometry> objects);
 void writeSurfaceElementsCsv(const std::string& path, const Scene& scene,
                              std::span<const SurfaceElement> samples);
 /// Writes a binary little-endian PLY: x y z nx ny nz (float), red green blue (uchar: the sRGB
-/// tone-mapped radiance B / pi), radiosity_r/g/b (float).
-void writeSurfaceElementsPly(const std::string& path, std::span<const SurfaceElement> samples);
+/// tone-mapped radiance B / pi at `exposureEV`), radiosity_r/g/b (float).
+void writeSurfaceElementsPly(const std::string& path, std::span<const SurfaceElement> samples,
+                             float exposureEV = 0.0f);
 
 }  // namespace rad

@@ -55,12 +55,12 @@ void SurfaceSolution::exportCsv(const std::string& path) const {
   writeSurfaceElementsCsv(path, scene(), elementsOf(*this));
 }
 
-void SurfaceSolution::exportPly(const std::string& path) const {
-  writeSurfaceElementsPly(path, elementsOf(*this));
+void SurfaceSolution::exportPly(const std::string& path, float exposureEV) const {
+  writeSurfaceElementsPly(path, elementsOf(*this), exposureEV);
 }
 
-void SurfaceSolution::exportGlb(const std::string& path) const {
-  writeLitMeshGlb(path, litMesh());
+void SurfaceSolution::exportGlb(const std::string& path, float exposureEV) const {
+  writeLitMeshGlb(path, litMesh(), exposureEV);
 }
 
 double largestRadiosityDifference(const SurfaceSolution& solution,

@@ -7,6 +7,7 @@
 #include <radiosity/solver_settings.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -521,6 +522,16 @@ TEST(Cli, SolveExportsLitMeshAsGlb) {
   std::ifstream voxelIn(dir / "v.glb", std::ios::binary);
   voxelIn.read(magic, 4);
   EXPECT_EQ(std::string(magic, 4), "glTF");
+  // --exposure scales the vertex colours; the file's JSON chunk records it.
+  const CliResult exposed =
+      run({"solve", "cornell", "--method", "patch", "--patches", "300", "--ff-rays", "16",
+           "--export", glb, "--cache-dir", "none", "--exposure", "2.5", "--quiet"});
+  ASSERT_EQ(exposed.status, 0) << exposed.err;
+  const std::string bytes = readBytes(glb);
+  uint32_t jsonLength = 0;
+  std::memcpy(&jsonLength, bytes.data() + 12, 4);
+  const nlohmann::json gltf = nlohmann::json::parse(bytes.substr(20, jsonLength));
+  EXPECT_EQ(gltf["asset"]["extras"]["radiosity"]["exposure_ev"], 2.5);
 }
 
 TEST(Cli, SolveRejectsUnknownExportFormat) {

@@ -1,6 +1,8 @@
 // The lit patch mesh as binary glTF: read back with tinygltf, it must be the patch mesh (triangle
 // count, area, one node per object), carry the radiance the renderer shows as vertex colours, and
 // be written atomically like every other output.
+#include "output/gltf_export.h"
+
 #include <gtest/gtest.h>
 #include <radiosity/patch_radiosity.h>
 
@@ -11,7 +13,6 @@
 #include <limits>
 
 #include "output/glb_reader.h"
-#include "output/gltf_export.h"
 #include "patch_test_scenes.h"
 
 namespace fs = std::filesystem;
@@ -79,9 +80,9 @@ TEST(PatchGlbExport, IsTheLitPatchMesh) {
 
   ASSERT_EQ(model.scenes.size(), 1u);
   ASSERT_EQ(model.nodes.size(), scene.objects.size());
-  EXPECT_NE(std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
-                      "KHR_materials_unlit"),
-            model.extensionsUsed.end());
+  EXPECT_NE(
+      std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_materials_unlit"),
+      model.extensionsUsed.end());
   size_t triangles = 0, probes = 0;
   double area = 0.0;
   for (size_t o = 0; o < model.nodes.size(); ++o) {
@@ -127,8 +128,8 @@ TEST(PatchGlbExport, IsTheLitPatchMesh) {
       const uint32_t vertices = uint32_t(positions.size() / 3);
       for (uint32_t v = 0; v < vertices; v += 13, ++probes) {
         const bool front = glm::dot(at(normals, v), face.normal) > 0.0f;
-        const Color expected = solution.radiance({at(positions, v), face.normal,
-                                                  face.firstTriangle, front});
+        const Color expected =
+            solution.radiance({at(positions, v), face.normal, face.firstTriangle, front});
         const Color clamped = glm::clamp(expected, Color(0.0f), Color(1.0f));
         // The two-sided wall's back faces out of the closed room: no light reaches it.
         if (!front) {
@@ -150,7 +151,8 @@ TEST(PatchGlbExport, IsTheLitPatchMesh) {
 TEST(PatchGlbExport, MissingDirectoryThrowsAndLeavesNothing) {
   const SolvedRoom room(0.25f);
   const fs::path dir = freshDir("radiosity_glb_missing");
-  EXPECT_THROW(room.solution.exportGlb((dir / "missing" / "room.glb").string()), std::runtime_error);
+  EXPECT_THROW(room.solution.exportGlb((dir / "missing" / "room.glb").string()),
+               std::runtime_error);
   EXPECT_FALSE(fs::exists(dir / "missing"));
   EXPECT_TRUE(filesIn(dir).empty());
 }
@@ -180,6 +182,27 @@ TEST(LitMeshGlb, ClampsColoursAndRefusesBadInput) {
   mesh.indices = {0, 1, 3};
   EXPECT_THROW(writeLitMeshGlb((dir / "bad.glb").string(), mesh), std::invalid_argument);
   EXPECT_FALSE(fs::exists(dir / "bad.glb"));
+}
+
+// A bake in physical units is often far below 1 (radiance in W/(sr m^2) of a dim room): the
+// exposure scales it by 2^EV before the clamp, and the file says which it was.
+TEST(LitMeshGlb, ExposureScalesTheColoursAndIsRecorded) {
+  const fs::path dir = freshDir("radiosity_glb_exposure");
+  LitMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  mesh.normals = {Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(0, 0, 1)};
+  mesh.colors = {Color(0.01f), Color(0.05f, 0.02f, 0.2f), Color(0.125f)};
+  mesh.indices = {0, 1, 2};
+  writeLitMeshGlb((dir / "t.glb").string(), mesh, 3.0f);
+  const tinygltf::Model model = loadGlb(dir / "t.glb");
+  const tinygltf::Primitive& prim = model.meshes.at(0).primitives.at(0);
+  const auto colors = readAccessor<float>(model, prim.attributes.at("COLOR_0"), 3);
+  const std::vector<float> expected = {0.08f, 0.08f, 0.08f, 0.4f, 0.16f, 1.0f, 1.0f, 1.0f, 1.0f};
+  ASSERT_EQ(colors.size(), expected.size());
+  for (size_t k = 0; k < colors.size(); ++k) EXPECT_NEAR(colors[k], expected[k], 1e-6) << k;
+  const tinygltf::Value& baked = model.asset.extras.Get("radiosity");
+  ASSERT_TRUE(baked.IsObject());
+  EXPECT_EQ(baked.Get("exposure_ev").GetNumberAsDouble(), 3.0);
 }
 
 }  // namespace
