@@ -179,6 +179,24 @@ TEST_F(HostileInput, CountsAskingForMoreThanTheFileHoldsAllocateNothing) {
                 {"huge.ies:", "expected 10000000000 candela values (100000 x 100000), found 4"});
 }
 
+// Found by fuzzing: a vertical angle of 950 degrees (and horizontal ones of 15000) parsed, and
+// the profile's flux came out negative. Angles must lie in their photometric type's range.
+TEST_F(HostileInput, IesAnglesOutsideTheirTypesRangeAreRefused) {
+  auto profile = [&](int type, const std::string& angles) {
+    std::ostringstream text;
+    text << "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1.0 2 2 " << type << " 1 0.3 0.4 0\n1 1 100\n"
+         << angles << "1 2 3 4\n";
+    return test::writeFile(dir_ / "angles.ies", text.str());
+  };
+  expectMessage(errorOf([&] { loadIesProfile(profile(1, "0 950\n0 90\n")); }),
+                {"angles.ies:", "vertical angles must lie in [0, 180]", "950"});
+  expectMessage(errorOf([&] { loadIesProfile(profile(1, "0 90\n0 15000\n")); }),
+                {"horizontal angles must lie in [0, 360]", "15000"});
+  expectMessage(errorOf([&] { loadIesProfile(profile(3, "-90 120\n0 90\n")); }),
+                {"vertical angles must lie in [-90, 90]"});
+  EXPECT_EQ(errorOf([&] { loadIesProfile(profile(1, "0 180\n0 360\n")); }), "(no error)");
+}
+
 TEST_F(HostileInput, DevicesAreReadNoFurtherThanTheLimit) {
   // `mtllib /dev/zero` read until memory ran out; now the read stops at the MTL limit.
   const std::string obj =

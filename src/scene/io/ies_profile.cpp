@@ -154,6 +154,15 @@ void requireAscending(const std::vector<double>& a, const std::string& what,
 }
 
 // Cell of `x` in ascending `nodes`: indices i0, i1 and weight t of i1. False when outside.
+void requireWithin(const std::vector<double>& a, double lo, double hi, const std::string& what,
+                   const std::string& at) {
+  for (const double v : a)
+    if (!(v >= lo - kAngleEps && v <= hi + kAngleEps))
+      throw InputError(
+          at, fmt::format("{} must lie in [{}, {}] for this photometric type, found {}", what, lo,
+                          hi, v));
+}
+
 bool locate(const std::vector<double>& nodes, double x, size_t& i0, size_t& i1, double& t) {
   if (nodes.size() == 1) {
     i0 = i1 = 0;
@@ -335,10 +344,16 @@ void parseTable(NumberStream& numbers, IesProfile& p) {
   const bool old = p.version == "LM-63-1986" || p.version == "IESNA91";
   if (old && field12 > 0.0) p.ballastFactor *= field12;
   numbers.one("input watts");
+  // Type C: V from the nadir [0, 180], H around the axis [0, 360]; types A and B: [-90, 90] both.
+  const bool typeC = p.type == PhotometricType::C;
   p.verticalAngles = numbers.block(size_t(nv), "vertical angles");
   requireAscending(p.verticalAngles, "vertical angles", numbers.lineOfPrevious());
+  requireWithin(p.verticalAngles, typeC ? 0.0 : -90.0, typeC ? 180.0 : 90.0, "vertical angles",
+                numbers.lineOfPrevious());
   p.horizontalAngles = numbers.block(size_t(nh), "horizontal angles");
   requireAscending(p.horizontalAngles, "horizontal angles", numbers.lineOfPrevious());
+  requireWithin(p.horizontalAngles, typeC ? 0.0 : -90.0, typeC ? 360.0 : 90.0, "horizontal angles",
+                numbers.lineOfPrevious());
   const size_t total = size_t(nv) * size_t(nh);
   p.candela = numbers.block(total, fmt::format("candela values ({} x {})", nh, nv));
   numbers.expectEnd(fmt::format("the {} candela values", total));
@@ -346,6 +361,8 @@ void parseTable(NumberStream& numbers, IesProfile& p) {
     if (c < 0.0)
       throw InputError(p.source, fmt::format("negative candela value {} in the table", c));
     c *= p.candelaMultiplier * p.ballastFactor;
+    if (!std::isfinite(c))
+      throw InputError(p.source, "candela times multiplier and ballast factor is not finite");
   }
 }
 
