@@ -17,12 +17,16 @@ namespace rad {
 /// origins near 1e18). A kilometre-wide site in millimetres is 1e6.
 constexpr float kMaxSceneCoordinate = 1e9f;
 
+/// The reflectance a file's 1 becomes: the solvers need rho below 1.
+constexpr float kMaxReflectance = 0.999f;
+
 class SceneBuilder {
  public:
   explicit SceneBuilder(std::string sceneName);
 
-  /// Adds a material; throws InputError naming it if a component of rho or emission is not
-  /// finite (or rho is outside [0, 1)).
+  /// Adds a material; a reflectance of 1 (a factor of 1, a white texture) is taken as
+  /// kMaxReflectance, counted in one warning of build(). Throws InputError naming the material if a
+  /// component of rho or emission is not finite, or rho is outside [0, 1].
   uint32_t addMaterial(Material material);
   uint32_t addObject(std::string name);
   /// Adds a vertex; `where` names the source (file:line) for the error if it is NaN, infinite or
@@ -56,6 +60,7 @@ class SceneBuilder {
 
   Scene scene_;
   size_t degenerateTriangles_ = 0;
+  size_t clampedMaterials_ = 0;  ///< materials whose reflectance of 1 became kMaxReflectance
 };
 
 }  // namespace rad

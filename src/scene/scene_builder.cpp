@@ -31,9 +31,15 @@ SceneBuilder::SceneBuilder(std::string sceneName) {
 }
 
 uint32_t SceneBuilder::addMaterial(Material material) {
+  // A white texture or a factor of 1 is common in files; the solvers need rho below 1 (a closed
+  // room of rho 1 never converges), so 1 is taken as 0.999 and counted for one warning.
+  if (maxComponent(material.rho) == 1.0f) {
+    material.rho = glm::min(material.rho, Color(kMaxReflectance));
+    ++clampedMaterials_;
+  }
   for (int c = 0; c < 3; ++c) {
     if (!(material.rho[c] >= 0.0f && material.rho[c] < 1.0f))
-      throw InputError(scene_.name, fmt::format("material {}: rho {} must be in [0, 1)",
+      throw InputError(scene_.name, fmt::format("material {}: rho {} must be in [0, 1]",
                                                 quotedToken(material.name), material.rho[c]));
     if (!(material.emission[c] >= 0.0f && std::isfinite(material.emission[c])))
       throw InputError(scene_.name, fmt::format("material {}: emission {} must be finite and >= 0",
@@ -185,6 +191,12 @@ Scene SceneBuilder::build() {
         fmt::format("dropped {} degenerate triangle{} (zero or near-zero area)",
                     degenerateTriangles_, degenerateTriangles_ == 1 ? "" : "s"));
   degenerateTriangles_ = 0;
+  if (clampedMaterials_ > 0)
+    scene_.warnings.push_back(fmt::format(
+        "{} material{} of reflectance 1 taken as {} (rho must be below 1: light would never "
+        "fade in a closed room)",
+        clampedMaterials_, clampedMaterials_ == 1 ? "" : "s", kMaxReflectance));
+  clampedMaterials_ = 0;
   if (!scene_.camera && !scene_.cameras.empty()) scene_.camera = scene_.cameras.front().second;
   return std::move(scene_);
 }

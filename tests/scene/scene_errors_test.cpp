@@ -73,8 +73,8 @@ TEST(SceneErrors, MalformedMtlStatements) {
   };
   const Case cases[] = {
       {"newmtl a\nKd 0.5 abc 0.5\n", "m.mtl:2", "abc"},
-      {"newmtl a\n\nKd 1.0 0.5 0.5\n", "m.mtl:3", "must be in [0, 1)"},
-      {"newmtl a\nKd 0.5 -0.1 0.5\n", "m.mtl:2", "must be in [0, 1)"},
+      {"newmtl a\n\nKd 1.5 0.5 0.5\n", "m.mtl:3", "must be in [0, 1]"},
+      {"newmtl a\nKd 0.5 -0.1 0.5\n", "m.mtl:2", "must be in [0, 1]"},
       {"newmtl a\nKe -1 0 0\n", "m.mtl:2", ">= 0"},
       {"newmtl a\nKd 0.5 0.5\n", "m.mtl:2", "1 or 3"},
       {"newmtl a\nNs x\n", "m.mtl:2", "'x'"},
@@ -114,8 +114,27 @@ TEST(SceneErrors, GltfBaseColorOneIsClampedWithAWarning) {
   EXPECT_NEAR(s.materials.at(0).rho.r, 0.999f, 1e-6);
   EXPECT_EQ(s.objects.at(0).name, "node0");
   size_t hits = 0;
-  for (const std::string& w : s.warnings) hits += w.find("'paper'") != std::string::npos;
+  for (const std::string& w : s.warnings)
+    hits += w.find("1 material of reflectance 1 taken as 0.999") != std::string::npos;
   EXPECT_EQ(hits, 1u);
+}
+
+// OBJ's Kd 1 is taken as glTF's baseColorFactor 1 is: 0.999, with one warning that counts them.
+TEST(SceneErrors, ObjKdOneIsClampedAsGltfsIs) {
+  const auto dir = test::scratchDir("obj_clamp");
+  test::writeFile(dir / "white.mtl",
+                  "newmtl paper\nKd 1 1 1\nnewmtl chalk\nKd 1 0.9 0.9\n"
+                  "newmtl grey\nKd 0.5 0.5 0.5\n");
+  const Scene s = loadScene(
+      test::writeFile(dir / "white.obj",
+                      "mtllib white.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+                      "usemtl paper\nf 1 2 3\nusemtl chalk\nf 2 4 3\nusemtl grey\nf 1 3 4\n"));
+  size_t clamped = 0, warned = 0;
+  for (const Material& m : s.materials) clamped += maxComponent(m.rho) == 0.999f;
+  for (const std::string& w : s.warnings)
+    warned += w.find("2 materials of reflectance 1 taken as 0.999") != std::string::npos;
+  EXPECT_EQ(clamped, 2u);
+  EXPECT_EQ(warned, 1u);
 }
 
 class JsonErrors : public testing::Test {

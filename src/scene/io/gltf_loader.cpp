@@ -84,7 +84,7 @@ class GltfReader {
   std::vector<int64_t> materials_;
   std::vector<bool> visited_;
   int64_t defaultMaterial_ = -1;
-  size_t skippedPrimitives_ = 0, clampedMaterials_ = 0, skippedLights_ = 0;
+  size_t skippedPrimitives_ = 0, skippedLights_ = 0;
   bool texturesIgnored_ = false;
 };
 
@@ -190,13 +190,7 @@ uint32_t GltfReader::material(int index) {
     if (!(v >= 0.0 && v <= 1.0))
       throw InputError(at(where + "/pbrMetallicRoughness/baseColorFactor"),
                        fmt::format("component {} out of range [0, 1]", v));
-    mat.rho[c] = float(std::min(v, 0.999));
-  }
-  if (maxComponent(mat.rho) >= 0.999f) {
-    ++clampedMaterials_;
-    builder_.warn(path_, fmt::format("material '{}' has baseColorFactor 1.0; rho clamped to 0.999 "
-                                     "(rho must be < 1)",
-                                     mat.name));
+    mat.rho[c] = float(v);  // 1 becomes kMaxReflectance in SceneBuilder::addMaterial
   }
   double strength = 1.0;
   if (auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end()) {

@@ -167,8 +167,8 @@ std::set<std::string> scanMtl(const std::string& text, const std::string& path) 
       if (c.size() == 2)
         throw InputError(where, fmt::format("'{}' has 2 values, expected 1 or 3 (r g b)", key));
       for (double x : c) {
-        if (key == "Kd" && !(x >= 0.0 && x < 1.0))
-          throw InputError(where, fmt::format("rho (Kd) {} of material {} must be in [0, 1)", x,
+        if (key == "Kd" && !(x >= 0.0 && x <= 1.0))
+          throw InputError(where, fmt::format("rho (Kd) {} of material {} must be in [0, 1]", x,
                                               quotedToken(current)));
         if (key == "Ke" && x < 0.0)
           throw InputError(where, fmt::format("emission (Ke) {} of material {} must be >= 0", x,
