@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "command_support.h"
+#include "core/cache_directory.h"
 #include "lighting/dynamic_objects.h"
 
 namespace rad::cli {
@@ -146,13 +147,14 @@ void MethodOptions::resolveFromSolution(const Scene& scene, const std::string& p
   SolutionFileInfo file = readSolutionFileInfo(path);
   SolverSettings run;  // the run's own: where the cache is, how pictures sample
   for (const auto& [name, value] : given().values) {
-    if (name == "cache_dir" || name == "spp" || name == "seed")
+    if (name == "cache_dir" || name == "cache_max_mb" || name == "spp" || name == "seed")
       run.values[name] = value;
     else if (name != "method" || std::get<std::string>(value) != file.method)
       console.warn(fmt::format("{} ignored: the solution in {} was solved with its own settings",
                                findSolverSetting(name)->flag(), path));
   }
   file.settings.values.erase("cache_dir");
+  file.settings.values.erase("cache_max_mb");
   file.settings.values["method"] = file.method;
   settings_ = resolveMethodSettings(file.settings, run, path);
   if (std::find(methods_.begin(), methods_.end(), settings_.method) == methods_.end())
@@ -184,6 +186,18 @@ void MethodOptions::resolve(const Scene& scene, const std::string& solutionFile,
     resolve(scene);
   else
     resolveFromSolution(scene, solutionFile, console);
+  trimCache(console);
+}
+
+void MethodOptions::trimCache(Console& console) const {
+  if (settings_.patch.cacheDir.empty()) return;
+  const uint64_t removed =
+      trimCacheDirectory(settings_.patch.cacheDir, uint64_t(settings_.cacheMaxMegabytes) << 20);
+  if (removed > 0)
+    console.detail(fmt::format(
+        "cache {}: removed {:.1f} MB of its least recently used files "
+        "(--cache-max-mb {})",
+        settings_.patch.cacheDir, double(removed) / (1 << 20), settings_.cacheMaxMegabytes));
 }
 
 SolverSettings solvedWith(const MethodSettings& settings) {

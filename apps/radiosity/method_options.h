@@ -40,8 +40,11 @@ class MethodOptions {
   /// "solver" values are not for this run, and are warned of; --cache-dir, --spp and --seed,
   /// which are the run's own, and --group still apply). Throws InputError for a bad file.
   void resolveFromSolution(const Scene& scene, const std::string& path, Console& console);
-  /// resolveFromSolution when `solutionFile` is set (--solution), else resolve.
+  /// resolveFromSolution when `solutionFile` is set (--solution), else resolve; then keeps the
+  /// cache directory under --cache-max-mb (trimCache).
   void resolve(const Scene& scene, const std::string& solutionFile, Console& console);
+  /// Removes the cache directory's least recently used files beyond --cache-max-mb.
+  void trimCache(Console& console) const;
 
   const std::string& method() const { return settings_.method; }
   const MethodSettings& settings() const { return settings_; }

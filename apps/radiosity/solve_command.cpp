@@ -115,7 +115,7 @@ int runSolve(SolveOptions& o, Console& console) {
   checkOutputPath("--stats", o.stats);
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
-  o.method.resolve(scene);
+  o.method.resolve(scene, "", console);
   InterruptGuard interruptible;
   const SolveReport report{stats, !o.stats.empty()};
   // A saved voxel solution keeps the first shot apart, for pictures with per-pixel direct light.

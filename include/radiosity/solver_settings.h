@@ -20,6 +20,8 @@ namespace rad {
 /// The settings of every method, and which method runs.
 struct MethodSettings {
   std::string method = "pathtrace";  ///< "pathtrace", "patch" or "voxel"
+  /// The cache directory's cap (patch.cacheDir: form-factor tables and checkpoints), in MB.
+  int64_t cacheMaxMegabytes = 4096;
   PathTracerSettings pathTracer;
   VoxelRadiositySettings voxel;
   PatchRadiositySettings patch;

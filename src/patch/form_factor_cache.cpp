@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "core/binary_io.h"
+#include "core/cache_directory.h"
 #include "core/checksummed_file.h"
 #include "scene/scene_hash.h"
 
@@ -185,6 +186,7 @@ MasterRowsLoad loadMasterRows(const std::filesystem::path& file, const FormFacto
                                 kMaxCachedRowSum));
   }
   result.rows = std::move(rows);
+  touchCacheFile(file);
   return result;
 }
 
@@ -259,6 +261,7 @@ FormFactorCacheLoad loadFormFactorTable(const std::filesystem::path& file,
     return reject(bad);
   result.table =
       FormFactorTable::fromArrays(std::move(offsets), std::move(columns), std::move(values), loss);
+  touchCacheFile(file);
   return result;
 }
 

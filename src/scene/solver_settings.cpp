@@ -196,6 +196,18 @@ std::vector<SettingDeclaration> declare() {
     m.voxel.checkpointDir = m.patch.cacheDir;
     m.pathTracer.checkpointDir = m.patch.cacheDir;
   };
+  {
+    SettingDeclaration cap;
+    cap.name = "cache_max_mb";
+    cap.type = SettingType::Integer;
+    cap.group = kGeneral;
+    cap.help = "The cache directory's cap: its least recently used files go first (MB)";
+    cap.min = 1;
+    cap.max = 1e9;
+    cap.apply = [](M& m, const SettingValue& v) { m.cacheMaxMegabytes = std::get<int64_t>(v); };
+    cap.current = [](const M& m) { return SettingValue(m.cacheMaxMegabytes); };
+    d.push_back(cap);
+  }
   d.push_back(choice("solver", kPatch, &M::patch, &P::solver, kPatchSolverNames, "Linear solver"));
   d.push_back(field("max_iterations", kPatch, &M::patch, &P::maxIterations,
                     "Solver sweeps at most (progressive: shots / patches)", 1, 1e8));

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <chrono>
 #include <thread>
 
 #include "cli_run.h"
@@ -115,6 +116,33 @@ TEST(BadSettings, MoreThreadsThanCoresAreClampedWithAWarning) {
   const CliResult r = run(args);
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(has(r.err, "--threads 100000 is more than the")) << r.err;
+}
+
+}  // namespace
+}  // namespace rad::test
+
+namespace rad::test {
+namespace {
+
+// The cache directory stays under --cache-max-mb: a run removes its least recently used files
+// (here three old 600 KB tables of other scenes) before it adds its own.
+TEST(CacheCap, ARunKeepsTheCacheUnderItsCap) {
+  const fs::path dir = freshDir("cache_cap");
+  const fs::path cache = dir / "cache";
+  fs::create_directories(cache);
+  const auto old = fs::file_time_type::clock::now() - std::chrono::hours(1);
+  for (const char* name : {"masterff-1.bin", "masterff-2.bin", "masterff-3.bin"}) {
+    std::ofstream(cache / name) << std::string(600 << 10, 'x');
+    fs::last_write_time(cache / name, old);
+  }
+  fs::last_write_time(cache / "masterff-3.bin", old + std::chrono::minutes(30));
+  const CliResult r = run({"solve", "cornell", "--method", "patch", "--patches", "100",
+                           "--cache-dir", cache.string(), "--cache-max-mb", "1"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(cache / "masterff-1.bin"));
+  EXPECT_FALSE(fs::exists(cache / "masterff-2.bin"));
+  EXPECT_TRUE(fs::exists(cache / "masterff-3.bin"));  // the most recently used of them
+  EXPECT_EQ(run({"solve", "cornell", "--cache-max-mb", "0"}).status, 2);
 }
 
 }  // namespace
