@@ -6,14 +6,12 @@
 // transforms in nodes (matrix in .gltf; TRS with a parent node in .glb), the OBJ has them baked.
 // The .glb uses uint8/uint32 indices and a strided POSITION view; both have a non-indexed mesh.
 
-#include "scene_summary.h"
-
+#include <gtest/gtest.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
 
 #include "scene/io/obj_loader.h"
-
-#include <gtest/gtest.h>
+#include "scene_summary.h"
 
 namespace rad {
 namespace {
@@ -21,12 +19,12 @@ namespace {
 using test::kData;
 
 // Reference values computed by hand from the description above.
-constexpr double kRoomArea = 2 * 12 + 2 * 16 + 2 * 12;          // walls, floor+ceiling, ends
+constexpr double kRoomArea = 2 * 12 + 2 * 16 + 2 * 12;  // walls, floor+ceiling, ends
 constexpr double kCrateArea = 6 * 0.8 * 0.8;
-constexpr double kBracketArea = 2 * 0.51 + 4.0 * 0.5;           // L area 0.51, perimeter 4.0
+constexpr double kBracketArea = 2 * 0.51 + 4.0 * 0.5;  // L area 0.51, perimeter 4.0
 constexpr double kCrateVolume = 0.8 * 0.8 * 0.8;
 constexpr double kBracketVolume = 0.51 * 0.5;
-constexpr double kRoomVolume = -(4.0 * 3.0 * 4.0);              // faces point inward
+constexpr double kRoomVolume = -(4.0 * 3.0 * 4.0);  // faces point inward
 
 void expectSmallScene(const Scene& s) {
   const auto objects = test::summarize(s, 1e-4);
@@ -40,13 +38,15 @@ void expectSmallScene(const Scene& s) {
   EXPECT_NEAR(objects.at("crate").volume, kCrateVolume, 1e-5);
   EXPECT_NEAR(objects.at("bracket").volume, kBracketVolume, 1e-5);
   // The crate's +x face turned 30 degrees about y: normal (cos 30, 0, -sin 30).
-  EXPECT_NEAR(objects.at("crate").areaByNormal.at(test::key(Vec3(0.866025f, 0, -0.5f), 1e-3)),
-              0.64, 1e-5);
+  EXPECT_NEAR(objects.at("crate").areaByNormal.at(test::key(Vec3(0.866025f, 0, -0.5f), 1e-3)), 0.64,
+              1e-5);
   EXPECT_NEAR(objects.at("light").areaByNormal.at(test::key(Vec3(0, -1, 0), 1e-3)), 1.0, 1e-5);
   EXPECT_EQ(objects.at("crate").positions.size(), 8u);
   EXPECT_EQ(objects.at("bracket").positions.size(), 12u);
-  EXPECT_TRUE(objects.at("crate").positions.count(test::key(Vec3(1.0f, 0.9f, 1.0f) +
-      Vec3(0.4f * 0.866025f + 0.4f * 0.5f, 0, -0.4f * 0.5f + 0.4f * 0.866025f), 1e-4)));
+  EXPECT_TRUE(objects.at("crate").positions.count(
+      test::key(Vec3(1.0f, 0.9f, 1.0f) +
+                    Vec3(0.4f * 0.866025f + 0.4f * 0.5f, 0, -0.4f * 0.5f + 0.4f * 0.866025f),
+                1e-4)));
   const Material& light = *objects.at("light").material;
   EXPECT_NEAR(light.emission.r, 10.0f, 1e-5);
   EXPECT_NEAR(light.rho.g, 0.5f, 1e-6);
@@ -96,15 +96,15 @@ TEST(SceneFiles, ObjGltfAndGlbAgree) {
 TEST(SceneFiles, GltfSkipsNonTrianglePrimitivesWithOneWarning) {
   const Scene gltf = loadScene(kData + "small/small.gltf");
   size_t hits = 0;
-  for (const std::string& w : gltf.warnings) hits += w.find("skipped 1 non-triangle") != std::string::npos;
+  for (const std::string& w : gltf.warnings)
+    hits += w.find("skipped 1 non-triangle") != std::string::npos;
   EXPECT_EQ(hits, 1u);
   // Shown after the scene's name, a warning names its file only when it is not the scene's own.
   for (const std::string& w : gltf.warnings)
     EXPECT_EQ(w.find("small.gltf"), std::string::npos) << w;
   const auto dir = test::scratchDir("warnings");
   const std::string json = test::writeFile(
-      dir / "includes.json",
-      R"({"geometry": [{"file": ")" + kData + R"(small/small.gltf"}]})");
+      dir / "includes.json", R"({"geometry": [{"file": ")" + kData + R"(small/small.gltf"}]})");
   const Scene composed = loadScene(json);
   ASSERT_EQ(composed.warnings.size(), gltf.warnings.size());
   for (const std::string& w : composed.warnings)
@@ -159,7 +159,8 @@ TEST(SceneFiles, JsonSceneComposesFilesLightsCameraSolver) {
 TEST(SceneFiles, ConcavePolygonTriangulationCoversItsArea) {
   // A U shape (8 corners, CCW about +y): 3 x 2 minus the 1 x 1.5 notch = 4.5 (shoelace).
   const auto dir = test::scratchDir("concave");
-  const std::string path = test::writeFile(dir / "u.obj",
+  const std::string path = test::writeFile(
+      dir / "u.obj",
       "v 0 0 0\nv 0 0 -2\nv 3 0 -2\nv 3 0 0\nv 2 0 0\nv 2 0 -1.5\nv 1 0 -1.5\nv 1 0 0\n"
       "f 1 8 7 6 5 4 3 2\n");
   const Scene s = loadScene(path);
@@ -176,12 +177,13 @@ TEST(SceneFiles, ConcavePolygonTriangulationCoversItsArea) {
 
 TEST(SceneFiles, DegenerateTrianglesDroppedWithOneCountingWarning) {
   const auto dir = test::scratchDir("degenerate");
-  const std::string path = test::writeFile(dir / "d.obj",
-      "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 4\nf 1 2 3\nf 2 3 1\n");
+  const std::string path = test::writeFile(
+      dir / "d.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 4\nf 1 2 3\nf 2 3 1\n");
   const Scene s = loadScene(path);
   EXPECT_EQ(s.triangles.size(), 1u);
   size_t hits = 0;
-  for (const std::string& w : s.warnings) hits += w.find("dropped 2 degenerate") != std::string::npos;
+  for (const std::string& w : s.warnings)
+    hits += w.find("dropped 2 degenerate") != std::string::npos;
   EXPECT_EQ(hits, 1u);
   // No MTL: the default grey material, announced once.
   EXPECT_EQ(s.materials.at(0).rho, Color(0.5f));
@@ -201,6 +203,33 @@ TEST(SceneFiles, ObjTransformAppliesAndMirroringKeepsFronts) {
   EXPECT_NEAR(objects.at("bracket").volume, 2.0 * kBracketVolume, 1e-5);
   EXPECT_NEAR(objects.at("room").volume, 2.0 * kRoomVolume, 1e-3);
   EXPECT_NEAR(s.bounds().min.x, -3.0f, 1e-5);
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+// The sample scenes the README's examples use load as they are meant to: the office with its
+// three light groups, an animated light and a moving chair; the glTF room with its lamp, spot and
+// cameras. (The glTF room's one warning: its test data keeps a line primitive.)
+TEST(SampleScenes, TheReadmesScenesLoadWithTheirLightsAndCameras) {
+  const std::string dir = std::string(RADIOSITY_SOURCE_DIR) + "/scenes/";
+  const Scene office = loadScene(dir + "office.json");
+  EXPECT_TRUE(office.warnings.empty());
+  ASSERT_EQ(office.lights.size(), 3u);
+  EXPECT_EQ(office.lights[0].group, "desk");
+  EXPECT_EQ(office.lights[1].group, "ceiling");
+  EXPECT_TRUE(office.lights[2].animated());
+  ASSERT_EQ(office.dynamicObjects.size(), 1u);
+  EXPECT_TRUE(office.hasEmitters());
+  ASSERT_TRUE(office.camera);
+  const Scene room = loadScene(dir + "lamp_room.gltf");
+  EXPECT_EQ(room.lights.size(), 2u);
+  ASSERT_EQ(room.cameras.size(), 2u);
+  EXPECT_EQ(room.cameras[1].first, "corner");
+  EXPECT_EQ(room.warnings.size(), 1u);
 }
 
 }  // namespace
