@@ -127,7 +127,10 @@ void expectSame(const std::vector<ObjectRadiometry>& a, const std::vector<Object
 }
 
 void expectSecondRunLoadsAndBadFilesRecomputed(PatchFormFactorEstimator estimator) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "radiosity_patch_cache";
+  // One folder per test: ctest runs the two estimators' tests in parallel.
+  const fs::path dir = fs::path(::testing::TempDir()) /
+                       ("radiosity_patch_cache_" +
+                        std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
   fs::remove_all(dir);
   const Scene scene = smallRoom();
   PatchRadiosityStats first, again;

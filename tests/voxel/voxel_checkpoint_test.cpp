@@ -27,8 +27,11 @@ VoxelRadiositySettings checkpointed(const fs::path& dir, bool lightGroups = fals
   return s;
 }
 
+// One folder per test: ctest runs tests in parallel, and two solves of the same scene and
+// settings share a checkpoint's name.
 fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("radiosity_checkpoint_" + name);
+  const std::string test = testing::UnitTest::GetInstance()->current_test_info()->name();
+  const fs::path dir = fs::path(testing::TempDir()) / ("radiosity_checkpoint_" + name + "_" + test);
   fs::remove_all(dir);
   return dir;
 }
