@@ -256,6 +256,33 @@ TEST_F(JsonErrors, MaterialOverridesAreChecked) {
   expectMessage(load(scene(R"("purple": {"rho": [0.5, 0.5, 0.5]})")), {"/materials/purple", "red"});
 }
 
+// A geometry entry's "material" gives all its faces one material: one of the files' by name, or
+// one the "materials" object defines (a file without materials, or a second copy repainted).
+TEST_F(JsonErrors, GeometryEntriesAssignMaterials) {
+  const auto dir = test::scratchDir("assign");
+  const std::string path = test::writeFile(
+      dir / "scene.json",
+      "{\"geometry\": [{\"file\": " + obj_ + "}, {\"file\": " + obj_ +
+          ", \"material\": \"marble\", \"transform\": "
+          "{\"translate\": [10, 0, 0]}}], \"materials\": {\"marble\": {\"rho\": [0.8, 0.78, 0.75],"
+          " \"two_sided\": true}}}");
+  const Scene s = loadScene(path);
+  ASSERT_EQ(s.faces.size() % 2, 0u);
+  const size_t half = s.faces.size() / 2;
+  for (size_t f = 0; f < s.faces.size(); ++f) {
+    const Material& m = s.materials[s.faces[f].material];
+    if (f < half) {
+      EXPECT_NE(m.name, "marble") << "face " << f;
+    } else {
+      EXPECT_EQ(m.name, "marble") << "face " << f;
+      EXPECT_EQ(m.rho, Color(0.8f, 0.78f, 0.75f));
+      EXPECT_TRUE(m.twoSided);
+    }
+  }
+  expectMessage(load("{\"geometry\": [{\"file\": " + obj_ + ", \"material\": \"onyx\"}]}"),
+                {"/geometry/0/material", "no material named 'onyx'"});
+}
+
 TEST(SceneErrors, RequireEmittersRejectsADarkScene) {
   const auto dir = test::scratchDir("dark");
   const std::string path =

@@ -178,13 +178,40 @@ void readMeshFile(const JsonReader& r, const Json& g, const std::string& ptr,
                                       quotedToken(ext)));
 }
 
-void readGeometry(const JsonReader& r, const Json& list, SceneBuilder& builder) {
+// A geometry entry's "material": every face its file gave takes the material of that name.
+struct MaterialAssignment {
+  size_t firstFace = 0, endFace = 0;
+  std::string material, ptr;
+};
+
+std::vector<MaterialAssignment> readGeometry(const JsonReader& r, const Json& list,
+                                             SceneBuilder& builder) {
   if (!list.is_array())
     r.fail("/geometry", fmt::format("expected an array, got {}", list.type_name()));
+  std::vector<MaterialAssignment> assignments;
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string ptr = fmt::format("/geometry/{}", i);
-    r.checkKeys(list[i], ptr, {"file", "transform"});
+    r.checkKeys(list[i], ptr, {"file", "transform", "material"});
+    const size_t firstFace = builder.scene().faces.size();
     readMeshFile(r, list[i], ptr, builder);
+    if (list[i].contains("material"))
+      assignments.push_back({firstFace, builder.scene().faces.size(),
+                             r.string(list[i]["material"], ptr + "/material"), ptr + "/material"});
+  }
+  return assignments;
+}
+
+// Gives the faces of each assignment its material (one of the files', or one "materials" made).
+void assignMaterials(const JsonReader& r, const std::vector<MaterialAssignment>& assignments,
+                     Scene& scene) {
+  for (const MaterialAssignment& a : assignments) {
+    const auto it = std::find_if(scene.materials.begin(), scene.materials.end(),
+                                 [&](const Material& m) { return m.name == a.material; });
+    if (it == scene.materials.end())
+      r.fail(a.ptr, fmt::format("no material named {} (define it under \"materials\")",
+                                quotedToken(a.material)));
+    for (size_t f = a.firstFace; f < a.endFace; ++f)
+      scene.faces[f].material = uint32_t(it - scene.materials.begin());
   }
 }
 
@@ -232,11 +259,19 @@ void readDynamicObjects(const JsonReader& r, const Json& list, Scene& scene) {
   }
 }
 
-void readMaterials(const JsonReader& r, const Json& j, Scene& scene) {
+// Each entry overrides the files' materials of its name, or, when a geometry entry assigns it
+// (`assigned`), is a material of its own (rho 0.5 unless it says).
+void readMaterials(const JsonReader& r, const Json& j, const std::set<std::string>& assigned,
+                   Scene& scene) {
   r.requireObject(j, "/materials");
-  for (const auto& [name, m] : j.items()) {
+  for (const auto& item : j.items()) {
+    const std::string& name = item.key();
+    const Json& m = item.value();
     const std::string ptr = "/materials/" + name;
     r.checkKeys(m, ptr, {"rho", "emission", "two_sided"});
+    const bool inFiles = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                     [&](const Material& mat) { return mat.name == name; });
+    if (!inFiles && assigned.count(name)) scene.materials.push_back({name, Color(0.5f)});
     bool found = false;
     for (Material& mat : scene.materials) {
       if (mat.name != name) continue;
@@ -249,7 +284,8 @@ void readMaterials(const JsonReader& r, const Json& j, Scene& scene) {
     if (!found) {
       std::set<std::string> names;
       for (const Material& mat : scene.materials) names.insert(mat.name);
-      r.fail(ptr, fmt::format("no material named {} in the geometry (available: {})",
+      r.fail(ptr, fmt::format("no material named {} in the geometry (available: {}; or assign "
+                              "it to a geometry entry with \"material\")",
                               quotedToken(name), fmt::join(names, ", ")));
     }
   }
@@ -452,9 +488,13 @@ Scene loadSceneJson(const std::string& path) {
   const JsonReader r(path);
   r.checkKeys(root, "", {"geometry", "materials", "lights", "camera", "dynamic_objects", "solver"});
   SceneBuilder builder(path);
-  if (root.contains("geometry")) readGeometry(r, root["geometry"], builder);
+  std::vector<MaterialAssignment> assignments;
+  if (root.contains("geometry")) assignments = readGeometry(r, root["geometry"], builder);
   Scene& scene = builder.scene();
-  if (root.contains("materials")) readMaterials(r, root["materials"], scene);
+  std::set<std::string> assigned;
+  for (const MaterialAssignment& a : assignments) assigned.insert(a.material);
+  if (root.contains("materials")) readMaterials(r, root["materials"], assigned, scene);
+  assignMaterials(r, assignments, scene);
   if (root.contains("dynamic_objects")) readDynamicObjects(r, root["dynamic_objects"], scene);
   if (root.contains("lights")) {
     const Json& lights = root["lights"];
