@@ -82,9 +82,8 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     return 2;
   } catch (const Cancelled& e) {
     console.finishProgress();
-    const std::string howToGoOn = e.what();
     err << "radiosity: interrupted; no output written"
-        << (howToGoOn == "cancelled" ? "" : "; " + howToGoOn) << "\n";
+        << (e.howToGoOn().empty() ? "" : "; " + e.howToGoOn()) << "\n";
     return 130;
   } catch (const std::bad_alloc&) {
     // Past the solvers' own estimates (an address-space limit, another process taking memory).

@@ -6,8 +6,8 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <charconv>
 #include <cmath>
-#include <optional>
 #include <tuple>
 
 #include "command_support.h"
@@ -76,11 +76,10 @@ namespace {
 Camera namedCamera(const Scene& scene, const std::string& name) {
   for (const auto& [cameraName, camera] : scene.cameras)
     if (cameraName == name) return camera;
-  const std::optional<double> index =
-      name.find_first_not_of("0123456789") == std::string::npos && !name.empty()
-          ? std::optional<double>(std::stod(name))
-          : std::nullopt;
-  if (index && *index < double(scene.cameras.size())) return scene.cameras[size_t(*index)].second;
+  size_t index = 0;
+  const auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), index);
+  if (ec == std::errc() && end == name.data() + name.size() && index < scene.cameras.size())
+    return scene.cameras[index].second;
   std::vector<std::string> names;
   for (const auto& [cameraName, camera] : scene.cameras) names.push_back(cameraName);
   throw InputError("--camera " + name,
@@ -98,10 +97,10 @@ Camera PictureOptions::camera(const Scene& scene) const {
   if (target.size() == 3) camera.target = Vec3(target[0], target[1], target[2]);
   if (up.size() == 3) camera.up = Vec3(up[0], up[1], up[2]);
   if (fovDeg > 0.0f) camera.fovDeg = fovDeg;
-  const Vec3 view = camera.target - camera.eye;
-  if (!(glm::length(view) > 0.0f)) throw InputError("--eye/--target", "eye and target coincide");
-  if (!(glm::length(glm::cross(glm::normalize(view), camera.up)) > 1e-6f * glm::length(camera.up)))
-    throw InputError("--up", "up is zero or parallel to the viewing direction");
+  if (const std::string why = cameraProblem(camera); !why.empty()) {
+    const size_t colon = why.find(": ");
+    throw InputError("--" + why.substr(0, colon), why.substr(colon + 2));
+  }
   camera.up = glm::normalize(camera.up);
   const double aspect = double(camera.width) / double(camera.height);
   if (width > 0) camera.width = width;

@@ -22,8 +22,14 @@ class Cancelled : public std::runtime_error {
  public:
   Cancelled() : std::runtime_error("cancelled") {}
   /// `howToGoOn` tells the user how the work continues ("goes on from iteration 3 when run
-  /// again"); what() returns it.
-  explicit Cancelled(const std::string& howToGoOn) : std::runtime_error(howToGoOn) {}
+  /// again"); what() returns it too.
+  explicit Cancelled(const std::string& howToGoOn)
+      : std::runtime_error(howToGoOn), howToGoOn_(howToGoOn) {}
+  /// How the work goes on when run again; empty when nothing of it was kept.
+  const std::string& howToGoOn() const { return howToGoOn_; }
+
+ private:
+  std::string howToGoOn_;
 };
 
 }  // namespace rad

@@ -139,6 +139,10 @@ struct Camera {
   int height = 512;
 };
 
+/// Why `camera` gives no view, naming the field at fault ("target: eye and target coincide",
+/// "up: up is zero or parallel to the viewing direction"), or "" when it gives one.
+std::string cameraProblem(const Camera& camera);
+
 /// A value of the scene's "solver" object or of a flag, checked against its declaration
 /// (solver_settings.h).
 using SettingValue = std::variant<bool, int64_t, double, std::string>;

@@ -10,6 +10,12 @@ namespace rad {
 
 std::string saveChecksummed(const std::filesystem::path& file, std::string& bytes,
                             const std::string& what) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(file, ec);
+  // writeBytesAtomically writes a device or FIFO in place (an output to /dev/stdout): a cache's
+  // FIFO would wait for a reader forever, and a directory cannot be replaced.
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    return what + " not written: " + file.string() + " is not a regular file";
   put(bytes, checksum(bytes.data(), bytes.size()));
   try {
     std::filesystem::create_directories(file.parent_path());

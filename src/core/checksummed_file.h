@@ -9,7 +9,8 @@
 namespace rad {
 
 /// Appends the checksum to `bytes` and writes them to `file` atomically, creating its directory.
-/// Returns "" or a warning ("<what> not written: <why>") instead of throwing.
+/// Returns "" or a warning ("<what> not written: <why>") instead of throwing; a `file` that
+/// exists and is not a regular file (a directory, a FIFO) is left alone with a warning.
 std::string saveChecksummed(const std::filesystem::path& file, std::string& bytes,
                             const std::string& what);
 

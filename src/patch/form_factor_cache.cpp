@@ -62,16 +62,6 @@ CacheFileStart readCacheFileStart(const std::filesystem::path& file, const char 
   return f;
 }
 
-// Appends the checksum and writes atomically; a warning if that failed.
-std::string writeCacheFile(const std::filesystem::path& file, std::string& out) {
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(file, ec);
-  // Written in place, a FIFO would wait for a reader forever; a directory cannot be replaced.
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-    return fmt::format("form-factor cache not written: {} is not a regular file", file.string());
-  return saveChecksummed(file, out, "form-factor cache");
-}
-
 // The reason a table read from disk cannot be right for `patches` rows, or "".
 std::string checkTable(const std::vector<uint64_t>& offsets, const std::vector<uint32_t>& columns,
                        const std::vector<float>& values, size_t patches) {
@@ -214,7 +204,7 @@ std::string saveMasterRows(const std::filesystem::path& file, const FormFactorCa
     write(row.hits);
     write(row.exact);
   }
-  return writeCacheFile(file, out);
+  return saveChecksummed(file, out, "form-factor cache");
 }
 
 std::filesystem::path defaultFormFactorCacheDir() {
@@ -283,7 +273,7 @@ std::string saveFormFactorTable(const std::filesystem::path& file, const FormFac
   putArray(out, table.offsetArray());
   putArray(out, table.columnArray());
   putArray(out, table.valueArray());
-  return writeCacheFile(file, out);
+  return saveChecksummed(file, out, "form-factor cache");
 }
 
 }  // namespace rad

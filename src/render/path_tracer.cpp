@@ -70,7 +70,10 @@ class TileCheckpoint {
     if (!c) return 0;
     image = std::move(c->image);
     size_t count = 0;
-    for (size_t t = 0; t < done_.size(); ++t) count += done_[t] = c->tileDone[t];
+    for (size_t t = 0; t < done_.size(); ++t) {
+      done_[t] = c->tileDone[t] != 0;
+      count += done_[t];
+    }
     return count;
   }
   bool done(int tile) const { return done_[size_t(tile)].load(std::memory_order_acquire); }

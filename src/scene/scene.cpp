@@ -1,8 +1,7 @@
 #include <radiosity/scene.h>
 
-#include <glm/gtc/constants.hpp>
-
 #include <cmath>
+#include <glm/gtc/constants.hpp>
 
 namespace rad {
 
@@ -44,6 +43,14 @@ bool Scene::hasEmitters() const {
   for (const Light& light : lights)
     if (maxComponent(light.power()) > 0.0f) return true;
   return false;
+}
+
+std::string cameraProblem(const Camera& camera) {
+  const Vec3 view = camera.target - camera.eye;
+  if (!(glm::length(view) > 0.0f)) return "target: eye and target coincide";
+  if (!(glm::length(glm::cross(glm::normalize(view), camera.up)) > 1e-6f * glm::length(camera.up)))
+    return "up: up is zero or parallel to the viewing direction";
+  return "";
 }
 
 Camera Scene::cameraOrDefault() const {

@@ -2,7 +2,6 @@
 // and spot lights, perspective cameras, placed by their nodes.
 
 #include <gtest/gtest.h>
-#include <radiosity/ies_profile.h>
 #include <radiosity/scene_loader.h>
 
 #include <cmath>
@@ -75,7 +74,6 @@ TEST_F(GltfLightsAndCameras, PointAndSpotLightsAreReadInWattsPerSteradian) {
   expectNear(spot.intensity, Vec3(2.0f));
   EXPECT_NEAR(spot.innerAngleDeg, 0.25 * 180 / std::numbers::pi, 1e-4);
   EXPECT_NEAR(spot.outerAngleDeg, 0.5 * 180 / std::numbers::pi, 1e-4);
-  EXPECT_NEAR(kWattsPerSrPerCandela, 1.0 / 179.0, 1e-12);
   size_t warned = 0;
   for (const std::string& w : s.warnings)
     warned += w.find("1 directional light") != std::string::npos;

@@ -414,10 +414,10 @@ Camera readCamera(const JsonReader& r, const Json& j) {
   }
   if (j.contains("width")) c.width = int(r.integer(j["width"], ptr + "/width", 1, 65536));
   if (j.contains("height")) c.height = int(r.integer(j["height"], ptr + "/height", 1, 65536));
-  const Vec3 view = c.target - c.eye;
-  if (!(glm::length(view) > 0.0f)) r.fail(ptr, "eye and target coincide");
-  if (!(glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) > 1e-6f))
-    r.fail(ptr + "/up", "up is parallel to the viewing direction");
+  if (const std::string why = cameraProblem(c); !why.empty()) {
+    const size_t colon = why.find(": ");
+    r.fail(ptr + "/" + why.substr(0, colon), why.substr(colon + 2));
+  }
   return c;
 }
 
