@@ -1,15 +1,9 @@
 // loadScene: built-in names first, then files by extension.
 
+#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
-
-#include "scene/builtin/builtin_scenes.h"
-#include "scene/io/gltf_loader.h"
-#include "scene/io/obj_loader.h"
-#include "scene/io/scene_json.h"
-
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <charconv>
@@ -17,17 +11,23 @@
 #include <fstream>
 #include <system_error>
 
+#include "scene/builtin/builtin_scenes.h"
+#include "scene/io/gltf_loader.h"
+#include "scene/io/obj_loader.h"
+#include "scene/io/scene_json.h"
+
 namespace rad {
 
 namespace {
 
-int parseRoomDetail(const std::string& name) {
-  const std::string digits = name.substr(5);
+// N of a built-in "family:N" name.
+int parseDetail(const std::string& name, const std::string& family) {
+  const std::string digits = name.substr(family.size() + 1);
   int n = 0;
   auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
   if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() || n < 1)
-    throw InputError(name, fmt::format("'{}' is not a valid N for room:N (expected an integer >= 1)",
-                                       digits));
+    throw InputError(name, fmt::format("'{}' is not a valid N for {}:N (expected an integer >= 1)",
+                                       digits, family));
   return n;
 }
 
@@ -36,28 +36,35 @@ int parseRoomDetail(const std::string& name) {
 Scene loadScene(const std::string& nameOrPath) {
   if (nameOrPath == "cornell") return makeCornellBox(false);
   if (nameOrPath == "cornell-spot") return makeCornellBox(true);
-  if (nameOrPath.rfind("room:", 0) == 0) return makeRoom(parseRoomDetail(nameOrPath));
+  if (nameOrPath.rfind("room:", 0) == 0) return makeRoom(parseDetail(nameOrPath, "room"));
+  if (nameOrPath.rfind("atrium:", 0) == 0) return makeAtrium(parseDetail(nameOrPath, "atrium"));
 
   std::error_code error;
   if (std::filesystem::is_directory(nameOrPath, error))
-    throw InputError(nameOrPath, "is a directory, not a scene file (.json, .obj, .gltf, .glb) or "
-                                 "a built-in scene (cornell, cornell-spot, room:N)");
+    throw InputError(nameOrPath,
+                     "is a directory, not a scene file (.json, .obj, .gltf, .glb) or "
+                     "a built-in scene (cornell, cornell-spot, room:N, atrium:N)");
   std::string ext = std::filesystem::path(nameOrPath).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   const bool known = ext == ".json" || ext == ".obj" || ext == ".gltf" || ext == ".glb";
   if (!known) {
     if (ext.empty() && !std::filesystem::exists(nameOrPath))
-      throw InputError(nameOrPath, "cannot open: no such file and not a built-in scene (cornell, "
-                                   "cornell-spot, room:N)");
+      throw InputError(nameOrPath,
+                       "cannot open: no such file and not a built-in scene (cornell, "
+                       "cornell-spot, room:N, atrium:N)");
     throw InputError(nameOrPath, fmt::format("unsupported scene extension '{}' (supported: .json, "
-                                             ".obj, .gltf, .glb, or a built-in name)", ext));
+                                             ".obj, .gltf, .glb, or a built-in name)",
+                                             ext));
   }
   if (!std::ifstream(nameOrPath, std::ios::binary))
     throw InputError(nameOrPath, "cannot open the scene file (missing or unreadable)");
   if (ext == ".json") return loadSceneJson(nameOrPath);
   SceneBuilder builder(nameOrPath);
-  if (ext == ".obj") loadObj(builder, nameOrPath, glm::mat4(1.0f));
-  else loadGltf(builder, nameOrPath, glm::mat4(1.0f));
+  if (ext == ".obj")
+    loadObj(builder, nameOrPath, glm::mat4(1.0f));
+  else
+    loadGltf(builder, nameOrPath, glm::mat4(1.0f));
   return builder.build();
 }
 
@@ -66,6 +73,8 @@ void requireEmitters(const Scene& scene) {
     throw InputError(scene.name, "no emitting surface and no light: the render would be black");
 }
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "cornell-spot", "room:N"}; }
+std::vector<std::string> builtinSceneNames() {
+  return {"cornell", "cornell-spot", "room:N", "atrium:N"};
+}
 
 }  // namespace rad

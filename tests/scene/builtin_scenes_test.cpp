@@ -1,11 +1,11 @@
 // Built-in scenes: the Cornell box against the reference OBJ (tests/data/scene/cornell, a copy of
 // shared/reference/cornell), areas from VALIDATION.md 2.3 / 2.7; room:N scaling.
 
-#include "scene_summary.h"
-
+#include <gtest/gtest.h>
+#include <radiosity/ray_caster.h>
 #include <radiosity/scene_loader.h>
 
-#include <gtest/gtest.h>
+#include "scene_summary.h"
 
 namespace rad {
 namespace {
@@ -88,15 +88,45 @@ TEST(BuiltinScenes, RoomGrowsLinearlyAndIsDeterministic) {
   EXPECT_TRUE(objects.count("shelf_2"));
   EXPECT_TRUE(objects.count("light_panel_7"));
   // Closed furniture boxes face out; the shell faces in.
-  EXPECT_LT(objects.at("walls").volume + objects.at("floor").volume + objects.at("ceiling").volume, 0.0);
+  EXPECT_LT(objects.at("walls").volume + objects.at("floor").volume + objects.at("ceiling").volume,
+            0.0);
   EXPECT_GT(objects.at("boxes_1").volume, 0.0);
+}
+
+TEST(BuiltinScenes, AtriumGrowsLinearlyAndIsClosedWithFacesTurnedIn) {
+  const Scene a1 = loadScene("atrium:1"), a4 = loadScene("atrium:4"), a8 = loadScene("atrium:8");
+  // Only the curved parts' tessellation grows: the increments per unit of N are equal.
+  const double step1 = double(a4.triangles.size() - a1.triangles.size()) / 3.0;
+  const double step2 = double(a8.triangles.size() - a4.triangles.size()) / 4.0;
+  EXPECT_NEAR(step1, step2, 0.02 * step2);
+  EXPECT_EQ(loadScene("atrium:4").positions, a4.positions);
+  EXPECT_TRUE(a1.warnings.empty()) << a1.warnings.front();
+  EXPECT_EQ(a1.lights.size(), 3u);
+  for (const char* name : {"floor", "walls", "vault", "columns", "arches", "galleries", "railings"})
+    EXPECT_TRUE(test::summarize(a1, 1e-4).count(name)) << name;
+  // From the nave, in a spread of directions, every ray meets a surface from its front: the hall
+  // is closed and every face a ray can reach faces the room.
+  const RayCaster caster(a4);
+  const Vec3 from(7.0f, 2.0f, 12.0f);
+  int rays = 0;
+  for (int i = 0; i < 60; ++i)
+    for (int j = 0; j < 120; ++j, ++rays) {
+      const float theta = 3.14159265f * (float(i) + 0.5f) / 60.0f;
+      const float phi = 6.2831853f * (float(j) + 0.5f) / 120.0f;
+      const Vec3 d(std::sin(theta) * std::cos(phi), std::cos(theta),
+                   std::sin(theta) * std::sin(phi));
+      const Hit hit = caster.intersect(Ray{from, d});
+      ASSERT_TRUE(hit.valid()) << "ray " << rays;
+      EXPECT_TRUE(hit.frontFace) << "ray " << rays << " met the back of triangle " << hit.triangle;
+    }
 }
 
 TEST(BuiltinScenes, NamesAndBadRoomDetail) {
   const std::vector<std::string> names = builtinSceneNames();
   EXPECT_NE(std::find(names.begin(), names.end(), "cornell"), names.end());
   EXPECT_NE(std::find(names.begin(), names.end(), "room:N"), names.end());
-  for (const char* bad : {"room:0", "room:-3", "room:abc", "room:"}) {
+  EXPECT_NE(std::find(names.begin(), names.end(), "atrium:N"), names.end());
+  for (const char* bad : {"room:0", "room:-3", "room:abc", "room:", "atrium:0", "atrium:x"}) {
     const std::string m = test::errorOf([&] { loadScene(bad); });
     EXPECT_NE(m.find(bad), std::string::npos) << m;
   }

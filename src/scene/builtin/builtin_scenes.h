@@ -14,4 +14,9 @@ Scene makeCornellBox(bool spot);
 /// InputError otherwise). Deterministic for a given n.
 Scene makeRoom(int n);
 
+/// A generated interior of columns, arches, railings and a vault lit by point and spot lights,
+/// whose curved parts have detail n (>= 1; InputError otherwise): the kind of scene real
+/// interiors are, for accuracy and scale tests. Deterministic.
+Scene makeAtrium(int n);
+
 }  // namespace rad

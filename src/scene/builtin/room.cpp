@@ -4,53 +4,24 @@
 // Units: metres. Every cell's furniture depends only on its index (its own Rng stream), so
 // room:N is a prefix of room:N+1.
 
-#include "scene/builtin/builtin_scenes.h"
-
-#include "core/rng.h"
-
+#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/scene_builder.h>
 
-#include <fmt/format.h>
-
 #include <array>
 #include <cmath>
+
+#include "core/rng.h"
+#include "scene/builtin/builtin_scenes.h"
+#include "scene/builtin/builtin_shapes.h"
 
 namespace rad {
 
 namespace {
 
-constexpr float kCell = 2.0f;     // metres per grid cell
-constexpr float kHeight = 2.8f;   // ceiling height
+constexpr float kCell = 2.0f;    // metres per grid cell
+constexpr float kHeight = 2.8f;  // ceiling height
 constexpr int kMaxCells = 1000000;
-
-enum class BoxSide { Outside, Inside };
-
-// An axis-aligned box as 6 quads, fronts facing out (furniture) or in (the room shell).
-// `bottom` false leaves out the face that rests on the floor.
-void addBox(SceneBuilder& b, Vec3 lo, Vec3 hi, uint32_t material, uint32_t object, BoxSide side,
-            bool bottom = true) {
-  const std::string where = b.scene().name;
-  auto v = [&](int i, int j, int k) {
-    return b.addVertex(Vec3(i ? hi.x : lo.x, j ? hi.y : lo.y, k ? hi.z : lo.z), where);
-  };
-  const std::array<std::array<int, 12>, 6> quads{{
-      {0, 0, 0, 0, 0, 1, 0, 1, 1, 0, 1, 0},  // -x
-      {1, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1},  // +x
-      {0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1},  // -y (bottom)
-      {0, 1, 0, 0, 1, 1, 1, 1, 1, 1, 1, 0},  // +y
-      {0, 0, 0, 0, 1, 0, 1, 1, 0, 1, 0, 0},  // -z
-      {0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1},  // +z
-  }};
-  for (size_t f = 0; f < quads.size(); ++f) {
-    if (f == 2 && !bottom) continue;
-    const auto& q = quads[f];
-    std::array<uint32_t, 4> c{v(q[0], q[1], q[2]), v(q[3], q[4], q[5]), v(q[6], q[7], q[8]),
-                              v(q[9], q[10], q[11])};
-    if (side == BoxSide::Inside) std::swap(c[1], c[3]);
-    b.addPolygon(c, material, object, where);
-  }
-}
 
 struct Materials {
   uint32_t wall, floor, ceiling, panel, wood, paint, shelf;
@@ -95,7 +66,8 @@ void addShelf(SceneBuilder& b, Vec3 o, Rng& rng, const Materials& m, uint32_t ob
 
 Scene makeRoom(int n) {
   if (n < 1 || n > kMaxCells)
-    throw InputError(fmt::format("room:{}", n), fmt::format("N = {} out of range [1, {}]", n, kMaxCells));
+    throw InputError(fmt::format("room:{}", n),
+                     fmt::format("N = {} out of range [1, {}]", n, kMaxCells));
   SceneBuilder b(fmt::format("room:{}", n));
   const Materials m{b.addMaterial({"wall", Color(0.70f, 0.70f, 0.66f)}),
                     b.addMaterial({"floor", Color(0.45f, 0.35f, 0.25f)}),
@@ -130,9 +102,12 @@ Scene makeRoom(int n) {
     const int kind = i % 3;
     const char* names[] = {"table", "boxes", "shelf"};
     const uint32_t object = b.addObject(fmt::format("{}_{}", names[kind], i));
-    if (kind == 0) addTable(b, centre + offset, rng, m, object);
-    else if (kind == 1) addBoxStack(b, centre + offset, rng, m, object);
-    else addShelf(b, centre + offset, rng, m, object);
+    if (kind == 0)
+      addTable(b, centre + offset, rng, m, object);
+    else if (kind == 1)
+      addBoxStack(b, centre + offset, rng, m, object);
+    else
+      addShelf(b, centre + offset, rng, m, object);
 
     // A 0.6 m square panel facing down, 1 cm below the ceiling (so it does not share the
     // ceiling's plane).
