@@ -420,18 +420,22 @@ inline DiscreteLineSweep::Slot DiscreteLineSweep::recentSlot(const LineState& st
                 glm::dot(slotNormal(state.recent), state.recent.centroid));
 }
 
-inline Sight DiscreteLineSweep::look(const Vec3& centroid, const Slot& s, const Vec3& unit,
-                                     const Source& source, Color& light) const {
+template <typename Normal, typename SlotCentroid>
+inline Sight DiscreteLineSweep::look(const PassView& view, const Vec3& centroid,
+                                     const Normal& normal, const Slot& s, const Vec3& unit,
+                                     Color& light, const SlotCentroid& slotCentroid) const {
   if (holdsCell(s.normal)) {
     uint32_t side = 0;
-    const Sight sight = visibility_->look(centroid, slotCell(s.offset), unit, side);
-    if (sight == Sight::Source) light = sideLight(source, side);
+    const Sight sight = visibility_->look(centroid, normal(), slotCell(s.offset), unit, side);
+    if (sight == Sight::Source) light = sideLight(view.source, side);
     return sight;
   }
   const Vec3 n = slotNormal(s);
-  const Sight sight = planeSight(glm::dot(n, centroid) - s.offset, glm::dot(n, unit),
-                                 visibility_->planeTolerance());
+  const Sight sight =
+      planeSight(glm::dot(n, centroid) - s.offset, glm::dot(n, unit), view.tolerance);
   if (sight == Sight::Source) light = halfColor(s);
+  if (sight == Sight::Blocked && passesConvexEdge(normal(), centroid, slotCentroid(), view.edge))
+    return Sight::Through;
   return sight;
 }
 
@@ -463,14 +467,17 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
     // Most often the one side waiting is the recent voxel, a wall across the room: it looks at
     // e's plane from its centroid, which the record holds, unless it grazes e (then the
     // general rule lets it wait on).
-    const Sight recentSight = planeSight(glm::dot(n, recent.centroid - c), -facing, view.tolerance);
+    Sight recentSight = planeSight(glm::dot(n, recent.centroid - c), -facing, view.tolerance);
+    if (recentSight == Sight::Blocked && recentIsSide &&
+        passesConvexEdge(recentNormal, recent.centroid, c, view.edge))
+      recentSight = Sight::Through;
     if (state.pending == state.recentRef && state.pendingLink == kNoPending && recentIsSide &&
         recentSight != Sight::Through) {
       if (recentSight == Sight::Source)
         gatherLater(view, state.pending, sideLight(view.source, e) * (recentFacing * view.weight));
       state.pending = kNoPending;
     } else {
-      resolvePending<kTangentCorrection>(view, state, sideSlot(view.source, e, c));
+      resolvePending<kTangentCorrection>(view, state, sideSlot(view.source, e, c), c);
     }
   }
   if (facing < 0.0f && hasRecent) {
@@ -479,10 +486,14 @@ inline void DiscreteLineSweep::visitSingleSide(const PassView& view, uint32_t e,
     if (recentIsSide) {
       sight = planeSight(height, recentFacing, view.tolerance);
       if (sight == Sight::Source) light = halfColor(recent);
+      if (sight == Sight::Blocked && passesConvexEdge(n, c, recent.centroid, view.edge))
+        sight = Sight::Through;
     } else {
-      sight = look(c, recentSlot(state), view.unit, view.source, light);
+      sight = look(
+          view, c, [&] { return n; }, recentSlot(state), view.unit, light,
+          [&] { return recent.centroid; });
     }
-    if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(view, c, state, light);
+    if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(view, c, n, state, light);
     if (sight == Sight::Source) view.gathered[e] += light * (-facing * view.weight);
   } else if (facing > 0.0f) {
     wait(view, state, e, continues && state.pending == state.recentRef);
@@ -538,13 +549,14 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
                          holdsCell(state.recent.normal) &&
                          visibility_->continuesPlanes(cell, state.recentRef & ~kCellRef);
   if (!continues && state.pending != kNoPending)
-    resolvePending<kTangentCorrection>(view, state, slot);
+    resolvePending<kTangentCorrection>(view, state, slot, Vec3(0.0f));  // a cell: no centroid
   const uint32_t begin = grid_.cellEntryBegin[cell], end = grid_.cellEntryBegin[cell + 1];
   const SideVisibility::CellFolds folds = visibility_->foldsOf(cell);
   const bool hasRecent = state.recentRef != kNoVoxel;
   const Slot recent = hasRecent ? recentSlot(state) : Slot{};  // what the sides facing back meet
   for (uint32_t e = begin; e < end; ++e) {
-    const float facing = glm::dot(sideNormal(source, e), unit);
+    const Vec3 normal = sideNormal(source, e);
+    const float facing = glm::dot(normal, unit);
     if (facing == 0.0f) continue;
     const float w = std::abs(facing) * view.weight;
     // The cell's own other sides first (the faces of an inner edge see each other).
@@ -557,8 +569,11 @@ void DiscreteLineSweep::visitSeveralSides(const PassView& view, uint32_t cell, L
     } else if (hasRecent) {
       Color light(0.0f);
       const Vec3 c = centroidOf(view, e);
-      Sight sight = look(c, recent, unit, source, light);
-      if (kTangentCorrection && sight == Sight::Through) sight = lookOlder(view, c, state, light);
+      Sight sight = look(
+          view, c, [&] { return normal; }, recent, unit, light,
+          [&] { return state.recent.centroid; });
+      if (kTangentCorrection && sight == Sight::Through)
+        sight = lookOlder(view, c, normal, state, light);
       if (sight == Sight::Source) view.gathered[e] += light * w;
     }
   }
@@ -588,8 +603,8 @@ void DiscreteLineSweep::DeferredGathers::addTo(Color* gathered) {
 }
 
 template <bool kTangentCorrection>
-void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
-                                       const Slot& slot) const {
+void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state, const Slot& slot,
+                                       const Vec3& slotCentroid) const {
   // The sides waiting for light from ahead meet a new voxel (the nearest of its run): each sees
   // its source, is blocked, or, grazing it, waits for the next one (with the tangent correction,
   // up to kLookThrough voxels, as many as a look back passes). The first waiting side is often
@@ -605,11 +620,12 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
     if (!sameRunAsBefore) {
       const bool recent = m == state.recentRef;
       const Vec3 centroid = recent ? state.recent.centroid : centroidOf(view, m);
-      sight = look(centroid, slot, back, view.source, light);
-      if (sight == Sight::Source) {
-        const Vec3 normal = recent ? slotNormal(state.recent) : sideNormal(view.source, m);
-        weight = glm::dot(normal, view.unit) * view.weight;
-      }
+      // The normal of a side visited long ago is read only when needed (a miss).
+      const auto normal = [&] {
+        return recent ? slotNormal(state.recent) : sideNormal(view.source, m);
+      };
+      sight = look(view, centroid, normal, slot, back, light, [&] { return slotCentroid; });
+      if (sight == Sight::Source) weight = glm::dot(normal(), view.unit) * view.weight;
     }
     const uint32_t depth = link >> kDepthShift;
     if (sight == Sight::Source) {
@@ -636,27 +652,30 @@ void DiscreteLineSweep::resolvePending(const PassView& view, LineState& state,
   state.pendingLink = waitingLink;
 }
 
-Sight DiscreteLineSweep::lookOlder(const PassView& view, const Vec3& centroid,
+Sight DiscreteLineSweep::lookOlder(const PassView& view, const Vec3& centroid, const Vec3& normal,
                                    const LineState& state, Color& light) const {
   // With the tangent correction a grazed voxel is looked through: the two voxels before it
   // decide. The nearer is read from the record's slot where it lies, the other from its
   // reference: a slot put together here and read back at once stalls on its partial stores
   // (45% of this function's time when the first was copied out of the record).
   if (state.olderRef[0] == kNoVoxel) return Sight::Through;
-  const Sight sight = look(centroid, state.older, view.unit, view.source, light);
+  const Sight sight = look(
+      view, centroid, [&] { return normal; }, state.older, view.unit, light,
+      [&] { return centroidOf(view, state.olderRef[0]); });
   const uint32_t ref = state.olderRef[1];
   if (sight != Sight::Through || ref == kNoVoxel) return sight;
   if (ref & kCellRef) {
     uint32_t side = 0;
-    const Sight cellSight = visibility_->look(centroid, ref & ~kCellRef, view.unit, side);
+    const Sight cellSight = visibility_->look(centroid, normal, ref & ~kCellRef, view.unit, side);
     if (cellSight == Sight::Source) light = sideLight(view.source, side);
     return cellSight;
   }
-  const Vec3 n = sideNormal(view.source, ref);
-  const float offset = glm::dot(n, centroidOf(view, ref));
+  const Vec3 n = sideNormal(view.source, ref), refCentroid = centroidOf(view, ref);
   const Sight sideSight =
-      planeSight(glm::dot(n, centroid) - offset, glm::dot(n, view.unit), view.tolerance);
+      planeSight(glm::dot(n, centroid - refCentroid), glm::dot(n, view.unit), view.tolerance);
   if (sideSight == Sight::Source) light = sideLight(view.source, ref);
+  if (sideSight == Sight::Blocked && passesConvexEdge(normal, centroid, refCentroid, view.edge))
+    return Sight::Through;
   return sideSight;
 }
 
@@ -734,7 +753,8 @@ void DiscreteLineSweep::pass(const IVec3& step, const LineBand& band, const Vec3
                       &scratch.later,
                       unit,
                       weight,
-                      visibility_->planeTolerance()};
+                      visibility_->planeTolerance(),
+                      visibility_->edgeTolerance()};
   LineState* const lines = scratch.recordsFor(grid_, band.lineCount, bandLines_);
   scratch.waiting.clear();  // the band's lines are new: none of their sides waits
   const uint16_t stamp = scratch.stamp;

@@ -34,10 +34,6 @@
 // memory a whole table would, and no more than the sides in a mostly empty box, and are reused,
 // warm in the cache, from band to band.
 
-#include "voxel/direction_set.h"
-#include "voxel/side_visibility.h"
-#include "voxel/voxel_grid.h"
-
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
@@ -48,6 +44,10 @@
 #include <span>
 #include <utility>
 #include <vector>
+
+#include "voxel/direction_set.h"
+#include "voxel/side_visibility.h"
+#include "voxel/voxel_grid.h"
 
 namespace rad {
 
@@ -345,7 +345,7 @@ class DiscreteLineSweep {
     WaitingList* waiting;
     DeferredGathers* later;
     Vec3 unit;
-    float weight, tolerance;
+    float weight, tolerance, edge;
   };
   /// Lets a cell's sides look back along the line, then makes the cell the line's recent voxel.
   template <bool kTangentCorrection>
@@ -353,17 +353,21 @@ class DiscreteLineSweep {
   template <bool kTangentCorrection>
   void visitSeveralSides(const PassView& view, uint32_t cell, LineState& state,
                          int32_t dominant) const;
-  /// Lets the sides waiting on the line's record look at the voxel in `slot`.
+  /// Lets the sides waiting on the line's record look at the voxel in `slot` (whose centroid is
+  /// `slotCentroid` when it holds one side).
   template <bool kTangentCorrection>
-  void resolvePending(const PassView& view, LineState& state, const Slot& slot) const;
-  /// What a side sees in slot s from its centroid (passed, not looked up: the side may have been
-  /// visited long ago, and the caller holds it); `light` gets the source's radiosity when it is
-  /// Source.
-  Sight look(const Vec3& centroid, const Slot& s, const Vec3& unit, const Source& source,
-             Color& light) const;
+  void resolvePending(const PassView& view, LineState& state, const Slot& slot,
+                      const Vec3& slotCentroid) const;
+  /// What a side (its centroid, passed, not looked up: the side may have been visited long ago,
+  /// and the caller holds it; its normal, which `normal()` gives) sees in slot s, whose centroid
+  /// `slotCentroid()` gives when it holds one side; `light` gets the source's radiosity when it
+  /// is Source. The two are called only when needed: when a back is met, or s holds a cell.
+  template <typename Normal, typename SlotCentroid>
+  Sight look(const PassView& view, const Vec3& centroid, const Normal& normal, const Slot& s,
+             const Vec3& unit, Color& light, const SlotCentroid& slotCentroid) const;
   /// What a side sees past the line's recent voxel (the two voxels before it).
-  Sight lookOlder(const PassView& view, const Vec3& centroid, const LineState& state,
-                  Color& light) const;
+  Sight lookOlder(const PassView& view, const Vec3& centroid, const Vec3& normal,
+                  const LineState& state, Color& light) const;
   /// Queues light for side e (a side that waited) in the pass's deferred batch.
   static void gatherLater(const PassView& view, uint32_t e, const Color& light);
   /// Makes side e wait on the line for light from ahead; `sameRun` when the side waiting before
@@ -373,8 +377,8 @@ class DiscreteLineSweep {
   /// pass along `step`: the grid's slabs, rows and cells, each run with the sign of its axis
   /// (inlined into the pass: called, its ring would live in memory).
   template <typename F>
-  [[gnu::always_inline]] inline void forEachCellInPassOrder(const IVec3& step,
-                                                            const LineBand& band, F&& f) const;
+  [[gnu::always_inline]] inline void forEachCellInPassOrder(const IVec3& step, const LineBand& band,
+                                                            F&& f) const;
   /// The cells of one band of the direction prepared last, in pass order (for tests).
   std::vector<uint32_t> cellsInPassOrder(const IVec3& step, const LineBand& band) const;
   /// The rows of slab x whose lines lie in the band (x or y dominant).
@@ -393,10 +397,10 @@ class DiscreteLineSweep {
   std::vector<int32_t> rowStart_;  ///< per U: the index of line (U, 0); rows hold only lines met
   std::vector<int32_t>
       dominantTable_[3];  ///< per axis: contribution to the signed dominant coordinate
-  size_t lineCount_ = 0;     ///< this direction's
-  size_t bandLines_ = 0;     ///< the most lines a band holds: its records' size
+  size_t lineCount_ = 0;  ///< this direction's
+  size_t bandLines_ = 0;  ///< the most lines a band holds: its records' size
   tbb::enumerable_thread_specific<BandScratch> scratch_;
-  std::vector<LineBand> bands_;         ///< this direction's
+  std::vector<LineBand> bands_;  ///< this direction's
   /// The coordinates of every 32nd cell, or of 8,192 cells spread evenly over a larger grid:
   /// what the bands are balanced on (counted for every direction, so no more than that; made by
   /// prepareBands).
@@ -404,7 +408,7 @@ class DiscreteLineSweep {
   using SampleCell = std::array<int16_t, 3>;
   std::vector<SampleCell> sampleCells_;
   std::vector<uint32_t> sampledPerRow_;  ///< per line table row, scratch for cutBands
-  LineLayout layout_;  ///< per-direction scratch, reused
+  LineLayout layout_;                    ///< per-direction scratch, reused
 };
 
 }  // namespace rad

@@ -122,8 +122,7 @@ void SideVisibility::findNeighbourFolds() {
       }
 }
 
-bool SideVisibility::insideNeighbourFolds(uint32_t f, const Vec3& point,
-                                          const Vec3& origin) const {
+bool SideVisibility::insideNeighbourFolds(uint32_t f, const Vec3& point, const Vec3& origin) const {
   auto it = std::lower_bound(neighbourFolds_.begin(), neighbourFolds_.end(), f,
                              [](const FoldPlane& p, uint32_t e) { return p.entry < e; });
   for (; it != neighbourFolds_.end() && it->entry == f; ++it) {
@@ -147,7 +146,8 @@ inline bool SideVisibility::meets(uint32_t f, uint32_t q, const CellFolds& folds
   return (folds.of(f) & kNeighbourFolds) == 0 || insideNeighbourFolds(f, point, origin);
 }
 
-Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_t& source) const {
+Sight SideVisibility::look(const Vec3& ce, const Vec3& ne, uint32_t q, const Vec3& unit,
+                           uint32_t& source) const {
   const float tolerance = tolerance_;
   Sight sight = Sight::Through;
   float nearest = std::numeric_limits<float>::max();
@@ -157,7 +157,9 @@ Sight SideVisibility::look(const Vec3& ce, uint32_t q, const Vec3& unit, uint32_
     const float height = glm::dot(nf, ce - grid_.centroidOf(f));
     const float approach = glm::dot(nf, unit);
     const Sight met = planeSight(height, approach, tolerance);
-    if (met == Sight::Through) continue;
+    if (met == Sight::Through ||
+        (met == Sight::Blocked && passesConvexEdge(ne, ce, grid_.centroidOf(f), edge_)))
+      continue;
     const float t = height / approach;
     if (t >= nearest || !meets(f, q, folds, met, ce - t * unit, ce)) continue;
     nearest = t;

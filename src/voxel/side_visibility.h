@@ -11,11 +11,11 @@
 // of a neighbouring voxel bounds a side's front the same way. Where they meet at a convex edge
 // (each behind the other, a box's faces), a back met past the edge is the open: passed.
 
-#include "voxel/voxel_grid.h"
-
 #include <bit>
 #include <cmath>
 #include <vector>
+
+#include "voxel/voxel_grid.h"
 
 namespace rad {
 
@@ -34,10 +34,12 @@ class SideVisibility {
  public:
   explicit SideVisibility(const VoxelGrid& grid);
 
-  /// How the backward ray from a point (along -unit) meets the sides of `cell`; `source` gets
-  /// the side it sees when the answer is Source. The point is a side's centroid, which the
-  /// caller often holds already (the side was visited long ago).
-  Sight look(const Vec3& point, uint32_t cell, const Vec3& unit, uint32_t& source) const;
+  /// How the backward ray from a side (its centroid `point`, which the caller often holds
+  /// already, and its `normal`) along -unit meets the sides of `cell`; `source` gets the side it
+  /// sees when the answer is Source. A back met where the two sides form a convex edge is passed
+  /// (passesConvexEdge).
+  Sight look(const Vec3& point, const Vec3& normal, uint32_t cell, const Vec3& unit,
+             uint32_t& source) const;
   /// The fold masks of the sides of a cell of several sides: bits 0-14, the sides of the cell
   /// in front of the side's plane (a cell's first 15 sides); bit 15: the side has folds with
   /// sides of neighbouring voxels (neighbourFolds_).
@@ -57,8 +59,7 @@ class SideVisibility {
   }
   /// The side of e's own cell (whose folds are `folds`) that e sees along -unit, if any (the
   /// faces of an inner edge).
-  bool lookWithinCell(uint32_t e, const CellFolds& folds, const Vec3& unit,
-                      uint32_t& source) const;
+  bool lookWithinCell(uint32_t e, const CellFolds& folds, const Vec3& unit, uint32_t& source) const;
   /// True when cell p holds the same planes as cell q (a floor, or the two faces of an edge):
   /// consecutive such cells on a line are one run.
   bool continuesPlanes(uint32_t p, uint32_t q) const;
@@ -73,6 +74,8 @@ class SideVisibility {
   }
   /// Distance under which a point lies in a plane: a grazing line runs inside it.
   float planeTolerance() const { return tolerance_; }
+  /// Distance under which a point lies on the edge where two sides meet.
+  float edgeTolerance() const { return edge_; }
 
  private:
   static constexpr uint16_t kSidesInFront = 0x7fff, kNeighbourFolds = 0x8000;
@@ -86,10 +89,8 @@ class SideVisibility {
   /// itself: its polygon as far as the sides of f's cell and of the cells around bound it.
   /// (Inlined into look: called, it cost 2% more instructions in the sweeps.)
   [[gnu::always_inline]] inline bool meets(uint32_t f, uint32_t cell, const CellFolds& folds,
-                                           Sight met, const Vec3& point,
-                                           const Vec3& origin) const;
-  bool insideFold(uint32_t f, const CellFolds& folds, const Vec3& point,
-                  const Vec3& origin) const;
+                                           Sight met, const Vec3& point, const Vec3& origin) const;
+  bool insideFold(uint32_t f, const CellFolds& folds, const Vec3& point, const Vec3& origin) const;
   /// False when f meets a side of a neighbouring voxel in a concave fold and the ray from
   /// `origin` to `point` (on f's plane) comes from behind that side or crosses f past it.
   bool insideNeighbourFolds(uint32_t f, const Vec3& point, const Vec3& origin) const;
@@ -122,6 +123,17 @@ class SideVisibility {
   std::vector<uint32_t> severalBefore_;
   std::vector<FoldPlane> neighbourFolds_;  ///< sorted by entry
 };
+
+/// True when a side (`normal`, `centroid`) that met the back of the side at `metCentroid` forms a
+/// convex edge with it: each behind the other's plane (the meeting made sure of the one). A
+/// curved surface is convex from voxel to voxel: a ray that leaves a column's side near its
+/// tangent crosses the plane of the next side of the column from behind, past that side's
+/// polygon, in the open. Taken for a back that blocks, 12% of the rays from a ball in a furnace
+/// found nothing, and the columns of a generated atrium came out 12% dark.
+inline bool passesConvexEdge(const Vec3& normal, const Vec3& centroid, const Vec3& metCentroid,
+                             float edge) {
+  return glm::dot(normal, metCentroid - centroid) < -edge;
+}
 
 /// Normals within about 8 degrees belong to one plane.
 inline constexpr float kSamePlaneCos = 0.99f;

@@ -3,6 +3,7 @@
 #include <radiosity/error.h>
 #include <radiosity/voxel_radiosity.h>
 
+#include <algorithm>
 #include <chrono>
 #include <glm/gtc/constants.hpp>
 
@@ -168,6 +169,14 @@ VoxelRadiosity::VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model,
   const VoxelRadiositySettings& settings = model->settings;
   impl_->stats.voxelizeSeconds = model->voxelizeSeconds;
 
+  const bool emittingSurfaces = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                            [](const Material& m) { return m.emits(); });
+  if (!settings.directFirstShot && !impl_->lights.empty() && !emittingSurfaces)
+    throw InputError("voxel settings",
+                     fmt::format("without the first shot (--no-first-shot) the scene's {} "
+                                 "point/spot/IES light(s), all its light, reach no voxel: the "
+                                 "solution would be black",
+                                 impl_->lights.size()));
   const VoxelSolverSettings solver = solverSettings(settings);
   impl_->mix = LightGroupMix(scene, impl_->lights, settings.lightGroups);
   if (impl_->mix.apart())

@@ -29,9 +29,30 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Direct irradiance at every entry's centroid: the analytic lights once (exact, one shadow ray
-// each), the emitters' light averaged over `directSamples` area samples. Throws Cancelled when
-// `progress` asks, within a fraction of a second even at thousands of samples a side.
+// The point of the surface that a side stands for, under its centroid: where a ray from half a
+// voxel in front of the centroid, cast back along the side's normal, meets a face turned the
+// same way within half a voxel behind it; else the centroid. A side of a curved surface (a
+// column's facets) has its centroid inside the solid, a chord below the facets, so that a
+// shadow ray from there leaves through the solid's own back faces: the columns of a generated
+// atrium got 13% too little direct light at 0.023 m voxels and 40% at 0.1 m.
+Vec3 surfacePointOf(const VoxelGrid& grid, const RayCaster& caster, size_t entry) {
+  constexpr float kReach = 0.5f;         // voxels before and behind the centroid
+  constexpr float kMinAgreement = 0.5f;  // the face met and the side: within 60 degrees
+  const Vec3 centroid = grid.centroidOf(entry), n = grid.unitNormal(entry);
+  Ray probe;
+  probe.origin = centroid + kReach * grid.voxelSize * n;
+  probe.direction = -n;
+  probe.tFar = 2.0f * kReach * grid.voxelSize;
+  const Hit hit = caster.intersect(probe);
+  if (!hit.valid() || !hit.frontFace || glm::dot(hit.geometricNormal, n) < kMinAgreement)
+    return centroid;
+  return probe.origin + hit.distance * probe.direction;
+}
+
+// Direct irradiance at every entry's surface point (surfacePointOf): the analytic lights once
+// (exact, one shadow ray each), the emitters' light averaged over `directSamples` area samples.
+// Throws Cancelled when `progress` asks, within a fraction of a second even at thousands of
+// samples a side.
 std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
                                     const RayCaster& caster, std::span<const Light> lights,
                                     const VoxelSolverSettings& settings, uint64_t& rays,
@@ -43,7 +64,7 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
   ProgressTicker ticker(progress, grid.entryCount());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.entryCount(), 256), [&](const auto& r) {
     for (size_t e = r.begin(); e != r.end() && !ticker.cancelled(); ++e) {
-      const Vec3 p = grid.centroidOf(e), n = grid.unitNormal(e);
+      const Vec3 p = surfacePointOf(grid, caster, e), n = grid.unitNormal(e);
       Color fromEmitters(0.0f);
       if (direct.hasEmitters()) {
         Rng rng(settings.seed, e);

@@ -1,10 +1,11 @@
 // The voxel method against the reference path tracer on the Cornell box.
+#include <gtest/gtest.h>
+#include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
+#include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
 #include <radiosity/voxel_radiosity.h>
-
-#include <gtest/gtest.h>
 
 #include <map>
 
@@ -18,7 +19,8 @@ TEST(VoxelCornell, SurfaceMeansMatchThePathTracerAndThePatchMethod) {
   // Reference: the path tracer's per-object means over 20000 stratified points x 16 irradiance
   // paths. Many points matter more than many paths: with 400 points the floor's mean moves
   // 5-7% between seeds (shadow edges), with 20000 under 0.5%.
-  const std::map<std::string, ObjectRadiometry> traced = test::tracedObjectMeans(scene, 20000, 16, 5);
+  const std::map<std::string, ObjectRadiometry> traced =
+      test::tracedObjectMeans(scene, 20000, 16, 5);
   std::map<std::string, ObjectRadiometry> patches;
   const PatchRadiosity patch(scene, PatchRadiositySettings{});
   for (const ObjectRadiometry& o : patch.objectRadiometry()) patches[o.name] = o;
@@ -39,7 +41,8 @@ TEST(VoxelCornell, SurfaceMeansMatchThePathTracerAndThePatchMethod) {
       for (const auto* expected : references) {
         const float b = expected->at(o.name).meanRadiosity[c];
         EXPECT_NEAR(o.meanRadiosity[c], b, 0.05 * b)
-            << o.name << " channel " << c << (expected == &traced ? " vs path tracer" : " vs patches");
+            << o.name << " channel " << c
+            << (expected == &traced ? " vs path tracer" : " vs patches");
       }
     }
   }
@@ -53,7 +56,8 @@ namespace {
 
 TEST(VoxelCornell, SpotLightReachesVoxelsThroughTheFirstShot) {
   const Scene scene = loadScene("cornell-spot");
-  const std::map<std::string, ObjectRadiometry> expected = test::tracedObjectMeans(scene, 10000, 8, 1);
+  const std::map<std::string, ObjectRadiometry> expected =
+      test::tracedObjectMeans(scene, 10000, 8, 1);
 
   VoxelRadiositySettings settings;
   settings.targetVoxels = 8000;
@@ -65,13 +69,23 @@ TEST(VoxelCornell, SpotLightReachesVoxelsThroughTheFirstShot) {
     if (o.name != "floor" && o.name != "back_wall") continue;
     // Coarse (8k voxels, R = 8) yet within 10% of the path tracer (10000 points x 8 paths).
     EXPECT_NEAR(o.meanRadiosity.g, expected.at(o.name).meanRadiosity.g,
-                0.1 * expected.at(o.name).meanRadiosity.g) << o.name;
+                0.1 * expected.at(o.name).meanRadiosity.g)
+        << o.name;
   }
 
-  settings.directFirstShot = false;  // the sweeps alone cannot see a point light
-  const VoxelRadiosity dark(scene, settings);
-  ASSERT_EQ(dark.stats().warnings.size(), 1u);
-  for (const ObjectRadiometry& o : dark.objectRadiometry()) EXPECT_EQ(o.meanRadiosity.g, 0.0f) << o.name;
+  // The sweeps alone cannot see a point light: with no glowing surface either, the solution
+  // would be black, which is refused rather than returned.
+  settings.directFirstShot = false;
+  EXPECT_THROW(VoxelRadiosity(scene, settings), InputError);
+  // With a glowing surface too, the lights are dropped with a warning.
+  SceneBuilder b("spot and a glowing panel");
+  const uint32_t grey = b.addMaterial({"grey", Color(0.5f)});
+  const uint32_t glow = b.addMaterial({"glow", Color(0.0f), Color(1.0f)});
+  test::addInwardCube(b, [&](int face) { return face == 3 ? glow : grey; });
+  Scene both = b.build();
+  both.lights = scene.lights;
+  const VoxelRadiosity panelOnly(both, settings);
+  EXPECT_EQ(panelOnly.stats().warnings.size(), 1u);
 }
 
 }  // namespace
