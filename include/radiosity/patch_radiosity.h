@@ -69,7 +69,8 @@ inline constexpr NamedChoice<PatchShading> kPatchShadingNames[] = {{"smooth", Pa
 
 struct PatchRadiositySettings {
   float patchSize = 0.0f;       ///< longest patch edge in scene units; 0: from targetPatches
-  size_t targetPatches = 4000;  ///< approximate patch count when patchSize is 0
+  /// When patchSize is 0: about this many patches beyond the one each face root is at least.
+  size_t targetPatches = 4000;
   PatchFormFactorEstimator estimator = PatchFormFactorEstimator::Hemisphere;
   /// hemisphere: rays per patch; pairwise: point pairs per patch pair; exact: points per patch.
   int formFactorRays = 256;
@@ -111,6 +112,10 @@ struct PatchRadiosityStats {
   double droppedEntryFraction = 0.0, droppedSumFraction = 0.0, droppedWorstRowFraction = 0.0;
   uint64_t rowsDroppingOverOnePercent = 0;
   double rowSumMin = 0.0, rowSumMean = 0.0, rowSumMax = 0.0;  ///< closure of the rows computed
+  /// Rows whose estimated sum exceeded 1 by more than the rays' noise (4 / sqrt(rays)), scaled
+  /// back to 1 (no patch sends on more light than reaches it), and the largest estimated sum.
+  uint64_t rowsScaledToClosure = 0;
+  double rowSumEstimatedMax = 0.0;
   bool cacheLoaded = false;
   std::string cacheFile;   ///< empty without a cache
   uint64_t lightRays = 0;  ///< shadow rays toward point, spot and IES lights

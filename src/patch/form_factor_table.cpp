@@ -194,6 +194,26 @@ void FormFactorTable::symmetrize(std::span<const float> area) {
   values_ = std::move(values);
 }
 
+FormFactorTable::ClosureRepair FormFactorTable::closeRows(double noise) {
+  const size_t n = rows();
+  std::vector<float> scale(n, 1.0f);
+  ClosureRepair repair;
+  for (size_t i = 0; i < n; ++i) {
+    const double sum = rowSum(i);
+    repair.worstSum = std::max(repair.worstSum, sum);
+    if (sum > 1.0 + noise) {
+      scale[i] = float(1.0 / sum);
+      ++repair.rows;
+    }
+  }
+  if (repair.rows == 0) return repair;
+  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    for (uint64_t e = offsets_[i]; e < offsets_[i + 1]; ++e)
+      values_[e] *= std::min(scale[i], scale[columns_[e]]);
+  });
+  return repair;
+}
+
 size_t FormFactorTable::memoryBytes() const {
   return offsets_.size() * sizeof(uint64_t) + columns_.size() * sizeof(uint32_t) +
          values_.size() * sizeof(float);

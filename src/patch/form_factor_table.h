@@ -73,6 +73,17 @@ class FormFactorTable {
   void applyThreshold(std::span<const float> area, float threshold,
                       std::span<const uint8_t> keepRows = {});
 
+  /// What closeRows() found and did.
+  struct ClosureRepair {
+    size_t rows = 0;        ///< rows whose sum exceeded 1 + noise, scaled back
+    double worstSum = 0.0;  ///< the largest row sum before
+  };
+  /// Scales back the rows whose sum exceeds 1 + `noise` (no patch sends on more light than
+  /// reaches it): entry (i, j) times min(s_i, s_j), s_i = 1 / sum_i for those rows and 1 for the
+  /// rest. Every row then sums to at most 1 + noise, and a reciprocal table stays reciprocal
+  /// (both entries of a pair take one factor).
+  ClosureRepair closeRows(double noise);
+
   /// What applyThreshold dropped.
   const ThresholdLoss& thresholdLoss() const { return loss_; }
   size_t memoryBytes() const;

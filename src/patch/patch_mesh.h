@@ -73,7 +73,8 @@ class PatchMesh {
   /// Throws InputError for a negative or non-finite patch size.
   PatchMesh(const Scene& scene, const PatchMeshSettings& settings);
 
-  /// The longest-edge limit that gives about `target` patches (never more than 4x it).
+  /// The longest-edge limit that gives about `target` patches beyond the one each face root
+  /// makes at least (never more than 4x them).
   static float patchSizeFor(const Scene& scene, size_t target);
   /// The number of base patches a patch size gives, counted without meshing.
   static double patchCountFor(const Scene& scene, float patchSize);

@@ -65,7 +65,9 @@ struct PatchRadiosity::Impl {
   FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);
   FormFactorTable loadOrComputeFormFactors(const RayCaster& caster,
                                            const ProgressCallback& progress);
-  FormFactorTable assembleTable(FormFactorRows rows) const;
+  /// The table of rows as the estimators give them: made reciprocal, closed (closeRows), then
+  /// thresholded; the closure's numbers go into the stats.
+  FormFactorTable assembleTable(FormFactorRows rows);
   void solve(const RayCaster& caster, const ProgressCallback& progress);
   PatchSolution solveSystem(const FormFactorTable& table, const PatchSystem& system,
                             const ProgressCallback& progress) const;
@@ -75,6 +77,7 @@ struct PatchRadiosity::Impl {
   void combineGroups();
   void solveLazily(const RayCaster& caster, const PatchSystem& system,
                    const ProgressCallback& progress);
+  void closeRow(std::vector<FormFactorEntry>& row);
   void lightPatches(const RayCaster& caster, PatchLightCache& cache,
                     const ProgressCallback& progress);
   void recordThresholdLoss(const ThresholdLoss& loss);

@@ -174,7 +174,7 @@ std::vector<SettingDeclaration> declare() {
                     "Longest patch edge in scene units (the base level)", 0, kInfinity, true));
   d.back().defaultText = "from --patches";
   d.push_back(field("patches", kPatch, &M::patch, &P::targetPatches,
-                    "Approximate number of patches (the base level)", 1, 4294967296.0));
+                    "Approximate number of patches (the base level) beyond the one each face is at least", 1, 4294967296.0));
   d.push_back(choice("ff_estimator", kPatch, &M::patch, &P::estimator, kFormFactorEstimatorNames,
                      "Form factors by: hemisphere (rays from each patch), pairwise (point pairs), "
                      "exact (point-to-polygon, visibility rays)"));
