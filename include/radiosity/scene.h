@@ -4,6 +4,7 @@
 // Units and conventions: docs/ARCHITECTURE.md ("Units and conventions").
 
 #include <radiosity/ies_profile.h>
+#include <radiosity/texture.h>
 #include <radiosity/types.h>
 
 #include <algorithm>
@@ -21,11 +22,14 @@
 namespace rad {
 
 /// A Lambertian material. Faces are one-sided (front = counter-clockwise side) unless twoSided.
+/// A texture multiplies its factor where the scene has texture coordinates (Scene::texcoords).
 struct Material {
   std::string name;
   Color rho{0.5f};       ///< diffuse reflectance per channel, in [0, 1)
   Color emission{0.0f};  ///< Ke: emitted radiance from the front; radiosity E = pi * Ke
   bool twoSided = false;
+  TextureMap rhoTexture{};       ///< base colour (glTF baseColorTexture, OBJ map_Kd)
+  TextureMap emissionTexture{};  ///< emission (glTF emissiveTexture, OBJ map_Ke)
 
   bool emits() const { return maxComponent(emission) > 0.0f; }
 };
@@ -156,6 +160,9 @@ struct SolverSettings {
 struct Scene {
   std::string name;  ///< built-in name or file path
   std::vector<Vec3> positions;
+  /// Texture coordinates, one per position, or none (a textured material then uses its
+  /// texture's mean).
+  std::vector<Vec2> texcoords;
   std::vector<UVec3> triangles;        ///< CCW about the front normal
   std::vector<uint32_t> triangleFace;  ///< face of each triangle
   std::vector<Face> faces;
@@ -176,6 +183,22 @@ struct Scene {
   }
   Vec3 triangleNormal(uint32_t triangle) const;  ///< unit geometric normal (front side)
   float triangleArea(uint32_t triangle) const;
+  /// Texture coordinates at barycentric (u, v) of a triangle (its point (1-u-v) p0 + u p1 +
+  /// v p2); (0, 0) in a scene without them.
+  Vec2 texcoordAt(uint32_t triangle, Vec2 barycentric) const;
+  /// A texture of the triangle's material at a point of it, averaged over `footprint` scene
+  /// units (0: a texel); 1 for no texture, its mean in a scene without texture coordinates.
+  Color textureAt(const TextureMap& map, uint32_t triangle, Vec2 barycentric,
+                  float footprint = 0.0f) const;
+  /// Reflectance rho at a point of a triangle: its material's factor times the texture there;
+  /// emission Ke likewise.
+  Color reflectanceAt(uint32_t triangle, Vec2 barycentric, float footprint = 0.0f) const;
+  Color emissionAt(uint32_t triangle, Vec2 barycentric, float footprint = 0.0f) const;
+  /// The barycentrics (u, v) of a point on a triangle's plane (projected onto it).
+  Vec2 barycentricOf(uint32_t triangle, const Vec3& point) const;
+  /// The point's barycentrics on the triangle of `face` that holds it (the nearest where none
+  /// does, a point just off the face's outline); the triangle goes into `triangle`.
+  Vec2 locateOnFace(uint32_t face, const Vec3& point, uint32_t& triangle) const;
   Bounds bounds() const;
   /// Total emitted power (W): pi * Ke * area over emitting triangles plus every light's power.
   Color emittedPower() const;

@@ -32,6 +32,9 @@ class SceneBuilder {
   /// Adds a vertex; `where` names the source (file:line) for the error if it is NaN, infinite or
   /// beyond kMaxSceneCoordinate.
   uint32_t addVertex(const Vec3& position, const std::string& where);
+  /// The same with texture coordinates (u across, v down from the image's top; non-finite
+  /// ones are an InputError naming `where`).
+  uint32_t addVertex(const Vec3& position, const Vec2& texcoord, const std::string& where);
   /// Adds a polygon given by vertex indices, counter-clockwise about its front side.
   /// A planar polygon becomes one Face (triangulated by ear clipping, so concave ones work);
   /// a non-planar one becomes a face per triangle. Throws InputError (naming `where`) for fewer
@@ -48,19 +51,22 @@ class SceneBuilder {
   /// file is named only when it is not the scene's own (a mesh a JSON scene includes).
   void warn(const std::string& file, const std::string& text);
   /// Finishes the scene: records the degenerate-triangle warning, makes the first of the files'
-  /// cameras the scene's when it has none, and returns it.
+  /// cameras the scene's when it has none, gives a textured material whose faces lack texture
+  /// coordinates its texture's mean (one warning naming them), and returns it.
   Scene build();
 
  private:
   void addFace(std::span<const uint32_t> corners, std::span<const UVec3> triangles,
                uint32_t material, uint32_t object);
   bool isDegenerate(const UVec3& triangle) const;
+  void resolveUnmappedTextures();
   /// The convex planar quad two triangles form when they share a diagonal, if they do.
   std::optional<std::array<uint32_t, 4>> quadOf(const UVec3& a, const UVec3& b) const;
 
   Scene scene_;
   size_t degenerateTriangles_ = 0;
-  size_t clampedMaterials_ = 0;  ///< materials whose reflectance of 1 became kMaxReflectance
+  size_t clampedMaterials_ = 0;       ///< materials whose reflectance of 1 became kMaxReflectance
+  std::vector<uint8_t> hasTexcoord_;  ///< per vertex, once a vertex has had coordinates
 };
 
 }  // namespace rad

@@ -18,6 +18,8 @@ struct SurfaceHit {
   Vec3 normal{0.0f};  ///< unit geometric normal of the triangle's front side
   uint32_t triangle = 0;
   bool frontFace = true;  ///< the viewer is on the front side
+  /// Where on the triangle: point = (1-u-v) p0 + u p1 + v p2 (textures are looked up there).
+  Vec2 barycentric{0.0f};
 };
 
 class SurfaceRadiance {

@@ -150,7 +150,7 @@ void CubeProbe::capture(const RayCaster& caster, const SurfaceRadiance& radiance
             const Hit hit = caster.intersect(ray);
             if (hit.valid())
               sum += radiance.radiance({centre + hit.distance * ray.direction, hit.geometricNormal,
-                                        hit.triangle, hit.frontFace});
+                                        hit.triangle, hit.frontFace, hit.barycentric});
           }
         texel(face, i, j) = sum / float(samples_ * samples_);
       }

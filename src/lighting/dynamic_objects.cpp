@@ -136,7 +136,9 @@ std::vector<Light> DynamicObjectLighting::objectLights() const {
   std::vector<uint8_t> has(placed_.objects.size(), 0);
   for (uint32_t t = placed_.staticTriangles; t < placed_.triangles.size(); ++t) {
     const UVec3& tri = placed_.triangles[t];
-    const Color b = placed_.materialOf(t).rho * (full_[tri.x] + full_[tri.y] + full_[tri.z]) / 3.0f;
+    const Color rho =
+        placed_.reflectanceAt(t, Vec2(1.0f / 3.0f), std::sqrt(placed_.triangleArea(t)));
+    const Color b = rho * (full_[tri.x] + full_[tri.y] + full_[tri.z]) / 3.0f;
     const Vec3 n = placed_.triangleNormal(t);
     const float weight = placed_.triangleArea(t) / glm::pi<float>();
     const uint32_t object = placed_.faceOf(t).object;
@@ -162,14 +164,14 @@ void DynamicObjectLighting::appendObjects(LitMesh& mesh) const {
     const uint32_t object = placed_.faceOf(t).object;
     const uint32_t first = uint32_t(mesh.indices.size() / 3);
     for (; t < placed_.triangles.size() && placed_.faceOf(t).object == object; ++t) {
-      const Material& m = placed_.materialOf(t);
       const Vec3 n = placed_.triangleNormal(t);
       for (int k = 0; k < 3; ++k) {
         const uint32_t v = placed_.triangles[t][k];
         mesh.indices.push_back(uint32_t(mesh.positions.size()));
         mesh.positions.push_back(placed_.positions[v]);
         mesh.normals.push_back(n);
-        mesh.colors.push_back(m.rho * full_[v] / glm::pi<float>());
+        const Vec2 corner(k == 1 ? 1.0f : 0.0f, k == 2 ? 1.0f : 0.0f);
+        mesh.colors.push_back(placed_.reflectanceAt(t, corner) * full_[v] / glm::pi<float>());
       }
     }
     mesh.groups.push_back(
@@ -215,7 +217,8 @@ Color DynamicObjectLighting::radiance(const SurfaceHit& hit) const {
   if (!isObject(hit.triangle)) return solution_.radiance(hit);
   const Material& m = placed_.materialOf(hit.triangle);
   if (!hit.frontFace && !m.twoSided) return Color(0.0f);
-  return m.rho * atHit(hit, full_) / glm::pi<float>();
+  return placed_.reflectanceAt(hit.triangle, hit.barycentric) * atHit(hit, full_) /
+         glm::pi<float>();
 }
 
 Color DynamicObjectLighting::indirectIrradiance(const SurfaceHit& hit) const {

@@ -38,7 +38,8 @@ EmitterSample EmitterSampler::sample(float choose, Vec2 position) const {
   s.point = (1.0f - b.x - b.y) * scene_->positions[tri.x] + b.x * scene_->positions[tri.y] +
             b.y * scene_->positions[tri.z];
   s.normal = scene_->triangleNormal(t);
-  s.emission = scaledEmission(*scene_, scene_->faceOf(t).material, emissionScales_);
+  s.emission = scaledEmission(*scene_, scene_->faceOf(t).material, emissionScales_) *
+               scene_->textureAt(m.emissionTexture, t, b);
   s.twoSided = m.twoSided;
   s.pdfArea = pdfArea_[t];
   return s;

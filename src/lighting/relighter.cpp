@@ -203,9 +203,10 @@ void Relighter::State::applyEmission(std::span<const Color> scales) {
   if (next == emissionScales) return;
   emissionScales = std::move(next);
   for (uint32_t p = 0; p < m.mesh->size(); ++p) {
-    const uint32_t material = m.mesh->patches()[p].material;
-    const Color emitted =
-        glm::pi<float>() * m.scene->materials[material].emission * emissionScales[material];
+    const Patch& patch = m.mesh->patches()[p];
+    const uint32_t material = patch.material;
+    const Color emitted = glm::pi<float>() * m.scene->materials[material].emission *
+                          patch.emissionTint * emissionScales[material];
     const Color change = emitted - system.emitted[p];
     if (change == Color(0.0f)) continue;
     system.emitted[p] = emitted;

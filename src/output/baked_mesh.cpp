@@ -192,7 +192,8 @@ SurfaceBake cutSurfaces(const Scene& scene, float maxEdge) {
       for (size_t v = 0; v < p.positions.size(); ++v) {
         out.positions[base + v] = p.positions[v];
         out.normals[base + v] = front ? normal : -normal;
-        bake.at[base + v] = {p.positions[v], normal, triangle, front};
+        bake.at[base + v] = {p.positions[v], normal, triangle, front,
+                             scene.barycentricOf(triangle, p.positions[v])};
       }
       // The back side is wound the other way round, so that it faces out of its own side.
       for (size_t k = 0; k < p.indices.size(); k += 3) {

@@ -14,6 +14,7 @@
 #include <unordered_set>
 
 #include "geometry/sampling.h"
+#include "patch/patch_quadrature.h"
 
 namespace rad {
 
@@ -301,8 +302,30 @@ void PatchMesh::finishPatch(uint32_t index) {
     weighted += a2 * (a + c + d) / 3.0f;
   }
   p.centroid = p.area > 0.0f ? weighted / p.area : a;
+  p.rho = scene_->materials[p.material].rho;
   node.patch = uint32_t(patches_.size());
   patches_.push_back(p);
+  const Material& m = scene_->materials[p.material];
+  if (m.rhoTexture || m.emissionTexture) applyTextureMeans(node.patch);
+}
+
+// A textured patch's reflectance and emission are the textures' means over it (area-weighted,
+// linear): the midpoint rule's 4 x 4 points, each the texture averaged over a quarter of the
+// patch's size, so that a patch of any size sees all of its texels.
+void PatchMesh::applyTextureMeans(uint32_t index) {
+  constexpr int kPoints = 16;
+  Patch& p = patches_[index];
+  const Material& m = scene_->materials[p.material];
+  const float footprint = 0.25f * std::sqrt(p.area);
+  Color rho(0.0f), emission(0.0f);
+  for (const QuadraturePoint& q : midpointRule(*this, index, kPoints)) {
+    uint32_t triangle = 0;
+    const Vec2 b = scene_->locateOnFace(p.face, q.position, triangle);
+    rho += float(q.weight) * scene_->textureAt(m.rhoTexture, triangle, b, footprint);
+    emission += float(q.weight) * scene_->textureAt(m.emissionTexture, triangle, b, footprint);
+  }
+  p.rho = m.rho * rho;
+  p.emissionTint = emission;
 }
 
 uint64_t PatchMesh::weldKey(const Vec3& p, float cell) {

@@ -60,7 +60,9 @@ struct Patch {
   uint32_t material = 0;
   float area = 0.0f;
   Vec3 centroid{0.0f};
-  Vec3 normal{0.0f};  ///< unit normal of the side the patch emits and receives on
+  Vec3 normal{0.0f};         ///< unit normal of the side the patch emits and receives on
+  Color rho{0.0f};           ///< its material's reflectance times the texture's mean over it
+  Color emissionTint{1.0f};  ///< the emission texture's mean over it (1: none)
 };
 
 struct PatchMeshSettings {
@@ -151,6 +153,7 @@ class PatchMesh {
   uint32_t findVertex(const Vec3& p, const Vec3& normal) const;
   static uint64_t weldKey(const Vec3& p, float cell);
   void finishPatch(uint32_t node);
+  void applyTextureMeans(uint32_t patch);
   void numberPatches();
 
   const Scene* scene_;

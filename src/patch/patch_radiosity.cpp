@@ -58,8 +58,8 @@ PatchSystem PatchRadiosity::Impl::system() const {
   PatchSystem s;
   for (const Patch& p : mesh->patches()) {
     const Material& m = scene->materials[p.material];
-    s.emitted.push_back(glm::pi<float>() * m.emission);
-    s.rho.push_back(m.rho);
+    s.emitted.push_back(glm::pi<float>() * m.emission * p.emissionTint);
+    s.rho.push_back(p.rho);
     s.area.push_back(p.area);
   }
   s.direct = lightDirect.empty() ? std::vector<Color>(mesh->size(), Color(0.0f)) : lightDirect;
@@ -317,10 +317,10 @@ void PatchRadiosity::Impl::combineGroups() {
   solution.emitted.resize(mesh->size());
   solution.radiosity.resize(mesh->size());
   for (uint32_t p = 0; p < mesh->size(); ++p) {
-    const uint32_t material = mesh->patches()[p].material;
-    solution.emitted[p] = glm::pi<float>() * mix.emission(*scene, material);
-    solution.radiosity[p] =
-        solution.emitted[p] + scene->materials[material].rho * solution.irradiance[p];
+    const Patch& patch = mesh->patches()[p];
+    solution.emitted[p] =
+        glm::pi<float>() * mix.emission(*scene, patch.material) * patch.emissionTint;
+    solution.radiosity[p] = solution.emitted[p] + patch.rho * solution.irradiance[p];
   }
 }
 
@@ -450,9 +450,9 @@ void PatchRadiosity::setGroupScales(std::span<const Color> scales) {
 Color PatchRadiosity::groupRadiosity(size_t group, size_t p) const {
   const Impl& m = *impl_;
   const Patch& patch = m.mesh->patches()[p];
-  const Color e = glm::pi<float>() * m.mix.groupEmission(*m.scene, group, patch.material);
-  return m.mix.scales()[group] *
-         (e + m.scene->materials[patch.material].rho * m.groupIrradiance.at(group)[p]);
+  const Color e =
+      glm::pi<float>() * m.mix.groupEmission(*m.scene, group, patch.material) * patch.emissionTint;
+  return m.mix.scales()[group] * (e + patch.rho * m.groupIrradiance.at(group)[p]);
 }
 
 PatchRadiosity::~PatchRadiosity() = default;
@@ -477,9 +477,12 @@ Color PatchRadiosity::radiance(const SurfaceHit& hit) const {
   const std::optional<Color> h =
       impl_->interpolate(hit, impl_->solution.irradiance, impl_->vertexIrradiance);
   if (!h) return Color(0.0f);
-  // The hit's own material: colour edges and emitters stay sharp.
-  return impl_->mix.emission(*impl_->scene, impl_->scene->faceOf(hit.triangle).material) +
-         m.rho * *h / glm::pi<float>();
+  // The hit's own material and texture: colour edges, emitters and textures stay sharp (a
+  // lightmap's way: the irradiance smooth, the albedo per pixel).
+  const Scene& scene = *impl_->scene;
+  return impl_->mix.emission(scene, scene.faceOf(hit.triangle).material) *
+             scene.textureAt(m.emissionTexture, hit.triangle, hit.barycentric) +
+         scene.reflectanceAt(hit.triangle, hit.barycentric) * *h / glm::pi<float>();
 }
 
 Color PatchRadiosity::irradiance(const SurfaceHit& hit) const {
@@ -515,7 +518,7 @@ SurfaceElement PatchRadiosity::element(size_t p) const {
           patch.centroid,
           patch.normal,
           m.solution.emitted[p],
-          m.scene->materials[patch.material].rho,
+          patch.rho,
           m.solution.irradiance[p],
           m.solution.radiosity[p],
           m.mesh->roots()[m.mesh->nodeOf(uint32_t(p)).root].back};
@@ -560,7 +563,6 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
     for (uint32_t p : byObject[o]) {
       const Patch& patch = mesh->patches()[p];
       const PatchNode& node = mesh->nodeOf(p);
-      const Material& material = scene->materials[patch.material];
       const int n = node.cornerCount();
       outline.clear();
       onEdges.clear();  // per outline point: a bit for each patch edge it lies on
@@ -582,8 +584,8 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
         const Color h = smooth ? vertexIrradiance[v] : solution.irradiance[p];
         out.positions.push_back(mesh->vertices()[v]);
         out.normals.push_back(smooth ? mesh->vertexNormals()[v] : patch.normal);
-        out.colors.push_back(mix.emission(*scene, patch.material) +
-                             material.rho * h / glm::pi<float>());
+        out.colors.push_back(mix.emission(*scene, patch.material) * patch.emissionTint +
+                             patch.rho * h / glm::pi<float>());
       }
       // The outline is CCW about the side's normal, so fans keep the front facing out. A fan
       // from a corner whose two edges hold no finer vertices (then no triangle is flat), else
@@ -612,8 +614,8 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
       }
       out.positions.push_back(position);
       out.normals.push_back(smooth ? glm::normalize(normal) : patch.normal);
-      out.colors.push_back(mix.emission(*scene, patch.material) +
-                           material.rho * colour / glm::pi<float>());
+      out.colors.push_back(mix.emission(*scene, patch.material) * patch.emissionTint +
+                           patch.rho * colour / glm::pi<float>());
       for (size_t t = 0; t < outline.size(); ++t)
         out.indices.insert(out.indices.end(), {centre, index[t], index[(t + 1) % outline.size()]});
     }

@@ -68,7 +68,8 @@ void PatchRadiosity::Impl::readSolution(const SolutionFile& file, ByteReader in)
     m.groupIndirect.clear();
     m.solution.radiosity = in.array<Color>(n);
     for (const Patch& p : m.mesh->patches())
-      m.solution.emitted.push_back(glm::pi<float>() * m.scene->materials[p.material].emission);
+      m.solution.emitted.push_back(glm::pi<float>() * m.scene->materials[p.material].emission *
+                                   p.emissionTint);
   }
   const uint64_t direct = in.get<uint64_t>();
   if (direct != 0 && direct != n) file.refuse("its direct light is not one value per patch");

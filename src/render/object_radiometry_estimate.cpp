@@ -44,6 +44,7 @@ std::vector<ObjectSurface> objectSurfaces(const Scene& scene) {
 struct SurfacePoint {
   Vec3 position;
   uint32_t triangle;
+  Vec2 barycentric;
 };
 
 // Point k of n: the k-th stratum of the cumulative area, jittered.
@@ -58,7 +59,7 @@ SurfacePoint stratifiedPoint(const Scene& scene, const ObjectSurface& s, int k, 
   const UVec3& tri = scene.triangles[t];
   return {(1.0f - b.x - b.y) * scene.positions[tri.x] + b.x * scene.positions[tri.y] +
               b.y * scene.positions[tri.z],
-          t};
+          t, b};
 }
 
 }  // namespace
@@ -104,9 +105,9 @@ std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, const
       Color sum(0.0f);
       for (int k = 0; k < settings.samplesPerPixel; ++k)
         sum += integrator.irradiance(point.position, normal, rng);
-      const Material& m = scene.materialOf(point.triangle);
       irradiance[index] = sum / float(settings.samplesPerPixel);
-      radiosity[index] = glm::pi<float>() * m.emission + m.rho * irradiance[index];
+      radiosity[index] = glm::pi<float>() * scene.emissionAt(point.triangle, point.barycentric) +
+                         scene.reflectanceAt(point.triangle, point.barycentric) * irradiance[index];
       ticker.tick();
     }
   });

@@ -52,19 +52,20 @@ Color PathIntegrator::trace(Ray ray, float bouncePdf, int firstDepth, Rng& rng) 
     // A one-sided surface seen from behind absorbs everything and emits nothing.
     if (!hit.frontFace && !m.twoSided) break;
     if (bouncePdf < 0.0f) {
-      radiance += throughput * m.emission;
+      radiance += throughput * scene_->emissionAt(hit.triangle, hit.barycentric);
     } else if (m.emits()) {
       const float cosEmitter = std::abs(glm::dot(hit.geometricNormal, ray.direction));
       const float lightPdf =
           direct_.emitterPdfArea(hit.triangle) * hit.distance * hit.distance / cosEmitter;
-      radiance += throughput * m.emission * powerHeuristic(bouncePdf, lightPdf);
+      radiance += throughput * scene_->emissionAt(hit.triangle, hit.barycentric) *
+                  powerHeuristic(bouncePdf, lightPdf);
     }
     const Vec3 n = hit.frontFace ? hit.geometricNormal : -hit.geometricNormal;
     const UVec3& tri = scene_->triangles[hit.triangle];
     const Vec2 b = hit.barycentric;
     const Vec3 p = (1.0f - b.x - b.y) * scene_->positions[tri.x] + b.x * scene_->positions[tri.y] +
                    b.y * scene_->positions[tri.z];
-    throughput *= m.rho;
+    throughput *= scene_->reflectanceAt(hit.triangle, b);
     if (!(maxComponent(throughput) > 0.0f)) break;
     // The last vertex has no bounce to find emitters, so its light sample takes full weight.
     const bool last = depth + 1 >= maxDepth_;

@@ -41,8 +41,9 @@ class PerPixelDirectShading {
     }
     // (the scales cover the solution's own materials; a scene with objects placed has more)
     const Color ke =
-        scaledEmission(scene_, scene_.faceOf(hit.triangle).material, radiance_.emissionScales());
-    return ke + m.rho * h * glm::one_over_pi<float>();
+        scaledEmission(scene_, scene_.faceOf(hit.triangle).material, radiance_.emissionScales()) *
+        scene_.textureAt(m.emissionTexture, hit.triangle, hit.barycentric);
+    return ke + scene_.reflectanceAt(hit.triangle, hit.barycentric) * h * glm::one_over_pi<float>();
   }
 
  private:
@@ -83,7 +84,7 @@ Image renderSurfaceRadiance(const Scene& scene, const RayCaster& caster, const C
           const Hit hit = caster.intersect(ray);
           if (!hit.valid()) continue;
           const SurfaceHit at{ray.origin + hit.distance * ray.direction, hit.geometricNormal,
-                              hit.triangle, hit.frontFace};
+                              hit.triangle, hit.frontFace, hit.barycentric};
           sum += perPixel ? shade(at, rng) : radiance.radiance(at);
         }
         image.at(x, y) = sum / float(settings.samplesPerPixel);

@@ -53,11 +53,25 @@ Scene Scene::withDynamicObjectsAt(double seconds) const {
     out.objects.push_back({object.name});
     for (Material material : part.materials) {
       if (object.rho) material.rho = *object.rho;
+      // Without coordinates of its own, or in a scene without any, a texture is its mean.
+      if (material.rhoTexture && (object.rho || part.texcoords.empty() || texcoords.empty())) {
+        if (!object.rho) material.rho *= material.rhoTexture.texture->mean();
+        material.rhoTexture = {};
+      }
       material.emission = Color(0.0f);  // a moving object lights the scene by its reflection only
+      material.emissionTexture = {};
       material.name = object.name + "/" + material.name;
       out.materials.push_back(material);
     }
     for (const Vec3& p : part.positions) out.positions.push_back(Vec3(m * glm::vec4(p, 1.0f)));
+    // Texture coordinates stay one per position, where the scene has them: the part's own, or
+    // (0, 0) for a part without (whose textures became their means).
+    if (!out.texcoords.empty()) {
+      if (part.texcoords.empty())
+        out.texcoords.resize(out.positions.size(), Vec2(0.0f));
+      else
+        out.texcoords.insert(out.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
+    }
     for (const UVec3& t : part.triangles) out.triangles.push_back(t + UVec3(vertexBase));
     for (uint32_t f : part.triangleFace) out.triangleFace.push_back(f + faceBase);
     for (Face face : part.faces) {

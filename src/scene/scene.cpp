@@ -1,7 +1,9 @@
 #include <radiosity/scene.h>
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/constants.hpp>
+#include <limits>
 
 namespace rad {
 
@@ -15,6 +17,64 @@ float Scene::triangleArea(uint32_t t) const {
   const UVec3& tri = triangles[t];
   const Vec3d a = positions[tri.x], b = positions[tri.y], c = positions[tri.z];
   return float(0.5 * glm::length(glm::cross(b - a, c - a)));
+}
+
+Vec2 Scene::texcoordAt(uint32_t t, Vec2 b) const {
+  if (texcoords.empty()) return Vec2(0.0f);
+  const UVec3& tri = triangles[t];
+  return (1.0f - b.x - b.y) * texcoords[tri.x] + b.x * texcoords[tri.y] + b.y * texcoords[tri.z];
+}
+
+// The footprint in scene units becomes one in texture units by the triangle's own scale (the
+// square root of its areas' ratio).
+Color Scene::textureAt(const TextureMap& map, uint32_t t, Vec2 b, float footprint) const {
+  if (!map) return Color(1.0f);
+  if (texcoords.empty()) return map.texture->mean();
+  const UVec3& tri = triangles[t];
+  const Vec2 e1 = texcoords[tri.y] - texcoords[tri.x], e2 = texcoords[tri.z] - texcoords[tri.x];
+  const float uvArea = 0.5f * std::abs(e1.x * e2.y - e1.y * e2.x);
+  const float area = triangleArea(t);
+  const float scale = area > 0.0f ? std::sqrt(uvArea / area) : 0.0f;
+  return map.at(texcoordAt(t, b), footprint * scale);
+}
+
+Color Scene::reflectanceAt(uint32_t t, Vec2 b, float footprint) const {
+  const Material& m = materialOf(t);
+  return m.rho * textureAt(m.rhoTexture, t, b, footprint);
+}
+
+Color Scene::emissionAt(uint32_t t, Vec2 b, float footprint) const {
+  const Material& m = materialOf(t);
+  return m.emission * textureAt(m.emissionTexture, t, b, footprint);
+}
+
+Vec2 Scene::barycentricOf(uint32_t t, const Vec3& point) const {
+  const UVec3& tri = triangles[t];
+  const Vec3d a = positions[tri.x], e1 = Vec3d(positions[tri.y]) - a,
+              e2 = Vec3d(positions[tri.z]) - a, p = Vec3d(point) - a;
+  // In the triangle's plane (least squares: the point may lie a little off it).
+  const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+  const double p1 = glm::dot(p, e1), p2 = glm::dot(p, e2), det = d11 * d22 - d12 * d12;
+  if (!(std::abs(det) > 0.0)) return Vec2(1.0f / 3.0f);
+  return Vec2(float((d22 * p1 - d12 * p2) / det), float((d11 * p2 - d12 * p1) / det));
+}
+
+Vec2 Scene::locateOnFace(uint32_t face, const Vec3& point, uint32_t& triangle) const {
+  const Face& f = faces[face];
+  float best = -std::numeric_limits<float>::infinity();
+  Vec2 found(1.0f / 3.0f);
+  triangle = f.firstTriangle;
+  for (uint32_t t = f.firstTriangle; t < f.firstTriangle + f.triangleCount; ++t) {
+    const Vec2 b = barycentricOf(t, point);
+    const float inside = std::min({b.x, b.y, 1.0f - b.x - b.y});  // >= 0 inside
+    if (inside > best) {
+      best = inside;
+      found = b;
+      triangle = t;
+      if (inside >= 0.0f) break;
+    }
+  }
+  return found;
 }
 
 Bounds Scene::bounds() const {
@@ -31,7 +91,10 @@ Color Scene::emittedPower() const {
     const Material& m = materialOf(t);
     if (!m.emits()) continue;
     const double sides = m.twoSided ? 2.0 : 1.0;
-    power += Vec3d(m.emission) * (glm::pi<double>() * sides * triangleArea(t));
+    // A texture's emission taken at the centroid over the triangle's size: its mean there.
+    const float size = std::sqrt(triangleArea(t));
+    const Color ke = emissionAt(t, Vec2(1.0f / 3.0f), size);
+    power += Vec3d(ke) * (glm::pi<double>() * sides * triangleArea(t));
   }
   for (const Light& light : lights) power += Vec3d(light.power());
   return Color(power);

@@ -65,6 +65,52 @@ uint32_t SceneBuilder::addVertex(const Vec3& p, const std::string& where) {
   return uint32_t(scene_.positions.size() - 1);
 }
 
+uint32_t SceneBuilder::addVertex(const Vec3& p, const Vec2& texcoord, const std::string& where) {
+  if (!std::isfinite(texcoord.x) || !std::isfinite(texcoord.y))
+    throw InputError(where, "texture coordinates must be finite");
+  const uint32_t v = addVertex(p, where);
+  scene_.texcoords.resize(scene_.positions.size(), Vec2(0.0f));
+  hasTexcoord_.resize(scene_.positions.size(), 0);
+  scene_.texcoords[v] = texcoord;
+  hasTexcoord_[v] = 1;
+  return v;
+}
+
+// A textured material on faces without texture coordinates shows its texture's mean (the
+// factor times it), and the scene keeps coordinates only when a texture uses them.
+void SceneBuilder::resolveUnmappedTextures() {
+  std::vector<uint8_t> unmapped(scene_.materials.size(), 0);
+  hasTexcoord_.resize(scene_.positions.size(), 0);
+  for (const Face& f : scene_.faces)
+    for (uint32_t t = f.firstTriangle; t < f.firstTriangle + f.triangleCount; ++t)
+      for (int k = 0; k < 3; ++k)
+        if (!hasTexcoord_[scene_.triangles[t][k]]) unmapped[f.material] = 1;
+  std::vector<std::string> names;
+  bool textured = false;
+  for (size_t m = 0; m < scene_.materials.size(); ++m) {
+    Material& material = scene_.materials[m];
+    if (!material.rhoTexture && !material.emissionTexture) continue;
+    if (!unmapped[m]) {
+      textured = true;
+      continue;
+    }
+    names.push_back(quotedToken(material.name));
+    if (material.rhoTexture) material.rho *= material.rhoTexture.texture->mean();
+    if (material.emissionTexture) material.emission *= material.emissionTexture.texture->mean();
+    material.rhoTexture = {};
+    material.emissionTexture = {};
+  }
+  if (!textured) scene_.texcoords.clear();
+  if (names.empty()) return;
+  std::string list = names.front();
+  for (size_t i = 1; i < names.size() && i < 5; ++i) list += ", " + names[i];
+  if (names.size() > 5) list += fmt::format(" and {} more", names.size() - 5);
+  scene_.warnings.push_back(fmt::format(
+      "{} textured material{} ({}) on faces without texture coordinates: each takes its "
+      "texture's mean",
+      names.size(), names.size() == 1 ? "" : "s", list));
+}
+
 bool SceneBuilder::isDegenerate(const UVec3& t) const {
   const Vec3d a = scene_.positions[t.x], b = scene_.positions[t.y], c = scene_.positions[t.z];
   const double twiceArea = glm::length(glm::cross(b - a, c - a));
@@ -198,6 +244,8 @@ Scene SceneBuilder::build() {
         clampedMaterials_, clampedMaterials_ == 1 ? "" : "s", kMaxReflectance));
   clampedMaterials_ = 0;
   if (!scene_.camera && !scene_.cameras.empty()) scene_.camera = scene_.cameras.front().second;
+  resolveUnmappedTextures();
+  if (!scene_.texcoords.empty()) scene_.texcoords.resize(scene_.positions.size(), Vec2(0.0f));
   return std::move(scene_);
 }
 

@@ -23,7 +23,15 @@ void hashMaterials(Hasher& h, const Scene& scene) {
     h.value(m.rho);
     h.value(m.emission);
     h.text(m.name);  // emitting materials name light groups
+    for (const TextureMap* map : {&m.rhoTexture, &m.emissionTexture}) {
+      h.value(map->texture ? map->texture->digest() : uint64_t(0));
+      h.value(map->wrapU);
+      h.value(map->wrapV);
+      h.bytes(map->transform, sizeof map->transform);
+    }
   }
+  h.value(uint64_t(scene.texcoords.size()));
+  h.bytes(scene.texcoords.data(), scene.texcoords.size() * sizeof(Vec2));
 }
 
 void hashLights(Hasher& h, std::span<const Light> lights) {

@@ -220,9 +220,13 @@ Color VoxelRadiosity::radiance(const SurfaceHit& hit) const {
   const Material& m = impl_->scene->materialOf(hit.triangle);
   if (!hit.frontFace && !m.twoSided) return Color(0.0f);
   const Vec3 n = hit.frontFace ? hit.normal : -hit.normal;
-  // The hit's own material, not the voxel's blend: colour edges and emitters stay sharp.
-  return impl_->mix.emission(*impl_->scene, impl_->scene->faceOf(hit.triangle).material) +
-         m.rho * impl_->field().at(hit.point, n) / glm::pi<float>();
+  // The hit's own material and texture, not the voxel's blend: colour edges, emitters and
+  // textures stay sharp.
+  const Scene& scene = *impl_->scene;
+  return impl_->mix.emission(scene, scene.faceOf(hit.triangle).material) *
+             scene.textureAt(m.emissionTexture, hit.triangle, hit.barycentric) +
+         scene.reflectanceAt(hit.triangle, hit.barycentric) * impl_->field().at(hit.point, n) /
+             glm::pi<float>();
 }
 
 Color VoxelRadiosity::irradiance(const SurfaceHit& hit) const {

@@ -177,9 +177,17 @@ void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orien
   side->weight += w;
   side->area += f.area;
   if (f.backSide) side->backArea += f.area;
-  side->rhoArea += w * Vec3d(m.rho);
-  side->keArea += w * Vec3d(m.emission);
-  const double emitted = w * luminance(m.emission);
+  // A textured piece takes its textures' mean over it (at its centroid, over its size).
+  Color rho = m.rho, ke = m.emission;
+  if (m.rhoTexture || m.emissionTexture) {
+    const Vec2 b = scene.barycentricOf(f.triangle, f.centroid);
+    const float size = std::sqrt(std::max(f.area, 0.0f));
+    rho = scene.reflectanceAt(f.triangle, b, size);
+    ke = scene.emissionAt(f.triangle, b, size);
+  }
+  side->rhoArea += w * Vec3d(rho);
+  side->keArea += w * Vec3d(ke);
+  const double emitted = w * luminance(ke);
   if (emitted > side->emitterWeight) {
     side->emitterWeight = emitted;
     side->emitter = scene.faceOf(f.triangle).material;

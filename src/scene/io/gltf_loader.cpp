@@ -19,19 +19,54 @@
 #include <glm/gtx/transform.hpp>
 #include <limits>
 #include <set>
+#include <tuple>
 
 #include "core/checked_size.h"
 #include "core/json_nesting.h"
+#include "core/message_text.h"
 #include "scene/io/text_file.h"
+#include "scene/io/texture_files.h"
 
 namespace rad {
 
 namespace {
 
-// The scene model ignores textures, so images are accepted without being decoded.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*) {
+// Images are kept encoded as tinygltf hands them over (a data URI's or a bufferView's bytes) and
+// decoded by Texture when a material uses them; width -1 marks them so.
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  image->image.assign(bytes, bytes + size);
+  image->width = -1;
   return true;
+}
+
+TextureWrap wrapOf(int mode) {
+  switch (mode) {
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+      return TextureWrap::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+      return TextureWrap::MirroredRepeat;
+    default:
+      return TextureWrap::Repeat;
+  }
+}
+
+// KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv, R turning counter-clockwise
+// in the extension's (ratified) column-major matrix (cos, -sin; sin, cos).
+void applyTextureTransform(const tinygltf::Value& ext, TextureMap& map) {
+  auto number = [](const tinygltf::Value& v, double fallback) {
+    return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+  };
+  const tinygltf::Value& offset = ext.Get("offset");
+  const tinygltf::Value& scale = ext.Get("scale");
+  const double r = number(ext.Get("rotation"), 0.0);
+  const double ox = offset.IsArray() && offset.ArrayLen() == 2 ? number(offset.Get(0), 0.0) : 0.0;
+  const double oy = offset.IsArray() && offset.ArrayLen() == 2 ? number(offset.Get(1), 0.0) : 0.0;
+  const double sx = scale.IsArray() && scale.ArrayLen() == 2 ? number(scale.Get(0), 1.0) : 1.0;
+  const double sy = scale.IsArray() && scale.ArrayLen() == 2 ? number(scale.Get(1), 1.0) : 1.0;
+  const double c = std::cos(r), s = std::sin(r);
+  const double m[6] = {sx * c, sy * s, -sx * s, sy * c, ox, oy};
+  for (int k = 0; k < 6; ++k) map.transform[k] = float(m[k]);
 }
 
 std::string oneLine(std::string s) {
@@ -72,6 +107,11 @@ class GltfReader {
   const unsigned char* elements(const tinygltf::Accessor& a, size_t elementSize, size_t& stride,
                                 const std::string& where) const;
   std::vector<Vec3> positions(int index, const std::string& where) const;
+  std::vector<Vec2> texcoords(int index, const std::string& where) const;
+  /// The texture a material's textureInfo names, or none (after a warning where it cannot be
+  /// used); `texCoord` gets the coordinate set it reads.
+  TextureMap textureMap(const tinygltf::TextureInfo& info, const std::string& material,
+                        const std::string& where, int& texCoord);
   std::vector<uint32_t> indices(int index, const std::string& where) const;
   uint32_t material(int index);
   void addMesh(int meshIndex, const glm::mat4& world, uint32_t object);
@@ -85,7 +125,7 @@ class GltfReader {
   std::vector<bool> visited_;
   int64_t defaultMaterial_ = -1;
   size_t skippedPrimitives_ = 0, skippedLights_ = 0;
-  bool texturesIgnored_ = false;
+  TextureFiles textures_{builder_};
 };
 
 const tinygltf::Accessor& GltfReader::accessor(int index, const std::string& where) const {
@@ -134,6 +174,70 @@ std::vector<Vec3> GltfReader::positions(int index, const std::string& where) con
   std::vector<Vec3> out(a.count);
   for (size_t i = 0; i < a.count; ++i) std::memcpy(&out[i], data + i * stride, 12);
   return out;
+}
+
+// TEXCOORD_n: FLOAT, or UNSIGNED_BYTE / UNSIGNED_SHORT normalized (glTF 2.0, 3.7.2.1).
+std::vector<Vec2> GltfReader::texcoords(int index, const std::string& where) const {
+  const tinygltf::Accessor& a = accessor(index, where);
+  const int type = a.componentType;
+  const size_t component = type == TINYGLTF_COMPONENT_TYPE_FLOAT            ? 4
+                           : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                           : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 1
+                                                                            : 0;
+  if (a.type != TINYGLTF_TYPE_VEC2 || component == 0 || (component != 4 && !a.normalized))
+    throw InputError(at(where),
+                     "TEXCOORD must be a VEC2 of FLOAT, or of normalized unsigned "
+                     "byte or short");
+  size_t stride = 0;
+  const unsigned char* data = elements(a, 2 * component, stride, where);
+  std::vector<Vec2> out(a.count);
+  for (size_t i = 0; i < a.count; ++i)
+    for (size_t c = 0; c < 2; ++c) {
+      const unsigned char* p = data + i * stride + c * component;
+      if (component == 4) {
+        std::memcpy(&out[i][int(c)], p, 4);
+      } else if (component == 2) {
+        uint16_t v;
+        std::memcpy(&v, p, 2);
+        out[i][int(c)] = float(v) / 65535.0f;
+      } else {
+        out[i][int(c)] = float(*p) / 255.0f;
+      }
+    }
+  return out;
+}
+
+TextureMap GltfReader::textureMap(const tinygltf::TextureInfo& info, const std::string& material,
+                                  const std::string& where, int& texCoord) {
+  texCoord = info.texCoord;
+  if (info.index < 0) return {};
+  if (size_t(info.index) >= model_.textures.size())
+    throw InputError(at(where + "/index"), fmt::format("texture {} does not exist", info.index));
+  const tinygltf::Texture& texture = model_.textures[size_t(info.index)];
+  if (texture.source < 0 || size_t(texture.source) >= model_.images.size()) {
+    builder_.warn(path_, fmt::format("texture {} has no image: material {} keeps its factor",
+                                     info.index, quotedToken(material)));
+    return {};
+  }
+  const tinygltf::Image& image = model_.images[size_t(texture.source)];
+  const std::string key = fmt::format("{}#image{}", path_, texture.source);
+  TextureMap map;
+  if (image.width == -1)
+    map.texture = textures_.encoded(image.image, key, material, path_);
+  else if (!image.uri.empty())
+    map.texture = textures_.file(
+        resolvePath(parentDirectory(path_), tinygltf::dlib::urldecode(image.uri)), material, path_);
+  if (!map.texture) return {};
+  if (texture.sampler >= 0 && size_t(texture.sampler) < model_.samplers.size()) {
+    map.wrapU = wrapOf(model_.samplers[size_t(texture.sampler)].wrapS);
+    map.wrapV = wrapOf(model_.samplers[size_t(texture.sampler)].wrapT);
+  }
+  if (auto ext = info.extensions.find("KHR_texture_transform"); ext != info.extensions.end()) {
+    applyTextureTransform(ext->second, map);
+    if (ext->second.Get("texCoord").IsInt())
+      texCoord = ext->second.Get("texCoord").GetNumberAsInt();
+  }
+  return map;
 }
 
 std::vector<uint32_t> GltfReader::indices(int index, const std::string& where) const {
@@ -203,9 +307,20 @@ uint32_t GltfReader::material(int index) {
   for (int c = 0; c < 3 && m.emissiveFactor.size() == 3; ++c)
     mat.emission[c] = float(m.emissiveFactor[size_t(c)] * strength);
   mat.twoSided = m.doubleSided;
-  if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 && !texturesIgnored_) {
-    texturesIgnored_ = true;
-    builder_.warn(path_, "textures are ignored (baseColorFactor used)");
+  int rhoSet = 0, emissionSet = 0;
+  mat.rhoTexture = textureMap(m.pbrMetallicRoughness.baseColorTexture, mat.name,
+                              where + "/pbrMetallicRoughness/baseColorTexture", rhoSet);
+  mat.emissionTexture =
+      textureMap(m.emissiveTexture, mat.name, where + "/emissiveTexture", emissionSet);
+  // Only TEXCOORD_0 is read: a texture on another set shows its mean.
+  for (auto [map, factor, set] : {std::tuple{&mat.rhoTexture, &mat.rho, rhoSet},
+                                  std::tuple{&mat.emissionTexture, &mat.emission, emissionSet}}) {
+    if (!*map || set == 0) continue;
+    builder_.warn(path_, fmt::format("material {}: a texture on TEXCOORD_{} (only TEXCOORD_0 is "
+                                     "read) shows its mean",
+                                     quotedToken(mat.name), set));
+    *factor *= map->texture->mean();
+    *map = {};
   }
   materials_[size_t(index)] = builder_.addMaterial(std::move(mat));
   return uint32_t(materials_[size_t(index)]);
@@ -234,7 +349,20 @@ void GltfReader::addMesh(int meshIndex, const glm::mat4& world, uint32_t object)
     if (idx.size() % 3 != 0)
       throw InputError(at(where), fmt::format("{} indices is not a multiple of 3", idx.size()));
     const uint32_t base = uint32_t(builder_.scene().positions.size());
-    for (const Vec3& v : points) builder_.addVertex(Vec3(world * glm::vec4(v, 1.0f)), at(where));
+    std::vector<Vec2> uv;
+    if (auto t = prim.attributes.find("TEXCOORD_0"); t != prim.attributes.end()) {
+      uv = texcoords(t->second, where + "/attributes/TEXCOORD_0");
+      if (uv.size() != points.size())
+        throw InputError(at(where + "/attributes/TEXCOORD_0"),
+                         fmt::format("{} coordinates for {} positions", uv.size(), points.size()));
+    }
+    for (size_t i = 0; i < points.size(); ++i) {
+      const Vec3 p(world * glm::vec4(points[i], 1.0f));
+      if (uv.empty())
+        builder_.addVertex(p, at(where));
+      else
+        builder_.addVertex(p, uv[i], at(where));
+    }
     for (size_t i = 0; i < idx.size(); ++i) {
       if (idx[i] >= points.size())
         throw InputError(at(where + "/indices"),
@@ -400,7 +528,7 @@ void loadGltf(SceneBuilder& builder, const std::string& path, const glm::mat4& t
                                        "{})",
                                        kMaxJsonNesting, *deep));
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&skipImage, nullptr);
+  loader.SetImageLoader(&keepEncodedImage, nullptr);
   loader.SetFsCallbacks({&tinygltf::FileExists, &pathAsWritten, &readExternalFile,
                          &tinygltf::WriteWholeFile, nullptr});
   tinygltf::Model model;

@@ -19,6 +19,7 @@
 
 #include "core/message_text.h"
 #include "scene/io/text_file.h"
+#include "scene/io/texture_files.h"
 
 namespace rad {
 
@@ -149,9 +150,16 @@ ObjScan scanObj(const std::string& text, const std::string& path) {
   return scan;
 }
 
-/// Checks an MTL library; returns the names of the materials that state a Kd.
-std::set<std::string> scanMtl(const std::string& text, const std::string& path) {
+/// What the MTL libraries say beyond tinyobjloader's reading: which materials state a Kd, and
+/// the library of each (its texture paths are relative to it).
+struct MtlScan {
   std::set<std::string> withKd;
+  std::map<std::string, std::string> directoryOf;
+};
+
+/// Checks an MTL library and adds what it says to `scan`.
+void scanMtl(const std::string& text, const std::string& path, MtlScan& scan) {
+  std::set<std::string>& withKd = scan.withKd;
   std::string current;
   forEachStatement(text, [&](size_t line, const std::vector<std::string_view>& w) {
     const std::string where = at(path, line);
@@ -159,6 +167,7 @@ std::set<std::string> scanMtl(const std::string& text, const std::string& path) 
     if (key == "newmtl") {
       if (w.size() != 2) throw InputError(where, "'newmtl' needs exactly one material name");
       current = std::string(w[1]);
+      scan.directoryOf[current] = parentDirectory(path);
     } else if (key == "Ka" || key == "Kd" || key == "Ks" || key == "Ke" || key == "Tf") {
       if (w.size() > 1 && (w[1] == "spectral" || w[1] == "xyz"))
         throw InputError(where, fmt::format("'{} {}' is not supported (expected r g b)", key,
@@ -179,7 +188,22 @@ std::set<std::string> scanMtl(const std::string& text, const std::string& path) 
       numbers(w, 1, 1, where, "1 finite number");
     }
   });
-  return withKd;
+}
+
+// OBJ texture coordinates put v = 0 at the image's bottom; textures here put it at the top: a
+// vertex's v is flipped as it is read, and the -o / -s options are turned to act on flipped
+// coordinates (v' = s v + o in OBJ's is 1 - v' = s (1 - v) + o in ours).
+TextureMap objTextureMap(std::shared_ptr<const Texture> texture,
+                         const tinyobj::texture_option_t& option) {
+  TextureMap map;
+  map.texture = std::move(texture);
+  if (option.clamp) map.wrapU = map.wrapV = TextureWrap::ClampToEdge;
+  const float su = float(option.scale[0]), sv = float(option.scale[1]);
+  map.transform[0] = su;
+  map.transform[3] = sv;
+  map.transform[4] = float(option.origin_offset[0]);
+  map.transform[5] = 1.0f - sv - float(option.origin_offset[1]);
+  return map;
 }
 
 }  // namespace
@@ -188,13 +212,14 @@ void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& tr
   const std::string objText = readTextFile(path, "OBJ file");
   const ObjScan scan = scanObj(objText, path);
   std::string mtlText;
-  std::set<std::string> withKd;
+  MtlScan mtl;
   for (const std::string& lib : scan.mtllibs) {
     const std::string mtlPath = resolvePath(parentDirectory(path), lib);
     const std::string text = readTextFile(mtlPath, "MTL file", kMaxMtlFileBytes);
-    withKd.merge(scanMtl(text, mtlPath));
+    scanMtl(text, mtlPath, mtl);
     mtlText += text + "\n";
   }
+  const std::set<std::string>& withKd = mtl.withKd;
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;
@@ -204,13 +229,53 @@ void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& tr
     throw InputError(path, "cannot parse OBJ: " + reader.Error());
 
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
-  const uint32_t base = uint32_t(builder.scene().positions.size());
-  for (size_t i = 0; 3 * i + 2 < attrib.vertices.size(); ++i) {
+  auto positionOf = [&](size_t i) {
     const glm::vec4 p = transform * glm::vec4(attrib.vertices[3 * i], attrib.vertices[3 * i + 1],
                                               attrib.vertices[3 * i + 2], 1.0f);
-    const size_t line = i < scan.vertexLines.size() ? scan.vertexLines[i] : 0;
-    builder.addVertex(Vec3(p) / p.w, at(path, line));
-  }
+    return Vec3(p) / p.w;
+  };
+  auto lineOf = [&](size_t i) {
+    return at(path, i < scan.vertexLines.size() ? scan.vertexLines[i] : 0);
+  };
+  const uint32_t base = uint32_t(builder.scene().positions.size());
+  const bool mapped = !attrib.texcoords.empty();
+  if (!mapped)
+    for (size_t i = 0; 3 * i + 2 < attrib.vertices.size(); ++i)
+      builder.addVertex(positionOf(i), lineOf(i));
+  // With texture coordinates a vertex is a (v, vt) pair: one position may carry several (a
+  // seam), so vertices are made as the faces name them.
+  std::map<std::pair<int, int>, uint32_t> pairVertex;
+  auto vertexOf = [&](const tinyobj::index_t& index) -> uint32_t {
+    if (!mapped) return base + uint32_t(index.vertex_index);
+    const std::pair<int, int> key{index.vertex_index, index.texcoord_index};
+    if (auto it = pairVertex.find(key); it != pairVertex.end()) return it->second;
+    const size_t i = size_t(index.vertex_index);
+    // The scan checked every index; a guard all the same before reading the arrays.
+    const bool badVertex = index.vertex_index < 0 || 3 * i + 2 >= attrib.vertices.size();
+    const bool badTexcoord = index.texcoord_index >= 0 &&
+                             2 * size_t(index.texcoord_index) + 1 >= attrib.texcoords.size();
+    if (badVertex || badTexcoord)
+      throw InputError(path, "a face's vertex or texture index is out of range");
+    const uint32_t v =
+        index.texcoord_index < 0
+            ? builder.addVertex(positionOf(i), lineOf(i))
+            : builder.addVertex(positionOf(i),
+                                Vec2(attrib.texcoords[2 * size_t(index.texcoord_index)],
+                                     1.0f - attrib.texcoords[2 * size_t(index.texcoord_index) + 1]),
+                                lineOf(i));
+    pairVertex.emplace(key, v);
+    return v;
+  };
+  TextureFiles textures(builder);
+  auto textureMap = [&](const tinyobj::material_t& m, const std::string& name,
+                        const tinyobj::texture_option_t& option) {
+    if (name.empty()) return TextureMap{};
+    const auto dir = mtl.directoryOf.find(m.name);
+    const std::string file =
+        resolvePath(dir != mtl.directoryOf.end() ? dir->second : parentDirectory(path), name);
+    std::shared_ptr<const Texture> texture = textures.file(file, m.name, path);
+    return texture ? objTextureMap(std::move(texture), option) : TextureMap{};
+  };
 
   const std::vector<tinyobj::material_t>& mtls = reader.GetMaterials();
   std::vector<int64_t> sceneMaterial(mtls.size(), -1);
@@ -229,6 +294,10 @@ void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& tr
       mat.rho =
           withKd.count(m.name) ? Color(m.diffuse[0], m.diffuse[1], m.diffuse[2]) : Color(0.5f);
       mat.emission = Color(m.emission[0], m.emission[1], m.emission[2]);
+      mat.rhoTexture = textureMap(m, m.diffuse_texname, m.diffuse_texopt);
+      mat.emissionTexture = textureMap(m, m.emissive_texname, m.emissive_texopt);
+      // A texture whose factor the file leaves out multiplies white (MTL: map_Kd scales Kd).
+      if (mat.rhoTexture && !withKd.count(m.name)) mat.rho = Color(1.0f);
       sceneMaterial[size_t(id)] = builder.addMaterial(std::move(mat));
     }
     return uint32_t(sceneMaterial[size_t(id)]);
@@ -246,8 +315,7 @@ void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& tr
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
       const size_t n = shape.mesh.num_face_vertices[f];
       corners.clear();
-      for (size_t k = 0; k < n; ++k)
-        corners.push_back(base + uint32_t(shape.mesh.indices[offset + k].vertex_index));
+      for (size_t k = 0; k < n; ++k) corners.push_back(vertexOf(shape.mesh.indices[offset + k]));
       offset += n;
       if (mirrored) std::reverse(corners.begin(), corners.end());
       const size_t line = faceIndex < scan.faceLines.size() ? scan.faceLines[faceIndex] : 0;
@@ -260,7 +328,7 @@ void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& tr
     builder.warn(path, fmt::format("{} face{} without a material use the default grey (rho 0.5)",
                                    facesWithoutMaterial, facesWithoutMaterial == 1 ? "" : "s"));
   const size_t noKd = std::count_if(mtls.begin(), mtls.end(), [&](const tinyobj::material_t& m) {
-    return !withKd.count(m.name);
+    return !withKd.count(m.name) && m.diffuse_texname.empty();
   });
   if (noKd > 0)
     builder.warn(path,
