@@ -75,17 +75,21 @@ void expectTexturePerPoint(const Scene& scene, const SurfaceRadiance& solution, 
   EXPECT_EQ(checked, 256);
 }
 
+// 0.1 m patches, no cache.
+PatchRadiosity patchSolution(const Scene& scene) {
+  PatchRadiositySettings settings;
+  settings.patchSize = 0.1f;
+  settings.cacheDir = "";
+  return PatchRadiosity(scene, settings);
+}
+
 TEST(TextureRender, PatchPicturesShowTheTexturePerPixel) {
   // 0.1 m patches against 0.25 m squares: patches straddle the squares' edges, and a patch's own
   // mean would blur them; per pixel they stay sharp, the texel times the patch's smooth
   // irradiance: within 2% but at the floor's 4 corner points (+3.0%, where a vertex holds its
   // one patch's mean of a falling irradiance).
   const Scene scene = checkerFloor();
-  PatchRadiositySettings settings;
-  settings.patchSize = 0.1f;
-  settings.cacheDir = "";
-  const PatchRadiosity solution(scene, settings);
-  expectTexturePerPoint(scene, solution, 0.035f);
+  expectTexturePerPoint(scene, patchSolution(scene), 0.035f);
 }
 
 TEST(TextureRender, VoxelPicturesShowTheTexturePerPixel) {
@@ -103,10 +107,7 @@ TEST(TextureRender, RenderedFloorShowsTheCheckerAcrossARow) {
   // the two colours at every square's edge (4 squares a side: 3 steps), the red channel alone
   // barely changing while green falls by the texture's ratio (sRGB 120, 0, 0 has no green).
   const Scene scene = checkerFloor();
-  PatchRadiositySettings settings;
-  settings.patchSize = 0.1f;
-  settings.cacheDir = "";
-  const PatchRadiosity solution(scene, settings);
+  const PatchRadiosity solution = patchSolution(scene);
   Camera camera;
   camera.eye = Vec3(0.5f, 1.2f, 0.5f);
   camera.target = Vec3(0.5f, 0.0f, 0.5f);
