@@ -1,4 +1,4 @@
-// `radiosity bench [pathtrace|patch|relight|voxel|voxel-scaling|all] [--json]`: throughput numbers
+// `radiosity bench [pathtrace|patch|relight|voxel|voxel-scaling|interior|all] [--json]`: throughput numbers
 // that notes and reports quote. Fixed workloads on built-in scenes, so numbers from different
 // machines compare.
 #include <fmt/format.h>
@@ -27,6 +27,7 @@ struct BenchOptions {
   size_t relightPatches = 10000;
   int relightFrames = 0;
   int probeResolution = 16;  ///< 0: the default period
+  int interiorDetail = 180;
 };
 
 int runBench(const BenchOptions& o, Console& console) {
@@ -39,6 +40,7 @@ int runBench(const BenchOptions& o, Console& console) {
   if (all || o.which == "probe") results["probe"] = benchProbe(console, o.probeResolution);
   if (all || o.which == "voxel")
     results["voxel"] = benchVoxel(console, o.voxels, o.sphereRadius, o.pairStride);
+  if (o.which == "interior") results["interior"] = benchInterior(console, o.interiorDetail);
   if (o.which == "voxel-scaling")
     results["voxel-scaling"] =
         benchVoxelScaling(console, o.scalingRadius, o.scalingMaxVoxels, o.output);
@@ -58,9 +60,9 @@ void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
   CLI::App* sub = app.add_subcommand("bench", "Measure throughput on fixed workloads");
   sub->add_option("which", o->which,
                   "What to measure: pathtrace, patch, relight, probe, voxel, all (those five), "
-                  "voxel-scaling (minutes)")
-      ->check(CLI::IsMember(
-          {"pathtrace", "patch", "relight", "probe", "voxel", "voxel-scaling", "all"}));
+                  "voxel-scaling, interior (minutes each)")
+      ->check(CLI::IsMember({"pathtrace", "patch", "relight", "probe", "voxel", "voxel-scaling",
+                             "interior", "all"}));
   sub->add_option("--voxels", o->voxels,
                   "voxel: surface voxels of the room (default 2000000, the paper's)")
       ->check(CLI::Range(size_t(1000), size_t(1) << 30));
@@ -83,6 +85,9 @@ void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--scaling-max-voxels", o->scalingMaxVoxels,
                   "voxel-scaling: largest voxel count (default 4000000)");
   sub->add_option("--output-dir", o->output, "voxel-scaling: where the table and plot go");
+  sub->add_option("--interior-detail", o->interiorDetail,
+                  "interior: N of atrium:N (default 180: 252k triangles)")
+      ->check(CLI::Range(1, 2000));
   sub->add_flag("--json", o->json, "Print the results as JSON");
   sub->callback(
       [o, &console, &action] { action = [o, &console] { return runBench(*o, console); }; });

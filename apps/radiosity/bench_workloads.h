@@ -37,4 +37,8 @@ nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius, siz
 nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxVoxels,
                                  const std::string& outputDirectory);
 
+/// A real interior's size (atrium:`detail`, 252k triangles at 180) rendered by each method with
+/// its defaults, each in a process of its own: the time of each stage and its peak memory.
+nlohmann::json benchInterior(Console& console, int detail);
+
 }  // namespace rad::cli
