@@ -7,6 +7,8 @@
 // The .glb uses uint8/uint32 indices and a strided POSITION view; both have a non-indexed mesh.
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
 
@@ -212,7 +214,7 @@ namespace rad {
 namespace {
 
 // The sample scenes the README's examples use load as they are meant to: the office with its
-// three light groups, an animated light and a moving chair; the glTF room with its lamp, spot and
+// three light groups, an animated light, a moving chair and a textured floor; the glTF room with its lamp, spot and
 // cameras. (The glTF room's one warning: its test data keeps a line primitive.)
 TEST(SampleScenes, TheReadmesScenesLoadWithTheirLightsAndCameras) {
   const std::string dir = std::string(RADIOSITY_SOURCE_DIR) + "/scenes/";
@@ -225,6 +227,12 @@ TEST(SampleScenes, TheReadmesScenesLoadWithTheirLightsAndCameras) {
   ASSERT_EQ(office.dynamicObjects.size(), 1u);
   EXPECT_TRUE(office.hasEmitters());
   ASSERT_TRUE(office.camera);
+  // Its floor is tiled by a texture, in metres.
+  ASSERT_EQ(office.texcoords.size(), office.positions.size());
+  const auto tiles = std::find_if(office.materials.begin(), office.materials.end(),
+                                  [](const Material& m) { return m.name == "tiles"; });
+  ASSERT_NE(tiles, office.materials.end());
+  EXPECT_TRUE(tiles->rhoTexture);
   const Scene room = loadScene(dir + "lamp_room.gltf");
   EXPECT_EQ(room.lights.size(), 2u);
   ASSERT_EQ(room.cameras.size(), 2u);
