@@ -9,6 +9,7 @@
 #include <radiosity/surface_radiance.h>
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -35,11 +36,28 @@ struct LitMeshGroup {
   uint32_t triangleCount = 0;
 };
 
+/// A texture a lit mesh's triangles show: their colours are then the light a white surface
+/// would send there (irradiance / pi), which the texture times its factor multiplies (glTF's
+/// COLOR_0 times the base colour), so that an engine shows the texture's detail.
+struct LitMeshTexture {
+  std::string name;
+  std::shared_ptr<const Texture> texture;
+  TextureWrap wrapU = TextureWrap::Repeat, wrapV = TextureWrap::Repeat;
+  Color factor{1.0f};
+};
+
 /// A lit triangle mesh: the solved light baked into vertex colours.
 struct LitMesh {
   std::vector<Vec3> positions;  ///< scene units
   std::vector<Vec3> normals;    ///< per vertex; normalised on write
   std::vector<Color> colors;    ///< linear RGB per vertex; clamped to [0, 1] on write
+  /// Per vertex, its texture coordinates (its texture's transform applied); empty: no textures.
+  std::vector<Vec2> texcoords;
+  std::vector<LitMeshTexture> textures;
+  /// Per triangle, its index in `textures`, or kUntextured (colours are the outgoing radiance);
+  /// empty: no triangle is textured.
+  std::vector<uint32_t> triangleTextures;
+  static constexpr uint32_t kUntextured = UINT32_MAX;
   /// 3 per triangle, CCW about the side it shows (one-sided: a surface seen from both sides
   /// has a triangle for each, with that side's light).
   std::vector<uint32_t> indices;

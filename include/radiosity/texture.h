@@ -32,6 +32,8 @@ class Texture {
   const std::string& name() const { return name_; }
   /// The image's mean (its pyramid's top), linear.
   Color mean() const;
+  /// The image as 8-bit sRGB RGB texels, rows from the top (what an exported glTF embeds).
+  std::vector<uint8_t> srgb8() const;
   /// Linear colour at (u, v) (u across, v down from the top, as glTF and OBJ after its flip),
   /// averaged over a square footprint `footprint` wide in texture coordinates (0: one texel,
   /// bilinear), trilinear between the pyramid's levels.

@@ -13,11 +13,13 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <map>
 #include <span>
 #include <sstream>
 #include <stdexcept>
 
 #include "core/atomic_file.h"
+#include "output/image_formats.h"
 
 namespace rad {
 
@@ -50,7 +52,8 @@ class ModelBuilder {
   template <typename T>
   int accessor(const std::vector<T>& values, int componentType, int type, int target) {
     std::vector<unsigned char>& data = model_.buffers[0].data;
-    // Every component here is 4 bytes, so offsets stay aligned as glTF requires.
+    // Every component here is 4 bytes; images before may leave the buffer unaligned.
+    data.resize((data.size() + 3) / 4 * 4, 0);
     tinygltf::BufferView view;
     view.buffer = 0;
     view.byteOffset = data.size();
@@ -99,6 +102,46 @@ class ModelBuilder {
     return material_ = int(model_.materials.size()) - 1;
   }
 
+  /// The unlit material showing texture `index` of `mesh` times its factor on TEXCOORD_0, its
+  /// image embedded as PNG, made on first use.
+  int texturedMaterial(const LitMesh& mesh, uint32_t index) {
+    if (texturedMaterials_.size() < mesh.textures.size())
+      texturedMaterials_.resize(mesh.textures.size(), -1);
+    if (texturedMaterials_[index] >= 0) return texturedMaterials_[index];
+    const LitMeshTexture& t = mesh.textures[index];
+    std::vector<unsigned char>& data = model_.buffers[0].data;
+    const std::string png = encodePng(t.texture->width(), t.texture->height(), t.texture->srgb8());
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = data.size();
+    view.byteLength = png.size();
+    data.insert(data.end(), png.begin(), png.end());
+    model_.bufferViews.push_back(view);
+    tinygltf::Image image;
+    image.name = t.name;
+    image.mimeType = "image/png";
+    image.bufferView = int(model_.bufferViews.size()) - 1;
+    model_.images.push_back(image);
+    tinygltf::Sampler sampler;
+    sampler.wrapS = wrapMode(t.wrapU);
+    sampler.wrapT = wrapMode(t.wrapV);
+    model_.samplers.push_back(sampler);
+    tinygltf::Texture texture;
+    texture.source = int(model_.images.size()) - 1;
+    texture.sampler = int(model_.samplers.size()) - 1;
+    model_.textures.push_back(texture);
+    tinygltf::Material m;
+    m.name = t.name;
+    m.pbrMetallicRoughness.baseColorFactor = {t.factor.r, t.factor.g, t.factor.b, 1.0};
+    m.pbrMetallicRoughness.baseColorTexture.index = int(model_.textures.size()) - 1;
+    m.pbrMetallicRoughness.metallicFactor = 0.0;
+    m.pbrMetallicRoughness.roughnessFactor = 1.0;
+    m.extensions[kUnlit] = tinygltf::Value(tinygltf::Value::Object());
+    model_.materials.push_back(m);
+    if (model_.extensionsUsed.empty()) model_.extensionsUsed.push_back(kUnlit);
+    return texturedMaterials_[index] = int(model_.materials.size()) - 1;
+  }
+
   void addNode(const std::string& name, tinygltf::Mesh mesh) {
     mesh.name = name;
     model_.meshes.push_back(std::move(mesh));
@@ -113,8 +156,21 @@ class ModelBuilder {
   void setAssetExtras(tinygltf::Value extras) { model_.asset.extras = std::move(extras); }
 
  private:
+  static int wrapMode(TextureWrap wrap) {
+    switch (wrap) {
+      case TextureWrap::ClampToEdge:
+        return TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+      case TextureWrap::MirroredRepeat:
+        return TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT;
+      case TextureWrap::Repeat:
+        break;
+    }
+    return TINYGLTF_TEXTURE_WRAP_REPEAT;
+  }
+
   tinygltf::Model model_;
   int material_ = -1;
+  std::vector<int> texturedMaterials_;
 };
 
 void validate(const LitMesh& mesh) {
@@ -133,6 +189,15 @@ void validate(const LitMesh& mesh) {
   for (const LitMeshGroup& g : mesh.groups)
     if (size_t(g.firstTriangle) + g.triangleCount > triangles)
       fail(fmt::format("group '{}' runs past the {} triangles", g.name, triangles));
+  if (!mesh.texcoords.empty() && mesh.texcoords.size() != vertices)
+    fail(fmt::format("{} texture coordinates for {} vertices", mesh.texcoords.size(), vertices));
+  if (!mesh.triangleTextures.empty() && mesh.triangleTextures.size() != triangles)
+    fail(fmt::format("{} triangle textures for {} triangles", mesh.triangleTextures.size(),
+                     triangles));
+  for (uint32_t t : mesh.triangleTextures)
+    if (t != LitMesh::kUntextured &&
+        (t >= mesh.textures.size() || mesh.texcoords.empty() || !mesh.textures[t].texture))
+      fail(fmt::format("texture {} of a triangle does not exist", t));
 }
 
 // A group's own vertices (the mesh's, in order of first use) and its triangles over them.
@@ -163,7 +228,8 @@ std::vector<LitMeshGroup> groupsOf(const LitMesh& mesh) {
 }
 
 // Each group becomes a mesh of its own vertices (so that a node stands alone, e.g. when Blender
-// splits the import into objects), one primitive.
+// splits the import into objects), a primitive per texture its triangles show (the untextured
+// ones last).
 void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& group, float scale,
               std::vector<uint32_t>& local) {
   GroupVertices own = groupVertices(mesh, group, local);
@@ -175,7 +241,14 @@ void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& gr
     const Color c = mesh.colors[v] * scale;
     colors.emplace_back(unitColor(c.r), unitColor(c.g), unitColor(c.b));
   }
-  const std::vector<uint32_t>& indices = own.indices;
+  std::map<uint32_t, std::vector<uint32_t>> byTexture;  // kUntextured sorts last
+  for (uint32_t k = 0; k < group.triangleCount; ++k) {
+    const uint32_t texture = mesh.triangleTextures.empty()
+                                 ? LitMesh::kUntextured
+                                 : mesh.triangleTextures[group.firstTriangle + k];
+    std::vector<uint32_t>& indices = byTexture[texture];
+    indices.insert(indices.end(), own.indices.begin() + 3 * k, own.indices.begin() + 3 * k + 3);
+  }
 
   tinygltf::Mesh gltfMesh;
   const int position = builder.positions(positions);
@@ -183,13 +256,24 @@ void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& gr
                                       TINYGLTF_TARGET_ARRAY_BUFFER);
   const int color = builder.accessor(colors, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
                                      TINYGLTF_TARGET_ARRAY_BUFFER);
-  tinygltf::Primitive p;
-  p.attributes = {{"POSITION", position}, {"NORMAL", normal}, {"COLOR_0", color}};
-  p.indices = builder.accessor(indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
-                               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  p.material = builder.material();
-  p.mode = TINYGLTF_MODE_TRIANGLES;
-  gltfMesh.primitives.push_back(p);
+  int texcoord = -1;
+  if (byTexture.begin()->first != LitMesh::kUntextured) {
+    std::vector<Vec2> uv;
+    for (uint32_t v : own.vertices) uv.push_back(mesh.texcoords[v]);
+    texcoord = builder.accessor(uv, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2,
+                                TINYGLTF_TARGET_ARRAY_BUFFER);
+  }
+  for (const auto& [texture, indices] : byTexture) {
+    tinygltf::Primitive p;
+    p.attributes = {{"POSITION", position}, {"NORMAL", normal}, {"COLOR_0", color}};
+    if (texcoord >= 0) p.attributes["TEXCOORD_0"] = texcoord;
+    p.indices = builder.accessor(indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                                 TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    p.material = texture == LitMesh::kUntextured ? builder.material()
+                                                 : builder.texturedMaterial(mesh, texture);
+    p.mode = TINYGLTF_MODE_TRIANGLES;
+    gltfMesh.primitives.push_back(p);
+  }
   builder.addNode(group.name, std::move(gltfMesh));
 }
 
@@ -203,8 +287,9 @@ std::string litMeshGlb(const LitMesh& mesh, float exposureEV) {
   for (const LitMeshGroup& group : groupsOf(mesh)) addGroup(builder, mesh, group, scale, local);
   tinygltf::Value::Object baked;
   baked["exposure_ev"] = tinygltf::Value(double(exposureEV));
-  baked["colors"] =
-      tinygltf::Value(std::string("linear outgoing radiance x 2^exposure_ev, clamped to [0, 1]"));
+  baked["colors"] = tinygltf::Value(std::string(
+      "linear outgoing radiance x 2^exposure_ev, clamped to [0, 1]; under a base colour "
+      "texture, irradiance / pi x 2^exposure_ev (the texture times its factor is the albedo)"));
   tinygltf::Value::Object extras;
   extras["radiosity"] = tinygltf::Value(baked);
   builder.setAssetExtras(tinygltf::Value(extras));

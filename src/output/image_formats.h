@@ -6,14 +6,20 @@
 
 #include <radiosity/image.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace rad {
 
 /// 8-bit sRGB PNG, tone mapped by toneMapPixel. Throws std::runtime_error on a write failure.
 void writePng(const std::filesystem::path& file, const Image& image, float exposureEV,
               const std::string& displayName);
+
+/// 8-bit RGB texels (`width` x `height`, rows from the top) encoded as PNG bytes. Throws
+/// std::runtime_error if encoding fails.
+std::string encodePng(int width, int height, const std::vector<uint8_t>& rgb);
 
 /// OpenEXR scanline file with R, G, B channels of the given type. Throws std::runtime_error on
 /// a write failure.

@@ -25,6 +25,13 @@ void appendBytes(void* context, void* data, int size) {
 
 }  // namespace
 
+std::string encodePng(int width, int height, const std::vector<uint8_t>& rgb) {
+  std::vector<char> encoded;
+  if (!stbi_write_png_to_func(appendBytes, &encoded, width, height, 3, rgb.data(), width * 3))
+    throw std::runtime_error("PNG encoding failed");
+  return std::string(encoded.begin(), encoded.end());
+}
+
 void writePng(const std::filesystem::path& file, const Image& image, float exposureEV,
               const std::string& displayName) {
   std::vector<uint8_t> rgb(image.pixels.size() * 3);
@@ -35,10 +42,12 @@ void writePng(const std::filesystem::path& file, const Image& image, float expos
     rgb[3 * i + 2] = p[2];
   }
   // Encoding to memory first keeps stb's FILE handling out and lets us check the write.
-  std::vector<char> encoded;
-  if (!stbi_write_png_to_func(appendBytes, &encoded, image.width, image.height, 3, rgb.data(),
-                              image.width * 3))
+  std::string encoded;
+  try {
+    encoded = encodePng(image.width, image.height, rgb);
+  } catch (const std::runtime_error&) {
     throw std::runtime_error("cannot write '" + displayName + "': PNG encoding failed");
+  }
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   out.write(encoded.data(), std::streamsize(encoded.size()));
   out.close();

@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "lighting/direct_lighting.h"
+#include "output/lit_mesh_texturing.h"
 #include "patch/form_factor_cache.h"
 #include "patch/form_factor_estimators.h"
 #include "patch/light_refinement.h"
@@ -555,15 +556,28 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
   };
 
   LitMesh out;
-  std::unordered_map<uint64_t, uint32_t> vertexOf;  // (vertex, material) -> index; per object
+  LitMeshTexturing texturing(*scene, out);
+  // (vertex, material) -> index, per object; a textured patch's by (vertex, face): its
+  // coordinates are its face's.
+  std::unordered_map<uint64_t, uint32_t> vertexOf;
   std::vector<uint32_t> outline, onEdges, index;
+  // What a vertex of a patch shows: the outgoing radiance, or under a texture H / pi.
+  auto colourOf = [&](const Patch& patch, const Color& h, bool textured) {
+    if (textured) return h / glm::pi<float>();
+    return mix.emission(*scene, patch.material) * patch.emissionTint +
+           patch.rho * h / glm::pi<float>();
+  };
+  std::unordered_map<uint64_t, uint32_t> texturedVertexOf;
   for (uint32_t o = 0; o < byObject.size(); ++o) {
     vertexOf.clear();
+    texturedVertexOf.clear();
     const uint32_t firstTriangle = uint32_t(out.indices.size() / 3);
     for (uint32_t p : byObject[o]) {
       const Patch& patch = mesh->patches()[p];
       const PatchNode& node = mesh->nodeOf(p);
       const int n = node.cornerCount();
+      const bool textured = texturing.textured(patch.material);
+      const uint32_t trianglesBefore = uint32_t(out.indices.size() / 3);
       outline.clear();
       onEdges.clear();  // per outline point: a bit for each patch edge it lies on
       for (int k = 0; k < n; ++k) {
@@ -576,16 +590,18 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
       for (const uint32_t v : outline) {
         index.push_back(uint32_t(out.positions.size()));
         if (smooth) {
+          const uint64_t key = (uint64_t(v) << 32) | (textured ? patch.face : patch.material);
           const auto [it, added] =
-              vertexOf.try_emplace((uint64_t(v) << 32) | patch.material, index.back());
+              (textured ? texturedVertexOf : vertexOf).try_emplace(key, index.back());
           index.back() = it->second;
           if (!added) continue;
         }
         const Color h = smooth ? vertexIrradiance[v] : solution.irradiance[p];
         out.positions.push_back(mesh->vertices()[v]);
         out.normals.push_back(smooth ? mesh->vertexNormals()[v] : patch.normal);
-        out.colors.push_back(mix.emission(*scene, patch.material) * patch.emissionTint +
-                             patch.rho * h / glm::pi<float>());
+        out.colors.push_back(colourOf(patch, h, textured));
+        texturing.addVertex(textured ? texturing.texcoordOnFace(patch.face, mesh->vertices()[v])
+                                     : Vec2(0.0f));
       }
       // The outline is CCW about the side's normal, so fans keep the front facing out. A fan
       // from a corner whose two edges hold no finer vertices (then no triangle is flat), else
@@ -602,6 +618,8 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
         for (size_t t = 1; t + 1 < outline.size(); ++t)
           out.indices.insert(out.indices.end(), {index[apex], index[(apex + t) % outline.size()],
                                                  index[(apex + t + 1) % outline.size()]});
+        for (uint32_t t = trianglesBefore; t < out.indices.size() / 3; ++t)
+          texturing.addTriangle(patch.material);
         continue;
       }
       const uint32_t centre = uint32_t(out.positions.size());
@@ -614,10 +632,12 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
       }
       out.positions.push_back(position);
       out.normals.push_back(smooth ? glm::normalize(normal) : patch.normal);
-      out.colors.push_back(mix.emission(*scene, patch.material) * patch.emissionTint +
-                           patch.rho * colour / glm::pi<float>());
-      for (size_t t = 0; t < outline.size(); ++t)
+      out.colors.push_back(colourOf(patch, colour, textured));
+      texturing.addVertex(textured ? texturing.texcoordOnFace(patch.face, position) : Vec2(0.0f));
+      for (size_t t = 0; t < outline.size(); ++t) {
         out.indices.insert(out.indices.end(), {centre, index[t], index[(t + 1) % outline.size()]});
+        texturing.addTriangle(patch.material);
+      }
     }
     out.groups.push_back(
         {scene->objects[o].name, firstTriangle, uint32_t(out.indices.size() / 3) - firstTriangle});

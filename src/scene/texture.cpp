@@ -142,6 +142,18 @@ Color Texture::Level::at(int x, int y) const {
   return Color(texels[i], texels[i + 1], texels[i + 2]) / kFullScale;
 }
 
+std::vector<uint8_t> Texture::srgb8() const {
+  const Level& base = levels_.front();
+  std::vector<uint8_t> out(base.texels.size());
+  for (size_t i = 0; i < out.size(); ++i) {
+    const float linear = float(base.texels[i]) / kFullScale;
+    const float encoded =
+        linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+    out[i] = uint8_t(std::lround(std::clamp(encoded, 0.0f, 1.0f) * 255.0f));
+  }
+  return out;
+}
+
 Color Texture::mean() const {
   return levels_.back().at(0, 0);
 }
