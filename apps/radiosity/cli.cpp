@@ -15,7 +15,9 @@
 #include "command_support.h"
 #include "commands.h"
 #include "console.h"
+#include "core/atomic_file.h"
 #include "core/message_text.h"
+#include "mpi_processes.h"
 
 namespace rad::cli {
 
@@ -62,8 +64,14 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     return 2;
   }
 
-  console.setQuiet(quiet);
-  console.setVerbose(verbose);
+  // In a run split among processes, rank 0 speaks and writes; the others compute their share.
+  const bool speaks = MpiProcesses::rank() == 0;
+  console.setQuiet(quiet || !speaks);
+  console.setVerbose(verbose && speaks);
+  console.setWarnings(speaks);
+  setWritesFiles(speaks);
+  if (MpiProcesses::split())
+    console.info(fmt::format("split among {} processes (MPI ranks)", MpiProcesses::count()));
   console.detail("radiosity " RADIOSITY_VERSION " (" RADIOSITY_BUILD_TYPE " build)");
   std::optional<tbb::global_control> threadLimit;
   const int cores = int(std::thread::hardware_concurrency());

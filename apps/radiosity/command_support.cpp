@@ -12,6 +12,7 @@
 #include <filesystem>
 
 #include "core/memory_usage.h"
+#include "mpi_processes.h"
 
 namespace rad::cli {
 
@@ -110,6 +111,21 @@ void writeStatsFile(const std::string& path, const Scene& scene, const std::stri
     stats.absorbedPower = absorbedPower(scene, stats.objects, stats.emissionScales);
   stats.timingsSeconds.total = totalSeconds;
   stats.memoryPeakBytes = peakResidentBytes();
+  if (MpiProcesses::split()) {
+    // Every rank gets here (each writes its stats; rank 0's alone reach the disk). A rank's
+    // busy seconds leave out its sums, where the ranks wait for each other.
+    const std::vector<double> busy =
+        MpiProcesses::gather(totalSeconds - MpiProcesses::secondsSumming());
+    const std::vector<double> summing = MpiProcesses::gather(MpiProcesses::secondsSumming());
+    double sum = 0.0, longest = 0.0;
+    for (double s : busy) sum += s, longest = std::max(longest, s);
+    stats.distributed = {
+        {"ranks", MpiProcesses::count()},
+        {"busy_seconds_per_rank", busy},
+        {"summing_seconds_per_rank", summing},
+        {"load_balance", longest > 0.0 ? sum / (double(busy.size()) * longest) : 1.0},
+        {"bytes_communicated_rank0", MpiProcesses::bytesCommunicated()}};
+  }
   writeRunStats(path, stats);
 }
 

@@ -26,6 +26,7 @@ extern "C" void onInterrupt(int) {
 }  // namespace
 
 void Console::warn(const std::string& message) {
+  if (!warnings_) return;
   finishProgress();
   err_ << "radiosity: warning: " << message << "\n";
 }

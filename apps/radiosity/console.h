@@ -17,6 +17,8 @@ class Console {
   std::ostream& out() { return out_; }
   void setQuiet(bool quiet) { quiet_ = quiet; }
   void setVerbose(bool verbose) { verbose_ = verbose; }
+  /// Off in the processes of a split run past rank 0: rank 0 gives the run's warnings.
+  void setWarnings(bool warnings) { warnings_ = warnings; }
   bool verbose() const { return verbose_; }
 
   void warn(const std::string& message);
@@ -34,6 +36,7 @@ class Console {
   std::ostream& err_;
   bool quiet_ = false;
   bool verbose_ = false;
+  bool warnings_ = true;
   bool barDrawn_ = false;
 };
 

@@ -3,7 +3,11 @@
 #include <vector>
 
 #include "cli.h"
+#include "mpi_processes.h"
 
 int main(int argc, char** argv) {
-  return rad::cli::runCli(std::vector<std::string>(argv + 1, argv + argc));
+  rad::cli::MpiProcesses::start(argc, argv);
+  const int status = rad::cli::runCli(std::vector<std::string>(argv + 1, argv + argc));
+  rad::cli::MpiProcesses::finish(status);
+  return status;
 }

@@ -15,6 +15,7 @@
 #include "command_support.h"
 #include "core/cache_directory.h"
 #include "lighting/dynamic_objects.h"
+#include "mpi_processes.h"
 
 namespace rad::cli {
 
@@ -187,6 +188,11 @@ void MethodOptions::resolve(const Scene& scene, const std::string& solutionFile,
   else
     resolveFromSolution(scene, solutionFile, console);
   trimCache(console);
+  if (MpiProcesses::split() && settings_.method != "voxel")
+    console.warn(
+        fmt::format("the {} method is not split among processes yet: each of the {} "
+                    "ranks computes it whole (the voxel method is split)",
+                    settings_.method, MpiProcesses::count()));
 }
 
 void MethodOptions::trimCache(Console& console) const {
@@ -220,6 +226,7 @@ void MethodOptions::resolve(const Scene& scene) {
     throw InputError(scene.name + ": /solver/method",
                      fmt::format("method '{}' is not available here (available: {})",
                                  settings_.method, fmt::join(methods_, ", ")));
+  settings_.voxel.processes = MpiProcesses::share();
 }
 
 VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,

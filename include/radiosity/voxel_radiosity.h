@@ -6,6 +6,7 @@
 // Computers & Graphics 30(1), 2006.
 
 #include <radiosity/object_radiometry.h>
+#include <radiosity/process_share.h>
 #include <radiosity/progress.h>
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
@@ -45,8 +46,11 @@ struct VoxelRadiositySettings {
   uint64_t seed = 1;
   /// Where the solve keeps a checkpoint after every iteration (written atomically, removed when
   /// it is done) and goes on from one when solved again after a kill or Ctrl-C, to the same
-  /// answer (bit for bit with the same threads); empty: none.
+  /// answer (bit for bit with the same threads); empty: none. Not with processes split.
   std::string checkpointDir;
+  /// The processes the solve is split among (each sweeps a block of every iteration's
+  /// direction pairs and shoots a block of the sides' direct light); one by default.
+  ProcessShare processes;
 };
 
 struct VoxelRadiosityStats {

@@ -22,6 +22,11 @@ namespace rad {
 void writeFileAtomically(const std::filesystem::path& target,
                          const std::function<void(const std::filesystem::path& temporary)>& write);
 
+/// Whether this process writes files: not in the processes of a run split among several (MPI
+/// ranks past 0), which compute the same answer and leave writing it to the first. While off,
+/// the writers here do nothing.
+void setWritesFiles(bool writes);
+
 /// Writes `text` byte for byte (no newline translation) to `target`, atomically.
 /// Throws std::runtime_error naming `target` on failure.
 void writeTextAtomically(const std::filesystem::path& target, const std::string& text);

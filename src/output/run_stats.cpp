@@ -80,6 +80,7 @@ nlohmann::json toJson(const RunStats& s) {
       groups.push_back({{"name", g.name}, {"scale", rgb(g.scale)}, {"power", rgb(g.power)}});
   }
   if (!s.methodDetails.empty()) j[s.method] = s.methodDetails;
+  if (!s.distributed.empty()) j["distributed"] = s.distributed;
   if (!s.settings.empty()) {
     nlohmann::json settings = nlohmann::json::object();
     for (const auto& setting : s.settings)

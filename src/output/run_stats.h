@@ -49,6 +49,9 @@ struct RunStats {
   uint64_t memoryPeakBytes = 0;
   /// Numbers particular to the method, written under the method's name ("voxel": {...}).
   nlohmann::json methodDetails;
+  /// A run split among processes (MPI ranks): their count, each one's seconds, the bytes sent
+  /// and received; empty for one process.
+  nlohmann::json distributed;
   /// The settings the method ran with, by name (solver_settings.h), under "settings".
   std::vector<std::pair<std::string, SettingValue>> settings;
 };

@@ -61,7 +61,9 @@ VoxelSolverSettings solverSettings(const VoxelRadiositySettings& settings) {
   solver.keepDirect = settings.keepDirectLight && settings.directFirstShot;
   solver.sweep.tangentCorrection = settings.tangentCorrection;
   solver.seed = settings.seed;
-  solver.checkpointDir = settings.checkpointDir;
+  // A split solve keeps no checkpoint: each process would keep its own part of one.
+  if (!settings.processes.split()) solver.checkpointDir = settings.checkpointDir;
+  solver.processes = settings.processes;
   return solver;
 }
 

@@ -49,6 +49,13 @@ Vec3 surfacePointOf(const VoxelGrid& grid, const RayCaster& caster, size_t entry
   return probe.origin + hit.distance * probe.direction;
 }
 
+// Every process's colours replaced by their sum over the processes (nothing for one process).
+void sumOverProcesses(const ProcessShare& processes, std::vector<Color>& colours) {
+  if (!processes.split()) return;
+  static_assert(sizeof(Color) == 3 * sizeof(float));
+  processes.sumAll(std::span<float>(reinterpret_cast<float*>(colours.data()), 3 * colours.size()));
+}
+
 // Direct irradiance at every entry's surface point (surfacePointOf): the analytic lights once
 // (exact, one shadow ray each), the emitters' light averaged over `directSamples` area samples.
 // Throws Cancelled when `progress` asks, within a fraction of a second even at thousands of
@@ -60,9 +67,11 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
   constexpr int kSamplesBetweenPolls = 256;
   const uint64_t raysBefore = caster.raysCast();
   const DirectLighting direct(scene, caster, lights, settings.emissionScales);
-  std::vector<Color> h(grid.entryCount());
-  ProgressTicker ticker(progress, grid.entryCount());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.entryCount(), 256), [&](const auto& r) {
+  std::vector<Color> h(grid.entryCount(), Color(0.0f));
+  // Split among processes, each shoots a block of the sides; their sum is every side's.
+  const auto [begin, end] = settings.processes.block(grid.entryCount());
+  ProgressTicker ticker(progress, end - begin);
+  tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 256), [&](const auto& r) {
     for (size_t e = r.begin(); e != r.end() && !ticker.cancelled(); ++e) {
       const Vec3 p = surfacePointOf(grid, caster, e), n = grid.unitNormal(e);
       Color fromEmitters(0.0f);
@@ -82,6 +91,7 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
   });
   ticker.throwIfCancelled();
   rays = caster.raysCast() - raysBefore;
+  sumOverProcesses(settings.processes, h);
   return h;
 }
 
@@ -166,12 +176,16 @@ struct SweepDirections {
 // One iteration, one bounce: the direction pairs in turn, each swept by all threads (over bands
 // of its lines), so that every side's sum runs over the pairs in the same order for any thread
 // count.
+// Split among processes, each sweeps a fixed block of the direction pairs (the same pairs every
+// iteration: a pair's lines shift by its own seed, whoever sweeps it), and the processes' sums
+// are added in rank order.
 void gatherAllDirections(const DirectionSet& directions, DiscreteLineSweep& sweep,
                          std::vector<Color>& gathered, const DiscreteLineSweep::Source& source,
                          const VoxelSolverSettings& settings, int iteration,
                          ProgressTicker& ticker) {
   std::fill(gathered.begin(), gathered.end(), Color(0.0f));
-  for (size_t k = 0; k < directions.pairCount(); ++k) {
+  const auto [begin, end] = settings.processes.block(directions.pairCount());
+  for (size_t k = begin; k < end; ++k) {
     ticker.throwIfCancelled();
     const DiscreteDirection& d = directions.pairFirst(k);
     const LineOffset offset =
@@ -179,6 +193,7 @@ void gatherAllDirections(const DirectionSet& directions, DiscreteLineSweep& swee
     sweep.sweepPair(d, source, gathered, offset);
     ticker.tick();
   }
+  sumOverProcesses(settings.processes, gathered);
 }
 
 // A colour in three 24-bit floats, 9 bytes: a float rounded to its 15 high bits of mantissa
@@ -427,8 +442,12 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   std::vector<DiscreteLineSweep::SentLight> packed(grid.entryCount());
   const size_t laterIterations =
       size_t(std::max(settings.iterations - std::max(firstIteration, 1), 0));
-  ProgressTicker ticker(progress, (firstIteration == 0 ? directions.pairCount() : 0) +
-                                      laterDirections.pairCount() * laterIterations);
+  const auto pairsOf = [&](const DirectionSet& d) {
+    const auto [begin, end] = settings.processes.block(d.pairCount());
+    return end - begin;
+  };
+  ProgressTicker ticker(progress, (firstIteration == 0 ? pairsOf(directions) : 0) +
+                                      pairsOf(laterDirections) * laterIterations);
   bool converged = !solution.residuals.empty() && settings.tolerance > 0.0 &&
                    solution.residuals.back() < settings.tolerance;
   const auto start = std::chrono::steady_clock::now();

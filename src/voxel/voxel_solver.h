@@ -9,6 +9,7 @@
 // Computers & Graphics 30(1), 2006 (the sweep, six iterations), and their follow-up's remark that
 // small emitters subtend fewer directions than the sphere resolves, hence the first shot.
 
+#include <radiosity/process_share.h>
 #include <radiosity/progress.h>
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
@@ -44,6 +45,8 @@ struct VoxelSolverSettings {
   /// Where the solve keeps a checkpoint after every iteration and resumes from one
   /// (voxel_checkpoint.h); empty: none.
   std::filesystem::path checkpointDir;
+  /// The processes the solve is split among (process_share.h).
+  ProcessShare processes;
 };
 
 struct VoxelSolution {

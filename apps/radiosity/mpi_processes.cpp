@@ -1,0 +1,115 @@
+#include "mpi_processes.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <vector>
+
+#ifdef RADIOSITY_HAS_MPI
+#include <mpi.h>
+#endif
+
+namespace rad::cli {
+
+namespace {
+
+int worldRank = 0, worldCount = 1;
+uint64_t communicated = 0;
+double summing = 0.0;  // seconds in sums: sending, receiving and waiting for the others
+
+#ifdef RADIOSITY_HAS_MPI
+bool startedByLauncher() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "MPI_LOCALNRANKS"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+
+// Rank 0 adds the others' arrays to its own in rank order, then sends the sum to all: the same
+// sum, bit for bit, for a given number of ranks, whatever their timing (MPI_Allreduce leaves
+// the order to the implementation). Sent in chunks of at most 2^28 floats (a count is an int).
+void sumInRankOrder(std::span<float> values) {
+  const auto start = std::chrono::steady_clock::now();
+  constexpr size_t kChunk = size_t(1) << 28;
+  std::vector<float> incoming;
+  for (size_t at = 0; at < values.size(); at += kChunk) {
+    const std::span<float> chunk = values.subspan(at, std::min(kChunk, values.size() - at));
+    const int n = int(chunk.size());
+    if (worldRank == 0) {
+      incoming.resize(chunk.size());
+      for (int r = 1; r < worldCount; ++r) {
+        MPI_Recv(incoming.data(), n, MPI_FLOAT, r, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        for (size_t i = 0; i < chunk.size(); ++i) chunk[i] += incoming[i];
+      }
+    } else {
+      MPI_Send(chunk.data(), n, MPI_FLOAT, 0, 0, MPI_COMM_WORLD);
+    }
+    MPI_Bcast(chunk.data(), n, MPI_FLOAT, 0, MPI_COMM_WORLD);
+    communicated +=
+        uint64_t(2) * chunk.size() * sizeof(float) * uint64_t(worldRank == 0 ? worldCount - 1 : 1);
+  }
+  summing += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+#endif
+
+}  // namespace
+
+void MpiProcesses::start(int& argc, char**& argv) {
+#ifdef RADIOSITY_HAS_MPI
+  if (!startedByLauncher()) return;
+  MPI_Init(&argc, &argv);
+  MPI_Comm_rank(MPI_COMM_WORLD, &worldRank);
+  MPI_Comm_size(MPI_COMM_WORLD, &worldCount);
+#else
+  (void)argc;
+  (void)argv;
+#endif
+}
+
+void MpiProcesses::finish(int status) {
+#ifdef RADIOSITY_HAS_MPI
+  int started = 0;
+  MPI_Initialized(&started);
+  if (!started) return;
+  if (status != 0) MPI_Abort(MPI_COMM_WORLD, status);
+  MPI_Finalize();
+#else
+  (void)status;
+#endif
+}
+
+ProcessShare MpiProcesses::share() {
+  ProcessShare share;
+  share.rank = worldRank;
+  share.count = worldCount;
+#ifdef RADIOSITY_HAS_MPI
+  if (worldCount > 1) share.sumAll = sumInRankOrder;
+#endif
+  return share;
+}
+
+int MpiProcesses::rank() {
+  return worldRank;
+}
+
+int MpiProcesses::count() {
+  return worldCount;
+}
+
+uint64_t MpiProcesses::bytesCommunicated() {
+  return communicated;
+}
+
+double MpiProcesses::secondsSumming() {
+  return summing;
+}
+
+std::vector<double> MpiProcesses::gather(double seconds) {
+  std::vector<double> all(size_t(worldCount), seconds);
+#ifdef RADIOSITY_HAS_MPI
+  if (worldCount > 1)
+    MPI_Gather(&seconds, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+#endif
+  if (worldRank != 0) all.assign(1, seconds);
+  return all;
+}
+
+}  // namespace rad::cli

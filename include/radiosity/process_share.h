@@ -1,0 +1,29 @@
+#pragma once
+// One solve split among several processes (MPI ranks; the library knows no MPI: the command
+// line's `mpirun` support fills this in). Each process takes a block of the work, and sumAll
+// adds the processes' arrays element by element in rank order, so that every process ends with
+// the same sum, whatever the timing.
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <utility>
+
+namespace rad {
+
+struct ProcessShare {
+  int rank = 0, count = 1;
+  /// Replaces `values` in every process by the sum over the processes (in rank order). Called
+  /// by every process with arrays of one length. Empty when count is 1.
+  std::function<void(std::span<float> values)> sumAll;
+
+  bool split() const { return count > 1; }
+  /// This process's block [begin, end) of n items: the blocks of the ranks in order, their sizes
+  /// differing by one at most.
+  std::pair<size_t, size_t> block(size_t n) const {
+    const size_t r = size_t(rank), c = size_t(count);
+    return {n * r / c, n * (r + 1) / c};
+  }
+};
+
+}  // namespace rad
