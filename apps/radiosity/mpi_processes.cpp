@@ -23,28 +23,35 @@ bool startedByLauncher() {
   return false;
 }
 
-// Rank 0 adds the others' arrays to its own in rank order, then sends the sum to all: the same
-// sum, bit for bit, for a given number of ranks, whatever their timing (MPI_Allreduce leaves
-// the order to the implementation). Sent in chunks of at most 2^28 floats (a count is an int).
-void sumInRankOrder(std::span<float> values) {
+// The arrays summed along a binary tree of a fixed shape (rank r + s into rank r for s = 1, 2,
+// 4, ..., r a multiple of 2s), then the sum broadcast from rank 0: log2(ranks) steps instead of
+// ranks - 1 at rank 0, and the same sum, bit for bit, for a given number of ranks whatever their
+// timing (MPI_Allreduce leaves the order to the implementation). Sent in chunks of at most
+// 2^28 floats (a count is an int).
+void sumInFixedTree(std::span<float> values) {
   const auto start = std::chrono::steady_clock::now();
   constexpr size_t kChunk = size_t(1) << 28;
   std::vector<float> incoming;
   for (size_t at = 0; at < values.size(); at += kChunk) {
     const std::span<float> chunk = values.subspan(at, std::min(kChunk, values.size() - at));
     const int n = int(chunk.size());
-    if (worldRank == 0) {
-      incoming.resize(chunk.size());
-      for (int r = 1; r < worldCount; ++r) {
-        MPI_Recv(incoming.data(), n, MPI_FLOAT, r, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        for (size_t i = 0; i < chunk.size(); ++i) chunk[i] += incoming[i];
+    const uint64_t bytes = chunk.size() * sizeof(float);
+    for (int step = 1; step < worldCount; step *= 2) {
+      if (worldRank % (2 * step) == step) {
+        MPI_Send(chunk.data(), n, MPI_FLOAT, worldRank - step, 0, MPI_COMM_WORLD);
+        communicated += bytes;
+        break;
       }
-    } else {
-      MPI_Send(chunk.data(), n, MPI_FLOAT, 0, 0, MPI_COMM_WORLD);
+      if (worldRank % (2 * step) == 0 && worldRank + step < worldCount) {
+        incoming.resize(chunk.size());
+        MPI_Recv(incoming.data(), n, MPI_FLOAT, worldRank + step, 0, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+        for (size_t i = 0; i < chunk.size(); ++i) chunk[i] += incoming[i];
+        communicated += bytes;
+      }
     }
     MPI_Bcast(chunk.data(), n, MPI_FLOAT, 0, MPI_COMM_WORLD);
-    communicated +=
-        uint64_t(2) * chunk.size() * sizeof(float) * uint64_t(worldRank == 0 ? worldCount - 1 : 1);
+    communicated += bytes;
   }
   summing += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -81,7 +88,7 @@ ProcessShare MpiProcesses::share() {
   share.rank = worldRank;
   share.count = worldCount;
 #ifdef RADIOSITY_HAS_MPI
-  if (worldCount > 1) share.sumAll = sumInRankOrder;
+  if (worldCount > 1) share.sumAll = sumInFixedTree;
 #endif
   return share;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // `mpirun -np N radiosity ...`: one run split among N processes (MPI ranks). The voxel method
-// sweeps a block of the direction pairs in each process and adds the blocks' light in rank
+// sweeps a block of the direction pairs in each process and adds the blocks' light in a fixed
 // order (process_share.h); rank 0 alone writes outputs and speaks. Built without MPI, or started
 // without mpirun, the tool runs as one process.
 

@@ -1,7 +1,7 @@
 #pragma once
 // One solve split among several processes (MPI ranks; the library knows no MPI: the command
 // line's `mpirun` support fills this in). Each process takes a block of the work, and sumAll
-// adds the processes' arrays element by element in rank order, so that every process ends with
+// adds the processes' arrays element by element in a fixed order, so that every process ends with
 // the same sum, whatever the timing.
 
 #include <cstddef>
@@ -13,7 +13,7 @@ namespace rad {
 
 struct ProcessShare {
   int rank = 0, count = 1;
-  /// Replaces `values` in every process by the sum over the processes (in rank order). Called
+  /// Replaces `values` in every process by the sum over the processes (in a fixed order). Called
   /// by every process with arrays of one length. Empty when count is 1.
   std::function<void(std::span<float> values)> sumAll;
 

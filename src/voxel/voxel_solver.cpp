@@ -178,7 +178,7 @@ struct SweepDirections {
 // count.
 // Split among processes, each sweeps a fixed block of the direction pairs (the same pairs every
 // iteration: a pair's lines shift by its own seed, whoever sweeps it), and the processes' sums
-// are added in rank order.
+// are added in a fixed order.
 void gatherAllDirections(const DirectionSet& directions, DiscreteLineSweep& sweep,
                          std::vector<Color>& gathered, const DiscreteLineSweep::Source& source,
                          const VoxelSolverSettings& settings, int iteration,
