@@ -7,9 +7,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <glm/gtc/constants.hpp>
 #include <span>
 #include <stdexcept>
 #include <unordered_map>
+
+#include "output/lit_mesh_texturing.h"
 
 namespace rad {
 
@@ -151,7 +154,7 @@ void checkPieceCount(const Scene& scene, std::span<const uint32_t> triangles, fl
 
 }  // namespace
 
-SurfaceBake cutSurfaces(const Scene& scene, float maxEdge) {
+SurfaceBake cutSurfaces(const Scene& scene, float maxEdge, bool withTextures) {
   if (!(maxEdge > 0.0f)) throw std::invalid_argument("bake: the longest edge must be positive");
   SurfaceBake bake;
   LitMesh& out = bake.mesh;
@@ -180,6 +183,16 @@ SurfaceBake cutSurfaces(const Scene& scene, float maxEdge) {
   out.colors.resize(vertexStart.back());
   bake.at.resize(vertexStart.back());
   out.indices.resize(3 * pieceStart.back());
+  // The textures made before the parallel cut, which only reads them.
+  LitMeshTexturing texturing(scene, out);
+  const bool textures = withTextures && texturing.any();
+  if (textures) {
+    for (uint32_t m = 0; m < scene.materials.size(); ++m)
+      if (texturing.textured(m)) texturing.textureOf(m);
+    out.texcoords.resize(out.positions.size());
+    out.triangleTextures.resize(out.indices.size() / 3, LitMesh::kUntextured);
+    bake.underTexture.resize(out.positions.size(), 0);
+  }
   tbb::parallel_for(size_t(0), order.size(), [&](size_t i) {
     const uint32_t triangle = order[i];
     const Vec3 normal = scene.triangleNormal(triangle);
@@ -189,11 +202,21 @@ SurfaceBake cutSurfaces(const Scene& scene, float maxEdge) {
     for (int side = 0; side < sides; ++side) {
       const bool front = side == 0;
       const uint32_t base = uint32_t(vertexStart[i] + size_t(side) * p.positions.size());
+      const uint32_t material = scene.faceOf(triangle).material;
+      const bool textured = textures && texturing.textured(material);
       for (size_t v = 0; v < p.positions.size(); ++v) {
         out.positions[base + v] = p.positions[v];
         out.normals[base + v] = front ? normal : -normal;
         bake.at[base + v] = {p.positions[v], normal, triangle, front,
                              scene.barycentricOf(triangle, p.positions[v])};
+        if (!textured) continue;
+        out.texcoords[base + v] = texturing.texcoordAt(triangle, bake.at[base + v].barycentric);
+        bake.underTexture[base + v] = 1;
+      }
+      if (textured) {
+        const uint64_t first = pieceStart[i] + uint64_t(side) * (p.indices.size() / 3);
+        std::fill_n(out.triangleTextures.begin() + long(first), p.indices.size() / 3,
+                    texturing.textureOf(material));
       }
       // The back side is wound the other way round, so that it faces out of its own side.
       for (size_t k = 0; k < p.indices.size(); k += 3) {
@@ -217,6 +240,19 @@ void shadeSurfaces(SurfaceBake& bake, const SurfaceRadiance& radiance) {
 LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance, float maxEdge) {
   SurfaceBake bake = cutSurfaces(scene, maxEdge);
   shadeSurfaces(bake, radiance);
+  return std::move(bake.mesh);
+}
+
+LitMesh bakeSurfaceLight(const Scene& scene, const SurfaceSolution& solution, float maxEdge) {
+  SurfaceBake bake = cutSurfaces(scene, maxEdge, true);
+  shadeSurfaces(bake, solution);
+  // Under a texture, the light a white surface would send: the texture is the albedo.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, bake.underTexture.size(), 1024),
+                    [&](const auto& r) {
+                      for (size_t v = r.begin(); v != r.end(); ++v)
+                        if (bake.underTexture[v])
+                          bake.mesh.colors[v] = solution.irradiance(bake.at[v]) / glm::pi<float>();
+                    });
   return std::move(bake.mesh);
 }
 

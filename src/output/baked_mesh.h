@@ -6,6 +6,7 @@
 
 #include <radiosity/scene.h>
 #include <radiosity/surface_radiance.h>
+#include <radiosity/surface_solution.h>
 
 #include "output/gltf_export.h"
 
@@ -18,15 +19,22 @@ namespace rad {
 /// stays dark on the other. Evaluates `radiance` in parallel. Throws std::invalid_argument,
 /// before any work, when the cut would exceed kMaxBakedTriangles.
 LitMesh bakeSurfaceRadiance(const Scene& scene, const SurfaceRadiance& radiance, float maxEdge);
+/// The same for an export: the faces of textured materials under their textures (texture
+/// coordinates, LitMesh::textures), their vertices coloured with the solution's irradiance / pi
+/// (LitMeshTexturing).
+LitMesh bakeSurfaceLight(const Scene& scene, const SurfaceSolution& solution, float maxEdge);
 
 /// A bake in two steps: the cut triangles and where each vertex lies, then their colours, so
 /// that a viewer shades the same vertices again as the light changes.
 struct SurfaceBake {
   LitMesh mesh;                ///< colours black until shaded
   std::vector<SurfaceHit> at;  ///< per vertex: the point radiance() is asked at
+  /// Per vertex, it lies under a texture (a cut with textures); empty: none does.
+  std::vector<uint8_t> underTexture;
 };
-/// The cut of bakeSurfaceRadiance, unshaded. Throws as it does.
-SurfaceBake cutSurfaces(const Scene& scene, float maxEdge);
+/// The cut of bakeSurfaceRadiance, unshaded; `withTextures`: the textured materials' faces
+/// under their textures (bakeSurfaceLight's). Throws as it does.
+SurfaceBake cutSurfaces(const Scene& scene, float maxEdge, bool withTextures = false);
 /// Sets every vertex colour to the radiance `radiance` gives there (in parallel).
 void shadeSurfaces(SurfaceBake& bake, const SurfaceRadiance& radiance);
 

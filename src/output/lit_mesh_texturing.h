@@ -14,6 +14,8 @@ class LitMeshTexturing {
  public:
   /// Fills mesh.textures as materials are asked for; the mesh must outlive this.
   LitMeshTexturing(const Scene& scene, LitMesh& mesh);
+  /// True when some material's faces go out textured.
+  bool any() const { return any_; }
   /// True when `material`'s faces go out textured: a base colour texture, coordinates in the
   /// scene, and no emission (which the texture must not multiply).
   bool textured(uint32_t material) const;

@@ -306,7 +306,7 @@ SurfaceElement VoxelRadiosity::element(size_t e) const {
 }
 
 LitMesh VoxelRadiosity::litMesh() const {
-  return bakeSurfaceRadiance(*impl_->scene, *this, impl_->grid.voxelSize);
+  return bakeSurfaceLight(*impl_->scene, *this, impl_->grid.voxelSize);
 }
 
 }  // namespace rad

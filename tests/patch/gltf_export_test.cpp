@@ -153,46 +153,17 @@ TEST(PatchGlbExport, IsTheLitPatchMesh) {
 }
 
 TEST(PatchGlbExport, TexturedFacesCarryIrradianceUnderTheirTexture) {
-  // The textured quad (tests/data/scene/textured/quad.obj: half black, half white, factor 0.8)
-  // under a point light: its primitive shows the texture (embedded, read back as the same
-  // image) times the factor on TEXCOORD_0, and its colours are H / pi, so that a viewer's
-  // COLOR_0 x base colour is the picture's texel x irradiance.
-  Scene scene = loadScene(std::string(RADIOSITY_TEST_DATA_DIR) + "/scene/textured/quad.obj");
-  Light light;
-  light.position = Vec3(1.0f, 1.0f, 0.5f);
-  light.intensity = Color(2.0f);
-  scene.lights = {light};
+  // Its primitive shows the texture (embedded, read back as the same image) times the factor on
+  // TEXCOORD_0, and its colours are H / pi, so that a viewer's COLOR_0 x base colour is the
+  // picture's texel x irradiance.
+  const Scene scene = test::litTexturedQuad();
   PatchRadiositySettings settings;
   settings.patchSize = 0.25f;
   settings.cacheDir = "";
   const PatchRadiosity solution(scene, settings);
   const fs::path dir = freshDir("radiosity_textured_glb");
   writeLitMeshGlb((dir / "quad.glb").string(), solution.litMesh());
-  const tinygltf::Model model = loadGlb(dir / "quad.glb");
-  ASSERT_EQ(model.materials.size(), 1u);
-  const tinygltf::Material& material = model.materials[0];
-  EXPECT_NEAR(material.pbrMetallicRoughness.baseColorFactor[0], 0.8, 1e-6);
-  ASSERT_EQ(material.pbrMetallicRoughness.baseColorTexture.index, 0);
-  ASSERT_EQ(model.images.size(), 1u);
-  const tinygltf::BufferView& view = model.bufferViews.at(size_t(model.images[0].bufferView));
-  const std::span<const uint8_t> png(model.buffers[0].data.data() + view.byteOffset,
-                                     view.byteLength);
-  const std::shared_ptr<const Texture> image = Texture::decode(png, "exported");
-  EXPECT_EQ(image->width(), 16);
-  EXPECT_NEAR(image->mean().r, 0.5f, 1e-3f);
-  const tinygltf::Primitive& prim = model.meshes.at(0).primitives.at(0);
-  ASSERT_TRUE(prim.attributes.count("TEXCOORD_0"));
-  const std::vector<float> positions =
-      readAccessor<float>(model, prim.attributes.at("POSITION"), 3);
-  const std::vector<float> colours = readAccessor<float>(model, prim.attributes.at("COLOR_0"), 3);
-  const std::vector<float> uv = readAccessor<float>(model, prim.attributes.at("TEXCOORD_0"), 2);
-  for (size_t v = 0; v < positions.size() / 3; ++v) {
-    const Vec3 p(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
-    EXPECT_NEAR(uv[2 * v], p.x / 2.0f, 1e-5f);  // u runs along the quad's 2 m
-    SurfaceHit hit{p, Vec3(0, 1, 0), 0, true, scene.barycentricOf(0, p)};
-    const float h = solution.irradiance(hit).r;
-    EXPECT_NEAR(colours[3 * v], h / glm::pi<float>(), 1e-4f) << v;
-  }
+  test::expectQuadUnderItsTexture(loadGlb(dir / "quad.glb"), scene, solution);
   // Read back as a scene, the quad is textured as it was.
   const Scene back = loadScene((dir / "quad.glb").string());
   ASSERT_EQ(back.materials.size(), 1u);

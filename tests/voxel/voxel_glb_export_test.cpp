@@ -5,11 +5,10 @@
 #include <gtest/gtest.h>
 #include <radiosity/voxel_radiosity.h>
 
-#include <glm/gtc/constants.hpp>
-#include <glm/gtx/component_wise.hpp>
-
 #include <algorithm>
 #include <filesystem>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtx/component_wise.hpp>
 
 #include "output/glb_reader.h"
 #include "voxel/voxel_test_scenes.h"
@@ -69,19 +68,20 @@ TEST(VoxelGlbExport, BakesTheSolutionIntoTheSceneTriangles) {
         // Wound to face the way its vertex normals point.
         EXPECT_GT(glm::dot(n, at(normals, indices[t])), 0.0f);
         // Cut to the voxel size: the baked light can follow what the voxels resolve.
-        const float longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+        const float longest =
+            std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
         EXPECT_LE(longest, settings.voxelSize * 1.0001f);
         const double triangleArea = 0.5 * glm::length(n);
         sideArea[side] += triangleArea;
-        radianceTimesArea[side] += triangleArea / 3.0 *
-                                   Vec3d(at(colors, indices[t]) + at(colors, indices[t + 1]) +
-                                         at(colors, indices[t + 2]));
+        radianceTimesArea[side] +=
+            triangleArea / 3.0 *
+            Vec3d(at(colors, indices[t]) + at(colors, indices[t + 1]) + at(colors, indices[t + 2]));
       }
       // Probes: a vertex's colour is the radiance the renderer shows there, from its side.
       for (uint32_t v = 0; 3 * v < positions.size(); v += 17, ++probes) {
         const bool front = glm::dot(at(normals, v), face.normal) > 0.0f;
-        const Color expected = solution.radiance({at(positions, v), face.normal,
-                                                  face.firstTriangle, front});
+        const Color expected =
+            solution.radiance({at(positions, v), face.normal, face.firstTriangle, front});
         for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(at(colors, v)[ch], expected[ch], 1e-5f);
       }
     }
@@ -102,6 +102,23 @@ TEST(VoxelGlbExport, BakesTheSolutionIntoTheSceneTriangles) {
   }
   EXPECT_NEAR(area, sceneArea, 1e-4 * sceneArea);
   EXPECT_GE(probes, 100u);
+}
+
+TEST(VoxelGlbExport, TexturedFacesCarryIrradianceUnderTheirTexture) {
+  // The pieces of the textured quad go out under its texture, coloured with the solution's H /
+  // pi, as the patch method's export.
+  const Scene scene = test::litTexturedQuad();
+  VoxelRadiositySettings settings;
+  settings.voxelSize = 0.1f;
+  settings.sphereRadius = 4;
+  settings.iterations = 1;
+  const VoxelRadiosity solution(scene, settings);
+  const fs::path dir = fs::path(::testing::TempDir()) / "radiosity_voxel_textured_glb";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  solution.exportGlb((dir / "quad.glb").string());
+  test::expectQuadUnderItsTexture(test::loadGlb(dir / "quad.glb"), scene, solution);
+  fs::remove_all(dir);
 }
 
 }  // namespace
