@@ -1,6 +1,6 @@
-// `radiosity bench [pathtrace|patch|relight|voxel|voxel-scaling|interior|all] [--json]`: throughput numbers
-// that notes and reports quote. Fixed workloads on built-in scenes, so numbers from different
-// machines compare.
+// `radiosity bench [pathtrace|patch|relight|voxel|voxel-scaling|interior|all] [--json]`: throughput
+// numbers that notes and reports quote. Fixed workloads on built-in scenes, so numbers from
+// different machines compare.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -28,6 +28,8 @@ struct BenchOptions {
   int relightFrames = 0;
   int probeResolution = 16;  ///< 0: the default period
   int interiorDetail = 180;
+  int ranks = 2;
+  size_t distributedVoxels = 300000;
 };
 
 int runBench(const BenchOptions& o, Console& console) {
@@ -41,6 +43,8 @@ int runBench(const BenchOptions& o, Console& console) {
   if (all || o.which == "voxel")
     results["voxel"] = benchVoxel(console, o.voxels, o.sphereRadius, o.pairStride);
   if (o.which == "interior") results["interior"] = benchInterior(console, o.interiorDetail);
+  if (o.which == "distributed")
+    results["distributed"] = benchDistributed(console, o.ranks, o.distributedVoxels);
   if (o.which == "voxel-scaling")
     results["voxel-scaling"] =
         benchVoxelScaling(console, o.scalingRadius, o.scalingMaxVoxels, o.output);
@@ -60,9 +64,9 @@ void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
   CLI::App* sub = app.add_subcommand("bench", "Measure throughput on fixed workloads");
   sub->add_option("which", o->which,
                   "What to measure: pathtrace, patch, relight, probe, voxel, all (those five), "
-                  "voxel-scaling, interior (minutes each)")
+                  "voxel-scaling, interior, distributed (minutes each)")
       ->check(CLI::IsMember({"pathtrace", "patch", "relight", "probe", "voxel", "voxel-scaling",
-                             "interior", "all"}));
+                             "interior", "distributed", "all"}));
   sub->add_option("--voxels", o->voxels,
                   "voxel: surface voxels of the room (default 2000000, the paper's)")
       ->check(CLI::Range(size_t(1000), size_t(1) << 30));
@@ -85,6 +89,12 @@ void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--scaling-max-voxels", o->scalingMaxVoxels,
                   "voxel-scaling: largest voxel count (default 4000000)");
   sub->add_option("--output-dir", o->output, "voxel-scaling: where the table and plot go");
+  sub->add_option("--ranks", o->ranks,
+                  "distributed: MPI ranks of the split run, one thread each (default 2)")
+      ->check(CLI::Range(2, 1024));
+  sub->add_option("--distributed-voxels", o->distributedVoxels,
+                  "distributed: surface voxels of the room (default 300000)")
+      ->check(CLI::Range(size_t(1000), size_t(1) << 30));
   sub->add_option("--interior-detail", o->interiorDetail,
                   "interior: N of atrium:N (default 180: 252k triangles)")
       ->check(CLI::Range(1, 2000));

@@ -41,4 +41,8 @@ nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxV
 /// its defaults, each in a process of its own: the time of each stage and its peak memory.
 nlohmann::json benchInterior(Console& console, int detail);
 
+/// One voxel solve (room:16 at `voxels`, R = 12) on one process with one thread against the same
+/// under `mpirun -np ranks` with one thread a rank, alternating: the parallel efficiency.
+nlohmann::json benchDistributed(Console& console, int ranks, size_t voxels);
+
 }  // namespace rad::cli

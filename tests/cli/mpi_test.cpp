@@ -116,5 +116,20 @@ TEST(Mpi, KilledRankEndsTheJobWithoutOutput) {
   EXPECT_EQ(files, 1u);  // err.txt alone
 }
 
+TEST(Mpi, BenchComparesTheSplitWithOneProcess) {
+  if (!mpiAvailable()) GTEST_SKIP() << "built without MPI or no mpirun";
+  const fs::path dir = freshDir("mpi_bench");
+  const std::string json = (dir / "bench.json").string();
+  ASSERT_EQ(
+      std::system(
+          (kBinary + " bench distributed --distributed-voxels 5000 --json > " + json).c_str()),
+      0);
+  const nlohmann::json b = readJson(json)["distributed"];
+  EXPECT_EQ(b["ranks"].get<int>(), 2);
+  EXPECT_EQ(b["distributed"]["ranks"].get<int>(), 2);
+  EXPECT_GT(b["parallel_efficiency"].get<double>(), 0.0);
+  EXPECT_GT(b["solve_seconds_one_process"].get<double>(), 0.0);
+}
+
 }  // namespace
 }  // namespace rad
