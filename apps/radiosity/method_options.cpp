@@ -187,12 +187,17 @@ void MethodOptions::resolve(const Scene& scene, const std::string& solutionFile,
     resolve(scene);
   else
     resolveFromSolution(scene, solutionFile, console);
-  trimCache(console);
-  if (MpiProcesses::split() && settings_.method != "voxel")
+  if (MpiProcesses::rank() == 0) trimCache(console);  // one process keeps the directory
+  const bool splits = settings_.method == "voxel" ||
+                      (settings_.method == "patch" &&
+                       settings_.patch.estimator == PatchFormFactorEstimator::Hemisphere);
+  if (MpiProcesses::split() && !splits)
     console.warn(
-        fmt::format("the {} method is not split among processes yet: each of the {} "
-                    "ranks computes it whole (the voxel method is split)",
-                    settings_.method, MpiProcesses::count()));
+        fmt::format("the {} method{} is not split among processes yet: each of the {} "
+                    "ranks computes it whole (the voxel method and the patch method's "
+                    "hemisphere form factors are split)",
+                    settings_.method, settings_.method == "patch" ? " with this estimator" : "",
+                    MpiProcesses::count()));
 }
 
 void MethodOptions::trimCache(Console& console) const {
@@ -227,6 +232,7 @@ void MethodOptions::resolve(const Scene& scene) {
                      fmt::format("method '{}' is not available here (available: {})",
                                  settings_.method, fmt::join(methods_, ", ")));
   settings_.voxel.processes = MpiProcesses::share();
+  settings_.patch.processes = MpiProcesses::share();
 }
 
 VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,

@@ -55,6 +55,23 @@ void sumInFixedTree(std::span<float> values) {
   }
   summing += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+// Every rank's bytes, concatenated in rank order, in every rank (a rank's part at most 2 GB: an
+// int count).
+std::vector<char> gatherInRankOrder(std::span<const char> bytes) {
+  const auto start = std::chrono::steady_clock::now();
+  const int mine = int(bytes.size());
+  std::vector<int> counts(static_cast<size_t>(worldCount), 0);
+  std::vector<int> offsets(static_cast<size_t>(worldCount), 0);
+  MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  for (size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<char> all(size_t(offsets.back()) + size_t(counts.back()));
+  MPI_Allgatherv(bytes.data(), mine, MPI_CHAR, all.data(), counts.data(), offsets.data(), MPI_CHAR,
+                 MPI_COMM_WORLD);
+  communicated += all.size();
+  summing += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return all;
+}
 #endif
 
 }  // namespace
@@ -88,7 +105,10 @@ ProcessShare MpiProcesses::share() {
   share.rank = worldRank;
   share.count = worldCount;
 #ifdef RADIOSITY_HAS_MPI
-  if (worldCount > 1) share.sumAll = sumInFixedTree;
+  if (worldCount > 1) {
+    share.sumAll = sumInFixedTree;
+    share.gatherAll = gatherInRankOrder;
+  }
 #endif
   return share;
 }

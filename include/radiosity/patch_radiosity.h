@@ -8,6 +8,7 @@
 // Realistic Image Synthesis", Academic Press 1993.
 
 #include <radiosity/object_radiometry.h>
+#include <radiosity/process_share.h>
 #include <radiosity/progress.h>
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
@@ -68,7 +69,7 @@ inline constexpr NamedChoice<PatchShading> kPatchShadingNames[] = {{"smooth", Pa
                                                                    {"flat", PatchShading::Flat}};
 
 struct PatchRadiositySettings {
-  float patchSize = 0.0f;       ///< longest patch edge in scene units; 0: from targetPatches
+  float patchSize = 0.0f;  ///< longest patch edge in scene units; 0: from targetPatches
   /// When patchSize is 0: about this many patches beyond the one each face root is at least.
   size_t targetPatches = 4000;
   PatchFormFactorEstimator estimator = PatchFormFactorEstimator::Hemisphere;
@@ -92,6 +93,9 @@ struct PatchRadiositySettings {
   /// mesh refined for all the lights), so that setGroupScales() rescales them without a solve.
   bool lightGroups = false;
   uint64_t seed = 1;
+  /// The processes the form factors are split among (the hemisphere estimator's rows: each
+  /// process casts a block, and all get every row; process_share.h); one by default.
+  ProcessShare processes;
 };
 
 struct PatchRadiosityStats {

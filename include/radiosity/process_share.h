@@ -8,6 +8,7 @@
 #include <functional>
 #include <span>
 #include <utility>
+#include <vector>
 
 namespace rad {
 
@@ -16,6 +17,9 @@ struct ProcessShare {
   /// Replaces `values` in every process by the sum over the processes (in a fixed order). Called
   /// by every process with arrays of one length. Empty when count is 1.
   std::function<void(std::span<float> values)> sumAll;
+  /// Every process's `bytes`, concatenated in rank order, in every process. Called by every
+  /// process. Empty when count is 1.
+  std::function<std::vector<char>(std::span<const char> bytes)> gatherAll;
 
   bool split() const { return count > 1; }
   /// This process's block [begin, end) of n items: the blocks of the ranks in order, their sizes

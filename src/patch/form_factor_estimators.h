@@ -10,6 +10,7 @@
 //               visibility of patch j from each point by a sample ray (cost: patches^2 x points).
 
 #include <radiosity/patch_radiosity.h>
+#include <radiosity/process_share.h>
 #include <radiosity/progress.h>
 #include <radiosity/ray_caster.h>
 
@@ -36,6 +37,9 @@ struct FormFactorSettings {
   /// hemisphere: patches whose columns are computed exactly instead (the emitters, see
   /// ExactColumns), ascending; empty: none.
   std::vector<uint32_t> exactColumns = {};
+  /// hemisphere, with the master table: the processes the rows to cast are split among (each
+  /// casts a block, and all get every row; process_share.h).
+  ProcessShare processes = {};
 };
 
 using FormFactorRows = std::vector<std::vector<FormFactorEntry>>;

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <bit>
 #include <chrono>
+#include <cstring>
 #include <unordered_map>
 
 #include "core/checksummed_file.h"
@@ -69,6 +70,42 @@ constexpr uint64_t kRefinedStreams = 1ull << 63;
 
 MasterFormFactorTable::MasterFormFactorTable(int levels, int rays, uint64_t seed)
     : levels_(levels), rays_(rays), seed_(seed) {}
+
+namespace {
+
+// The rows each process cast (its block of `hits`) to every process: blocks in rank order, each
+// row its count and then its hits, 12 bytes each.
+void exchangeRows(const ProcessShare& processes, std::vector<std::vector<HemisphereHit>>& hits,
+                  std::vector<std::atomic<uint8_t>>& done) {
+  const auto [first, last] = processes.block(hits.size());
+  std::vector<char> mine;
+  for (size_t i = first; i < last; ++i) {
+    const uint32_t count = uint32_t(hits[i].size());
+    mine.insert(mine.end(), reinterpret_cast<const char*>(&count),
+                reinterpret_cast<const char*>(&count) + sizeof count);
+    const auto* bytes = reinterpret_cast<const char*>(hits[i].data());
+    mine.insert(mine.end(), bytes, bytes + count * sizeof(HemisphereHit));
+  }
+  const std::vector<char> all = processes.gatherAll(mine);
+  size_t at = 0;
+  for (int rank = 0; rank < processes.count; ++rank) {
+    ProcessShare other = processes;
+    other.rank = rank;
+    const auto [begin, end] = other.block(hits.size());
+    for (size_t i = begin; i < end; ++i) {
+      uint32_t count = 0;
+      std::memcpy(&count, all.data() + at, sizeof count);
+      at += sizeof count;
+      hits[i].resize(count);
+      std::memcpy(static_cast<void*>(hits[i].data()), all.data() + at,
+                  count * sizeof(HemisphereHit));
+      at += count * sizeof(HemisphereHit);
+      done[i].store(1, std::memory_order_release);
+    }
+  }
+}
+
+}  // namespace
 
 MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh,
                                                            const RayCaster& caster,
@@ -156,8 +193,12 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
   const double interval = checkpointIntervalSeconds();
   std::mutex saving;
   auto lastSave = std::chrono::steady_clock::now();
-  ProgressTicker ticker(progress, missing.size());
-  tbb::parallel_for(size_t(0), missing.size(), [&](size_t i) {
+  // Split among processes, each casts a block of the missing rows, and the blocks are exchanged
+  // below: every process then holds every row (each row's rays are its own stream's, whoever
+  // casts it), so all of them assemble and solve the same table.
+  const auto [first, last] = ff.processes.block(missing.size());
+  ProgressTicker ticker(progress, last - first);
+  tbb::parallel_for(first, last, [&](size_t i) {
     if (ticker.cancelled()) return;
     hits[i] = hemisphereHits(mesh, caster, missing[i], rays_, seed_, streamOf(missing[i]), keyOf);
     done[i].store(1, std::memory_order_release);
@@ -177,6 +218,7 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
                     "it casts only the rest",
                     diskFile_.string()));
   }
+  if (ff.processes.split()) exchangeRows(ff.processes, hits, done);
   {
     // Another solve may have cast the same row meanwhile: the first one kept stays.
     std::lock_guard lock(mutex_);

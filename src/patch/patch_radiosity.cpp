@@ -68,7 +68,7 @@ PatchSystem PatchRadiosity::Impl::system() const {
 }
 
 void PatchRadiosity::Impl::chooseFormFactorSettings() {
-  ff = {settings.estimator, settings.formFactorRays, settings.seed, {}};
+  ff = {settings.estimator, settings.formFactorRays, settings.seed, {}, settings.processes};
   emitterRows.assign(mesh->size(), 0);
   for (uint32_t p = 0; p < mesh->size(); ++p)
     emitterRows[p] = scene->materials[mesh->patches()[p].material].emits();

@@ -97,6 +97,24 @@ TEST(Mpi, SplitVoxelSolveMatchesOneProcess) {
   EXPECT_EQ(files, 8u);
 }
 
+TEST(Mpi, SplitPatchSolveIsTheOneProcessSolve) {
+  // The hemisphere rows cast in blocks and exchanged: every rank holds the rows one process
+  // casts (each row's rays are its own stream's), so the export is the same, byte for byte.
+  if (!mpiAvailable()) GTEST_SKIP() << "built without MPI or no mpirun";
+  const fs::path dir = freshDir("mpi_patch");
+  auto solve = [&](const std::string& name) {
+    return kBinary + " --threads 1 -q solve cornell-spot --method patch --cache-dir none " +
+           "--export " + (dir / (name + ".csv")).string();
+  };
+  ASSERT_EQ(std::system(solve("one").c_str()), 0);
+  for (const std::string ranks : {"2", "3"}) {
+    ASSERT_EQ(std::system((kMpirun + "-np " + ranks + " " + solve("np" + ranks)).c_str()), 0);
+    EXPECT_EQ(readBytes((dir / "one.csv").string()),
+              readBytes((dir / ("np" + ranks + ".csv")).string()))
+        << ranks << " ranks";
+  }
+}
+
 TEST(Mpi, KilledRankEndsTheJobWithoutOutput) {
   if (!mpiAvailable()) GTEST_SKIP() << "built without MPI or no mpirun";
   const fs::path dir = freshDir("mpi_kill");
