@@ -16,13 +16,23 @@ namespace {
 int runInfo(const std::string& sceneName, Console& console) {
   const Scene scene = loadScene(sceneName);
   std::ostream& out = console.out();
-  size_t emissive = 0;
-  for (const Material& m : scene.materials) emissive += m.emits() ? 1 : 0;
+  size_t emissive = 0, textured = 0;
+  for (const Material& m : scene.materials) {
+    emissive += m.emits() ? 1 : 0;
+    textured += m.rhoTexture || m.emissionTexture ? 1 : 0;
+  }
   out << fmt::format("scene      {}\n", scene.name);
   out << fmt::format("objects    {}\n", scene.objects.size());
   out << fmt::format("triangles  {}\n", scene.triangles.size());
   out << fmt::format("faces      {}\n", scene.faces.size());
-  out << fmt::format("materials  {} ({} emissive)\n", scene.materials.size(), emissive);
+  out << fmt::format("materials  {} ({} emissive, {} textured)\n", scene.materials.size(), emissive,
+                     textured);
+  for (const Material& m : scene.materials)
+    for (const TextureMap* map : {&m.rhoTexture, &m.emissionTexture})
+      if (*map)
+        out << fmt::format("  {} {}: {} ({} x {} texels)\n", m.name,
+                           map == &m.rhoTexture ? "colour" : "emission", map->texture->name(),
+                           map->texture->width(), map->texture->height());
   out << fmt::format("lights     {}\n", scene.lights.size());
   for (const Light& light : scene.lights)
     out << fmt::format("  {:<5} at ({:g}, {:g}, {:g}), intensity ({:g}, {:g}, {:g}) W/sr\n",

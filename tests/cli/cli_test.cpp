@@ -209,6 +209,11 @@ TEST(Cli, InfoPrintsCountsAndPower) {
   EXPECT_NE(r.out.find("objects    8"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("lights     0"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("emitted"), std::string::npos) << r.out;
+  // A textured scene names its textures and their size.
+  const CliResult office = run({"info", std::string(RADIOSITY_SOURCE_DIR) + "/scenes/office.json"});
+  ASSERT_EQ(office.status, 0) << office.err;
+  EXPECT_NE(office.out.find("1 textured"), std::string::npos) << office.out;
+  EXPECT_NE(office.out.find("tiles.png (128 x 128 texels)"), std::string::npos) << office.out;
 }
 
 TEST(Cli, InfoWarnsAboutDarkScene) {
