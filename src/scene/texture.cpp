@@ -11,6 +11,7 @@
 #include <iterator>
 
 #include "core/binary_io.h"
+#include "core/memory_usage.h"
 
 // The library's own copy of stb_image, static so that it never meets another one at link time.
 #define STB_IMAGE_IMPLEMENTATION
@@ -84,6 +85,9 @@ std::shared_ptr<const Texture> Texture::decode(std::span<const uint8_t> bytes,
   if (w < 1 || h < 1 || w > kMaxSide || h > kMaxSide)
     throw InputError(name,
                      fmt::format("texture of {} x {} texels (at most {} a side)", w, h, kMaxSide));
+  // While decoding: stb's texels (up to 6 B), the linear floats (12 B), the pyramid (8 B).
+  requireMemory(double(w) * double(h) * 26.0, name,
+                fmt::format("a texture of {} x {} texels", w, h), "use a smaller texture");
   std::vector<Color> linear(size_t(w) * size_t(h));
   if (stbi_is_16_bit_from_memory(data, size)) {
     stbi_us* texels = stbi_load_16_from_memory(data, size, &w, &h, &channels, 3);

@@ -14,7 +14,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <span>
 
+#include "core/address_space_limit.h"
 #include "patch/patch_mesh.h"
 #include "scene_summary.h"
 
@@ -24,6 +27,11 @@ namespace rad {
 namespace {
 
 const std::string kTextured = test::kData + "textured/";
+
+std::string readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 TEST(Texture, SrgbMidGreyDecodesToLinear) {
   // sRGB 188 / 255 = 0.73725; linear ((0.73725 + 0.055) / 1.055)^2.4 = 0.50289 (IEC 61966-2-1).
@@ -49,6 +57,24 @@ TEST(Texture, FootprintsAverageAndWrapsFold) {
   EXPECT_NEAR(half->sample(Vec2(1.2f, 0.5f), 0.0f, kClamp, kClamp).r, 1.0f, 1e-4f);
   EXPECT_NEAR(half->sample(Vec2(1.2f, 0.5f), 0.0f, kMirror, kMirror).r, 1.0f, 1e-4f);
   EXPECT_NEAR(half->sample(Vec2(-0.8f, 0.5f), 0.0f, kRepeat, kRepeat).r, 0.0f, 1e-4f);
+}
+
+TEST(Texture, ATextureThatWouldNotFitIsRefusedBeforeDecoding) {
+  // A PNG whose header claims 16,000 x 16,000 texels (its data a few bytes): decoding would need
+  // about 6.7 GB; with 64 MB of address space left, refused by message before any allocation.
+  std::string png = readBytes(kTextured + "half.png");
+  const uint32_t side = 16000;
+  for (int at : {16, 20})  // IHDR's width and height, big-endian
+    for (int k = 0; k < 4; ++k) png[size_t(at + k)] = char((side >> (24 - 8 * k)) & 0xff);
+  const test::AddressSpaceLimit limit(uint64_t(64) << 20);
+  if (!limit.lowered()) GTEST_SKIP() << "cannot lower the address-space limit here";
+  const std::string m = test::errorOf([&] {
+    Texture::decode(
+        std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(png.data()), png.size()),
+        "huge.png");
+  });
+  EXPECT_NE(m.find("huge.png"), std::string::npos) << m;
+  EXPECT_NE(m.find("16000 x 16000"), std::string::npos) << m;
 }
 
 TEST(Texture, NotAnImageIsAnInputErrorNamingTheFile) {
