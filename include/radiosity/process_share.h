@@ -22,12 +22,13 @@ struct ProcessShare {
   std::function<std::vector<char>(std::span<const char> bytes)> gatherAll;
 
   bool split() const { return count > 1; }
-  /// This process's block [begin, end) of n items: the blocks of the ranks in order, their sizes
+  /// Rank r's block [begin, end) of n items: the blocks of the ranks in order, their sizes
   /// differing by one at most.
-  std::pair<size_t, size_t> block(size_t n) const {
-    const size_t r = size_t(rank), c = size_t(count);
-    return {n * r / c, n * (r + 1) / c};
+  std::pair<size_t, size_t> block(size_t n, int r) const {
+    return {n * size_t(r) / size_t(count), n * size_t(r + 1) / size_t(count)};
   }
+  /// This process's block.
+  std::pair<size_t, size_t> block(size_t n) const { return block(n, rank); }
 };
 
 }  // namespace rad

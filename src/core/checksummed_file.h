@@ -3,8 +3,15 @@
 // 8-byte magic and end with a checksum of everything before it; they are written atomically. A
 // file that cannot be written or read is a warning to the caller, who then computes anew.
 
+#include <fmt/format.h>
+
+#include <cstdint>
 #include <filesystem>
+#include <optional>
+#include <stdexcept>
 #include <string>
+
+#include "core/binary_io.h"
 
 namespace rad {
 
@@ -23,6 +30,34 @@ struct ChecksummedFile {
 };
 ChecksummedFile readChecksummed(const std::filesystem::path& file, const char (&magic)[8],
                                 const std::string& what);
+
+/// A checkpoint read back: its magic, checksum and the uint32 `version` after the magic checked,
+/// then `parse(reader, out)` reads the rest (returning "" or why the content is refused: made for
+/// another computation, inconsistent). nullopt when there is no file; nullopt with `warning` set
+/// ("<what> <file> not used (<why>); <fallback>") when it is bad, truncated or refused.
+template <typename T, typename Parse>
+std::optional<T> readCheckpoint(const std::filesystem::path& file, const char (&magic)[8],
+                                uint32_t version, const std::string& what,
+                                const std::string& fallback, std::string& warning,
+                                const Parse& parse) {
+  const ChecksummedFile f = readChecksummed(file, magic, what);
+  if (!f.exists) return std::nullopt;
+  auto reject = [&](const std::string& why) -> std::optional<T> {
+    warning = fmt::format("{} {} not used ({}); {}", what, file.string(), why, fallback);
+    return std::nullopt;
+  };
+  if (!f.rejected.empty()) return reject(f.rejected);
+  T out;
+  try {
+    ByteReader in(f.bytes, 8, f.bytes.size() - 8);
+    if (const uint32_t v = in.get<uint32_t>(); v != version)
+      return reject(fmt::format("format version {}, expected {}", v, version));
+    if (const std::string why = parse(in, out); !why.empty()) return reject(why);
+  } catch (const std::out_of_range&) {
+    return reject("truncated");
+  }
+  return out;
+}
 
 /// Seconds between two checkpoints of a long computation (the path tracer's tiles, the patch
 /// method's form-factor rows): $RADIOSITY_CHECKPOINT_SECONDS when set to a number >= 0, else 30.

@@ -89,9 +89,7 @@ void exchangeRows(const ProcessShare& processes, std::vector<std::vector<Hemisph
   const std::vector<char> all = processes.gatherAll(mine);
   size_t at = 0;
   for (int rank = 0; rank < processes.count; ++rank) {
-    ProcessShare other = processes;
-    other.rank = rank;
-    const auto [begin, end] = other.block(hits.size());
+    const auto [begin, end] = processes.block(hits.size(), rank);
     for (size_t i = begin; i < end; ++i) {
       uint32_t count = 0;
       std::memcpy(&count, all.data() + at, sizeof count);

@@ -557,9 +557,10 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
 
   LitMesh out;
   LitMeshTexturing texturing(*scene, out);
-  // (vertex, material) -> index, per object; a textured patch's by (vertex, face): its
-  // coordinates are its face's.
+  // (vertex, material) -> index, per object; a textured patch's by (vertex, face), the face
+  // marked by the top bit: its coordinates are its face's.
   std::unordered_map<uint64_t, uint32_t> vertexOf;
+  constexpr uint64_t kFaceKey = uint64_t(1) << 31;
   std::vector<uint32_t> outline, onEdges, index;
   // What a vertex of a patch shows: the outgoing radiance, or under a texture H / pi.
   auto colourOf = [&](const Patch& patch, const Color& h, bool textured) {
@@ -567,10 +568,8 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
     return mix.emission(*scene, patch.material) * patch.emissionTint +
            patch.rho * h / glm::pi<float>();
   };
-  std::unordered_map<uint64_t, uint32_t> texturedVertexOf;
   for (uint32_t o = 0; o < byObject.size(); ++o) {
     vertexOf.clear();
-    texturedVertexOf.clear();
     const uint32_t firstTriangle = uint32_t(out.indices.size() / 3);
     for (uint32_t p : byObject[o]) {
       const Patch& patch = mesh->patches()[p];
@@ -590,9 +589,9 @@ LitMesh PatchRadiosity::Impl::litMesh() const {
       for (const uint32_t v : outline) {
         index.push_back(uint32_t(out.positions.size()));
         if (smooth) {
-          const uint64_t key = (uint64_t(v) << 32) | (textured ? patch.face : patch.material);
-          const auto [it, added] =
-              (textured ? texturedVertexOf : vertexOf).try_emplace(key, index.back());
+          const uint64_t key =
+              (uint64_t(v) << 32) | (textured ? kFaceKey | patch.face : patch.material);
+          const auto [it, added] = vertexOf.try_emplace(key, index.back());
           index.back() = it->second;
           if (!added) continue;
         }

@@ -46,31 +46,17 @@ std::string saveRenderCheckpoint(const std::filesystem::path& file, const Render
 std::optional<RenderCheckpoint> loadRenderCheckpoint(const std::filesystem::path& file,
                                                      size_t tiles, int width, int height,
                                                      std::string& warning) {
-  const ChecksummedFile f = readChecksummed(file, kMagic, "render checkpoint");
-  if (!f.exists) return std::nullopt;
-  auto reject = [&](const std::string& why) -> std::optional<RenderCheckpoint> {
-    warning = fmt::format("render checkpoint {} not used ({}); rendering from the start",
-                          file.string(), why);
-    return std::nullopt;
-  };
-  if (!f.rejected.empty()) return reject(f.rejected);
-  const std::string& bytes = f.bytes;
-  RenderCheckpoint c;
-  try {
-    ByteReader in(bytes, 8, bytes.size() - 8);
-    if (const uint32_t version = in.get<uint32_t>(); version != kVersion)
-      return reject(fmt::format("format version {}, expected {}", version, kVersion));
-    const int32_t w = in.get<int32_t>(), h = in.get<int32_t>();
-    if (w != width || h != height || in.get<uint64_t>() != tiles)
-      return reject("made for another picture");
-    c.tileDone = in.array<uint8_t>(tiles);
-    c.image = Image(width, height);
-    c.image.pixels = in.array<Color>(uint64_t(width) * uint64_t(height));
-    if (!in.atEnd()) return reject("inconsistent");
-  } catch (const std::out_of_range&) {
-    return reject("truncated");
-  }
-  return c;
+  return readCheckpoint<RenderCheckpoint>(
+      file, kMagic, kVersion, "render checkpoint", "rendering from the start", warning,
+      [&](ByteReader& in, RenderCheckpoint& c) -> std::string {
+        const int32_t w = in.get<int32_t>(), h = in.get<int32_t>();
+        if (w != width || h != height || in.get<uint64_t>() != tiles)
+          return "made for another picture";
+        c.tileDone = in.array<uint8_t>(tiles);
+        c.image = Image(width, height);
+        c.image.pixels = in.array<Color>(uint64_t(width) * uint64_t(height));
+        return in.atEnd() ? "" : "inconsistent";
+      });
 }
 
 }  // namespace rad

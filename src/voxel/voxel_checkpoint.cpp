@@ -60,39 +60,26 @@ std::string saveVoxelCheckpoint(const std::filesystem::path& file, const VoxelCh
 
 std::optional<VoxelCheckpoint> loadVoxelCheckpoint(const std::filesystem::path& file, size_t sides,
                                                    std::string& warning) {
-  const ChecksummedFile f = readChecksummed(file, kMagic, "voxel checkpoint");
-  if (!f.exists) return std::nullopt;
-  auto reject = [&](const std::string& why) -> std::optional<VoxelCheckpoint> {
-    warning = fmt::format("voxel checkpoint {} not used ({}); solving from the start",
-                          file.string(), why);
-    return std::nullopt;
-  };
-  if (!f.rejected.empty()) return reject(f.rejected);
-  const std::string& bytes = f.bytes;
-  VoxelCheckpoint c;
-  try {
-    ByteReader in(bytes, 8, bytes.size() - 8);
-    if (const uint32_t version = in.get<uint32_t>(); version != kVersion)
-      return reject(fmt::format("format version {}, expected {}", version, kVersion));
-    c.iterationsDone = in.get<int32_t>();
-    if (in.get<uint64_t>() != sides) return reject("made for another grid");
-    c.irradiance = in.array<Color>(sides);
-    c.bounce = in.array<Color>(sides);
-    c.direct = in.array<Color>(in.get<uint64_t>());
-    const uint64_t iterations = in.get<uint64_t>();
-    c.bouncePower = in.array<Vec3d>(iterations);
-    c.residuals = in.array<double>(iterations);
-    c.iterationSeconds = in.array<double>(iterations);
-    c.totalPower = in.get<Vec3d>();
-    c.cellVisits = in.get<uint64_t>();
-    c.shadowRays = in.get<uint64_t>();
-    c.directSeconds = in.get<double>();
-    if (!in.atEnd() || c.iterationsDone < 0 || uint64_t(c.iterationsDone) != iterations)
-      return reject("inconsistent");
-  } catch (const std::out_of_range&) {
-    return reject("truncated");
-  }
-  return c;
+  return readCheckpoint<VoxelCheckpoint>(
+      file, kMagic, kVersion, "voxel checkpoint", "solving from the start", warning,
+      [&](ByteReader& in, VoxelCheckpoint& c) -> std::string {
+        c.iterationsDone = in.get<int32_t>();
+        if (in.get<uint64_t>() != sides) return "made for another grid";
+        c.irradiance = in.array<Color>(sides);
+        c.bounce = in.array<Color>(sides);
+        c.direct = in.array<Color>(in.get<uint64_t>());
+        const uint64_t iterations = in.get<uint64_t>();
+        c.bouncePower = in.array<Vec3d>(iterations);
+        c.residuals = in.array<double>(iterations);
+        c.iterationSeconds = in.array<double>(iterations);
+        c.totalPower = in.get<Vec3d>();
+        c.cellVisits = in.get<uint64_t>();
+        c.shadowRays = in.get<uint64_t>();
+        c.directSeconds = in.get<double>();
+        const bool consistent =
+            in.atEnd() && c.iterationsDone >= 0 && uint64_t(c.iterationsDone) == iterations;
+        return consistent ? "" : "inconsistent";
+      });
 }
 
 }  // namespace rad

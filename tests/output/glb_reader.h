@@ -84,7 +84,8 @@ inline void expectQuadUnderItsTexture(const tinygltf::Model& model, const Scene&
   for (size_t v = 0; v < p.size() / 3; ++v) {
     const Vec3 point(p[3 * v], p[3 * v + 1], p[3 * v + 2]);
     EXPECT_NEAR(uv[2 * v], point.x / 2.0f, 1e-5f);
-    const SurfaceHit hit{point, Vec3(0, 1, 0), 0, true, scene.barycentricOf(0, point)};
+    SurfaceHit hit{point, Vec3(0, 1, 0), 0, true};
+    hit.barycentric = scene.locateOnFace(0, point, hit.triangle);
     EXPECT_NEAR(c[3 * v], solution.irradiance(hit).r / glm::pi<float>(), 1e-4f) << v;
   }
 }

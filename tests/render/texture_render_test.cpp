@@ -52,27 +52,17 @@ Color expectedRadiance(const Scene& scene, float x, float z) {
 }
 
 void expectTexturePerPoint(const Scene& scene, const SurfaceRadiance& solution, float tolerance) {
-  int checked = 0;
   for (int i = 0; i < 16; ++i)
     for (int j = 0; j < 16; ++j) {
       const float x = (float(i) + 0.5f) / 16.0f, z = (float(j) + 0.5f) / 16.0f;
       SurfaceHit hit;
       hit.point = Vec3(x, 0.0f, z);
       hit.normal = Vec3(0, 1, 0);
-      hit.triangle = 0;
-      hit.barycentric = scene.barycentricOf(0, hit.point);
-      // The quad's two triangles: the one that holds the point.
-      if (std::min({hit.barycentric.x, hit.barycentric.y,
-                    1.0f - hit.barycentric.x - hit.barycentric.y}) < 0.0f) {
-        hit.triangle = 1;
-        hit.barycentric = scene.barycentricOf(1, hit.point);
-      }
+      hit.barycentric = scene.locateOnFace(0, hit.point, hit.triangle);
       const Color got = solution.radiance(hit), want = expectedRadiance(scene, x, z);
       for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(got[c], want[c], tolerance * want.r) << x << ", " << z << " channel " << c;
-      ++checked;
     }
-  EXPECT_EQ(checked, 256);
 }
 
 // 0.1 m patches, no cache.
