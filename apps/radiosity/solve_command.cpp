@@ -15,9 +15,11 @@
 
 #include "command_support.h"
 #include "commands.h"
+#include "core/memory_usage.h"
 #include "lighting/dynamic_objects.h"
 #include "method_options.h"
 #include "output/gltf_export.h"
+#include "output/lightmap_atlas.h"
 
 namespace rad::cli {
 
@@ -28,6 +30,7 @@ struct SolveOptions {
   MethodOptions method;
   double time = 0.0;
   float exposure = 0.0f;
+  int lightmap = 0;  ///< texels a side of the .glb's lightmap atlas; 0: vertex colours
   std::string scene, exportPath, stats, save;
 };
 
@@ -72,9 +75,18 @@ std::string describeRun(const VoxelRadiosityStats& v, double seconds) {
       double(v.visits) / std::max(v.sweepSeconds, 1e-9) * 1e-6);
 }
 
-// The lit mesh as glTF; with dynamic objects, theirs too (placed at --time, a node each).
+// The lit mesh as glTF; with dynamic objects, theirs too (placed at --time, a node each). With
+// a lightmap, the scene's triangles under their atlas (a lightmap holds static light only).
 void exportGlbWithObjects(const SolveOptions& o, const Scene& scene,
-                          const SurfaceSolution& solution) {
+                          const SurfaceSolution& solution, Console& console) {
+  if (o.lightmap > 0) {
+    if (!scene.dynamicObjects.empty())
+      console.warn(
+          fmt::format("--lightmap: dynamic objects ({}) are left out of {} (they move; "
+                      "a lightmap holds the static scene's light)",
+                      scene.dynamicObjects.size(), o.exportPath));
+    return solution.exportLightmappedGlb(o.exportPath, o.lightmap, o.exposure);
+  }
   if (scene.dynamicObjects.empty()) return solution.exportGlb(o.exportPath, o.exposure);
   LitMesh mesh = solution.litMesh();
   const Scene placed = scene.withDynamicObjectsAt(o.time);
@@ -90,15 +102,16 @@ int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solut
   InterruptGuard::throwIfInterrupted();
   if (ext == ".csv") solution.exportCsv(o.exportPath);
   if (ext == ".ply") solution.exportPly(o.exportPath, o.exposure);
-  if (ext == ".glb") exportGlbWithObjects(o, scene, solution);
+  if (ext == ".glb") exportGlbWithObjects(o, scene, solution, console);
   if (!o.save.empty()) solution.save(o.save, solvedWith(o.method.settings()));
   if (!o.stats.empty()) {
     stats.settings = settingsOf(o.method.settings());
     writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
   }
-  console.info(fmt::format("solved {} with {}: {}{}{}{}", o.scene, o.method.method(),
+  console.info(fmt::format("solved {} with {}: {}{}{}{}{}", o.scene, o.method.method(),
                            describeRun(solution.stats(), total.seconds()),
                            o.exportPath.empty() ? "" : " -> " + o.exportPath,
+                           o.lightmap > 0 ? " + " + lightmapIrradiancePath(o.exportPath) : "",
                            o.save.empty() ? "" : ", solution -> " + o.save,
                            o.stats.empty() ? "" : ", stats -> " + o.stats));
   return statusAfterOutputs(console);
@@ -113,8 +126,18 @@ int runSolve(SolveOptions& o, Console& console) {
   if (!o.save.empty()) checkSolutionOutput(o.save);
   checkOutputPath("--export", o.exportPath);
   checkOutputPath("--stats", o.stats);
+  if (o.lightmap > 0 && ext != ".glb")
+    throw InputError("--lightmap", "a lightmap atlas goes with a .glb export (--export FILE.glb)");
+  if (o.lightmap > 0) checkOutputPath("--lightmap", lightmapIrradiancePath(o.exportPath));
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
+  if (o.lightmap > 0) {
+    // Before the solve: an atlas too small for the scene's charts is refused before any work.
+    requireMemory(double(o.lightmap) * o.lightmap * kLightmapBytesPerTexel, "--lightmap",
+                  fmt::format("a lightmap atlas of {0} x {0} texels", o.lightmap),
+                  "give a smaller size");
+    packLightmapAtlas(scene, o.lightmap);
+  }
   o.method.resolve(scene, "", console);
   InterruptGuard interruptible;
   const SolveReport report{stats, !o.stats.empty()};
@@ -151,6 +174,11 @@ void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--save", o->save,
                   "Save the solution (.rad) for render, solve and animate --solution: no solve "
                   "again; its light groups too (--light-groups)");
+  sub->add_option("--lightmap", o->lightmap,
+                  "With a .glb export: the scene's own triangles under a lightmap atlas of SIZE x "
+                  "SIZE texels (TEXCOORD_1; the radiance shown, x 2^exposure), and beside the "
+                  ".glb the irradiance atlas as EXR (FILE.lightmap.exr) for engines")
+      ->check(CLI::Range(16, 16384));
   addStatsOption(*sub, o->stats);
   addTimeOption(*sub, o->time);
   sub->callback(

@@ -58,6 +58,9 @@ struct LitMesh {
   /// empty: no triangle is textured.
   std::vector<uint32_t> triangleTextures;
   static constexpr uint32_t kUntextured = UINT32_MAX;
+  /// Per vertex, its place in a lightmap atlas (glTF's TEXCOORD_1); empty: no lightmap, the
+  /// colours are the light.
+  std::vector<Vec2> lightmapTexcoords;
   /// 3 per triangle, CCW about the side it shows (one-sided: a surface seen from both sides
   /// has a triangle for each, with that side's light).
   std::vector<uint32_t> indices;
@@ -102,7 +105,17 @@ class SurfaceSolution : public SurfaceRadiance {
   /// COLOR_0 the radiance x 2^exposureEV, linear and clamped to [0, 1], under an unlit white
   /// material; the asset's extras say which exposure.
   void exportGlb(const std::string& path, float exposureEV = 0.0f) const;
+  /// The scene's own triangles as binary glTF 2.0 with a lightmap atlas of `size` x `size`
+  /// texels (a chart per face side, TEXCOORD_1): `path`, showing the outgoing radiance
+  /// x 2^exposureEV through an unlit material, and beside it, for engines, the irradiance atlas
+  /// as a float EXR (lightmapIrradiancePath(path)), which the .glb's extras name. Both written
+  /// atomically. Throws InputError when the scene's charts do not fit in `size`.
+  void exportLightmappedGlb(const std::string& path, int size, float exposureEV = 0.0f) const;
 };
+
+/// Where exportLightmappedGlb puts the irradiance atlas of `glbPath`: its extension replaced by
+/// ".lightmap.exr".
+std::string lightmapIrradiancePath(const std::string& glbPath);
 
 /// The largest difference of two solutions' element radiosity (any channel), relative to the
 /// area-mean radiosity of `reference` (over its channels): how far `solution` is from it, as

@@ -177,6 +177,10 @@ void DynamicObjectLighting::appendObjects(LitMesh& mesh) const {
     mesh.groups.push_back(
         {placed_.objects[object].name, first, uint32_t(mesh.indices.size() / 3) - first});
   }
+  // The objects show their colours, untextured, in a mesh whose static faces may be textured.
+  if (!mesh.texcoords.empty()) mesh.texcoords.resize(mesh.positions.size(), Vec2(0.0f));
+  if (!mesh.triangleTextures.empty())
+    mesh.triangleTextures.resize(mesh.indices.size() / 3, LitMesh::kUntextured);
 }
 
 std::vector<DynamicObjectLighting::Summary> DynamicObjectLighting::summaries() const {

@@ -10,6 +10,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
@@ -88,18 +89,8 @@ class ModelBuilder {
   /// The white unlit one-sided material (each side of a surface has triangles of its own),
   /// made on first use.
   int material() {
-    if (material_ >= 0) return material_;
-    tinygltf::Material m;
-    m.name = "radiosity";
-    m.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
-    // What viewers without KHR_materials_unlit fall back to: a rough dielectric, the closest
-    // lit look to the baked colours (the extension's own recommendation).
-    m.pbrMetallicRoughness.metallicFactor = 0.0;
-    m.pbrMetallicRoughness.roughnessFactor = 1.0;
-    m.extensions[kUnlit] = tinygltf::Value(tinygltf::Value::Object());
-    model_.materials.push_back(m);
-    if (model_.extensionsUsed.empty()) model_.extensionsUsed.push_back(kUnlit);
-    return material_ = int(model_.materials.size()) - 1;
+    if (material_ < 0) material_ = unlitMaterial("radiosity", Color(1.0f), -1, 0);
+    return material_;
   }
 
   /// The unlit material showing texture `index` of `mesh` times its factor on TEXCOORD_0, its
@@ -109,37 +100,33 @@ class ModelBuilder {
       texturedMaterials_.resize(mesh.textures.size(), -1);
     if (texturedMaterials_[index] >= 0) return texturedMaterials_[index];
     const LitMeshTexture& t = mesh.textures[index];
-    std::vector<unsigned char>& data = model_.buffers[0].data;
-    const std::string png = encodePng(t.texture->width(), t.texture->height(), t.texture->srgb8());
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = data.size();
-    view.byteLength = png.size();
-    data.insert(data.end(), png.begin(), png.end());
-    model_.bufferViews.push_back(view);
-    tinygltf::Image image;
-    image.name = t.name;
-    image.mimeType = "image/png";
-    image.bufferView = int(model_.bufferViews.size()) - 1;
-    model_.images.push_back(image);
     tinygltf::Sampler sampler;
     sampler.wrapS = wrapMode(t.wrapU);
     sampler.wrapT = wrapMode(t.wrapV);
-    model_.samplers.push_back(sampler);
-    tinygltf::Texture texture;
-    texture.source = int(model_.images.size()) - 1;
-    texture.sampler = int(model_.samplers.size()) - 1;
-    model_.textures.push_back(texture);
-    tinygltf::Material m;
-    m.name = t.name;
-    m.pbrMetallicRoughness.baseColorFactor = {t.factor.r, t.factor.g, t.factor.b, 1.0};
-    m.pbrMetallicRoughness.baseColorTexture.index = int(model_.textures.size()) - 1;
-    m.pbrMetallicRoughness.metallicFactor = 0.0;
-    m.pbrMetallicRoughness.roughnessFactor = 1.0;
-    m.extensions[kUnlit] = tinygltf::Value(tinygltf::Value::Object());
-    model_.materials.push_back(m);
-    if (model_.extensionsUsed.empty()) model_.extensionsUsed.push_back(kUnlit);
-    return texturedMaterials_[index] = int(model_.materials.size()) - 1;
+    const int texture = embedTexture(
+        t.name, encodePng(t.texture->width(), t.texture->height(), t.texture->srgb8()), sampler);
+    return texturedMaterials_[index] = unlitMaterial(t.name, t.factor, texture, 0);
+  }
+
+  /// The unlit material showing the lightmap's radiance (x 2^exposureEV, as sRGB) on
+  /// TEXCOORD_1, made on first use.
+  int lightmapMaterial(const GlbLightmap& lightmap, float exposureEV) {
+    if (lightmapMaterial_ >= 0) return lightmapMaterial_;
+    const Image& image = lightmap.radiance;
+    std::vector<uint8_t> rgb;
+    rgb.reserve(image.pixels.size() * 3);
+    for (const Color& c : image.pixels) {
+      const std::array<uint8_t, 3> p = toneMapPixel(c, exposureEV);
+      rgb.insert(rgb.end(), p.begin(), p.end());
+    }
+    // Linear filtering without mipmaps: a mipmap level would blend neighbouring charts.
+    tinygltf::Sampler sampler;
+    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.wrapS = sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    const int texture =
+        embedTexture("lightmap", encodePng(image.width, image.height, rgb), sampler);
+    return lightmapMaterial_ = unlitMaterial("lightmap", Color(1.0f), texture, 1);
   }
 
   void addNode(const std::string& name, tinygltf::Mesh mesh) {
@@ -168,12 +155,52 @@ class ModelBuilder {
     return TINYGLTF_TEXTURE_WRAP_REPEAT;
   }
 
+  // A PNG in the buffer with its sampler, as a texture; returns the texture's index.
+  int embedTexture(const std::string& name, const std::string& png, tinygltf::Sampler sampler) {
+    std::vector<unsigned char>& data = model_.buffers[0].data;
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = data.size();
+    view.byteLength = png.size();
+    data.insert(data.end(), png.begin(), png.end());
+    model_.bufferViews.push_back(view);
+    tinygltf::Image image;
+    image.name = name;
+    image.mimeType = "image/png";
+    image.bufferView = int(model_.bufferViews.size()) - 1;
+    model_.images.push_back(image);
+    model_.samplers.push_back(sampler);
+    tinygltf::Texture texture;
+    texture.source = int(model_.images.size()) - 1;
+    texture.sampler = int(model_.samplers.size()) - 1;
+    model_.textures.push_back(texture);
+    return int(model_.textures.size()) - 1;
+  }
+
+  // An unlit material showing `texture` (on TEXCOORD_<texCoord>; -1: none) times `factor`.
+  // Viewers without KHR_materials_unlit fall back to a rough dielectric, the closest lit look
+  // to baked colours (the extension's own recommendation).
+  int unlitMaterial(const std::string& name, Color factor, int texture, int texCoord) {
+    tinygltf::Material m;
+    m.name = name;
+    m.pbrMetallicRoughness.baseColorFactor = {factor.r, factor.g, factor.b, 1.0};
+    m.pbrMetallicRoughness.baseColorTexture.index = texture;
+    m.pbrMetallicRoughness.baseColorTexture.texCoord = texCoord;
+    m.pbrMetallicRoughness.metallicFactor = 0.0;
+    m.pbrMetallicRoughness.roughnessFactor = 1.0;
+    m.extensions[kUnlit] = tinygltf::Value(tinygltf::Value::Object());
+    model_.materials.push_back(m);
+    if (model_.extensionsUsed.empty()) model_.extensionsUsed.push_back(kUnlit);
+    return int(model_.materials.size()) - 1;
+  }
+
   tinygltf::Model model_;
   int material_ = -1;
+  int lightmapMaterial_ = -1;
   std::vector<int> texturedMaterials_;
 };
 
-void validate(const LitMesh& mesh) {
+void validate(const LitMesh& mesh, const GlbLightmap* lightmap) {
   auto fail = [](const std::string& what) { throw std::invalid_argument("lit mesh: " + what); };
   const size_t vertices = mesh.positions.size();
   if (mesh.normals.size() != vertices || mesh.colors.size() != vertices)
@@ -194,10 +221,14 @@ void validate(const LitMesh& mesh) {
   if (!mesh.triangleTextures.empty() && mesh.triangleTextures.size() != triangles)
     fail(fmt::format("{} triangle textures for {} triangles", mesh.triangleTextures.size(),
                      triangles));
+  if (!mesh.lightmapTexcoords.empty() && mesh.lightmapTexcoords.size() != vertices)
+    fail(fmt::format("{} lightmap coordinates for {} vertices", mesh.lightmapTexcoords.size(),
+                     vertices));
   for (uint32_t t : mesh.triangleTextures)
     if (t != LitMesh::kUntextured &&
         (t >= mesh.textures.size() || mesh.texcoords.empty() || !mesh.textures[t].texture))
       fail(fmt::format("texture {} of a triangle does not exist", t));
+  if (lightmap && mesh.lightmapTexcoords.empty()) fail("a lightmap without lightmap coordinates");
 }
 
 // A group's own vertices (the mesh's, in order of first use) and its triangles over them.
@@ -227,72 +258,111 @@ std::vector<LitMeshGroup> groupsOf(const LitMesh& mesh) {
   return {{"radiosity", 0, uint32_t(mesh.indices.size() / 3)}};
 }
 
-// Each group becomes a mesh of its own vertices (so that a node stands alone, e.g. when Blender
-// splits the import into objects), a primitive per texture its triangles show (the untextured
-// ones last).
-void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& group, float scale,
-              std::vector<uint32_t>& local) {
-  GroupVertices own = groupVertices(mesh, group, local);
-  if (own.vertices.empty()) return;  // a glTF mesh needs at least one primitive
+// The vertex attributes of a group's mesh, one accessor each (-1: not written).
+struct GroupAttributes {
+  int position = -1, normal = -1, color = -1, texcoord = -1, lightmap = -1;
+};
+GroupAttributes groupAttributes(ModelBuilder& builder, const LitMesh& mesh,
+                                const std::vector<uint32_t>& vertices, float scale, bool textured,
+                                bool lightmapped) {
   std::vector<Vec3> positions, normals, colors;
-  for (uint32_t v : own.vertices) {
+  std::vector<Vec2> texcoords, lightmap;
+  for (uint32_t v : vertices) {
     positions.push_back(mesh.positions[v]);
     normals.push_back(unitNormal(mesh.normals[v]));
     const Color c = mesh.colors[v] * scale;
     colors.emplace_back(unitColor(c.r), unitColor(c.g), unitColor(c.b));
+    if (lightmapped) lightmap.push_back(mesh.lightmapTexcoords[v]);
+    // glTF's TEXCOORD sets start at 0: without coordinates of its own, the lightmap's again.
+    if (textured || lightmapped)
+      texcoords.push_back(mesh.texcoords.empty() ? mesh.lightmapTexcoords[v] : mesh.texcoords[v]);
   }
+  auto vec = [&](const auto& values, int type) {
+    return builder.accessor(values, TINYGLTF_COMPONENT_TYPE_FLOAT, type,
+                            TINYGLTF_TARGET_ARRAY_BUFFER);
+  };
+  GroupAttributes a;
+  a.position = builder.positions(positions);
+  a.normal = vec(normals, TINYGLTF_TYPE_VEC3);
+  if (!lightmapped) a.color = vec(colors, TINYGLTF_TYPE_VEC3);
+  if (!texcoords.empty()) a.texcoord = vec(texcoords, TINYGLTF_TYPE_VEC2);
+  if (lightmapped) a.lightmap = vec(lightmap, TINYGLTF_TYPE_VEC2);
+  return a;
+}
+
+// Each group becomes a mesh of its own vertices (so that a node stands alone, e.g. when Blender
+// splits the import into objects), a primitive per texture its triangles show (the untextured
+// ones last); with a lightmap, one primitive showing it.
+void addGroup(ModelBuilder& builder, const LitMesh& mesh, const LitMeshGroup& group,
+              float exposureEV, const GlbLightmap* lightmap, std::vector<uint32_t>& local) {
+  GroupVertices own = groupVertices(mesh, group, local);
+  if (own.vertices.empty()) return;                     // a glTF mesh needs at least one primitive
   std::map<uint32_t, std::vector<uint32_t>> byTexture;  // kUntextured sorts last
   for (uint32_t k = 0; k < group.triangleCount; ++k) {
-    const uint32_t texture = mesh.triangleTextures.empty()
+    const uint32_t texture = mesh.triangleTextures.empty() || lightmap
                                  ? LitMesh::kUntextured
                                  : mesh.triangleTextures[group.firstTriangle + k];
     std::vector<uint32_t>& indices = byTexture[texture];
     indices.insert(indices.end(), own.indices.begin() + 3 * k, own.indices.begin() + 3 * k + 3);
   }
-
+  const GroupAttributes a =
+      groupAttributes(builder, mesh, own.vertices, std::exp2(exposureEV),
+                      byTexture.begin()->first != LitMesh::kUntextured, lightmap != nullptr);
   tinygltf::Mesh gltfMesh;
-  const int position = builder.positions(positions);
-  const int normal = builder.accessor(normals, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
-                                      TINYGLTF_TARGET_ARRAY_BUFFER);
-  const int color = builder.accessor(colors, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
-                                     TINYGLTF_TARGET_ARRAY_BUFFER);
-  int texcoord = -1;
-  if (byTexture.begin()->first != LitMesh::kUntextured) {
-    std::vector<Vec2> uv;
-    for (uint32_t v : own.vertices) uv.push_back(mesh.texcoords[v]);
-    texcoord = builder.accessor(uv, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2,
-                                TINYGLTF_TARGET_ARRAY_BUFFER);
-  }
   for (const auto& [texture, indices] : byTexture) {
     tinygltf::Primitive p;
-    p.attributes = {{"POSITION", position}, {"NORMAL", normal}, {"COLOR_0", color}};
-    if (texcoord >= 0) p.attributes["TEXCOORD_0"] = texcoord;
+    p.attributes = {{"POSITION", a.position}, {"NORMAL", a.normal}};
+    if (a.color >= 0) p.attributes["COLOR_0"] = a.color;
+    if (a.texcoord >= 0) p.attributes["TEXCOORD_0"] = a.texcoord;
+    if (a.lightmap >= 0) p.attributes["TEXCOORD_1"] = a.lightmap;
     p.indices = builder.accessor(indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
                                  TINYGLTF_TYPE_SCALAR, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    p.material = texture == LitMesh::kUntextured ? builder.material()
-                                                 : builder.texturedMaterial(mesh, texture);
+    if (lightmap)
+      p.material = builder.lightmapMaterial(*lightmap, exposureEV);
+    else
+      p.material = texture == LitMesh::kUntextured ? builder.material()
+                                                   : builder.texturedMaterial(mesh, texture);
     p.mode = TINYGLTF_MODE_TRIANGLES;
     gltfMesh.primitives.push_back(p);
   }
   builder.addNode(group.name, std::move(gltfMesh));
 }
 
-}  // namespace
-
-std::string litMeshGlb(const LitMesh& mesh, float exposureEV) {
-  validate(mesh);
-  ModelBuilder builder;
-  std::vector<uint32_t> local(mesh.positions.size(), ~0u);
-  const float scale = std::exp2(exposureEV);
-  for (const LitMeshGroup& group : groupsOf(mesh)) addGroup(builder, mesh, group, scale, local);
+// What the asset's extras say of the light it carries.
+tinygltf::Value bakeDescription(float exposureEV, const GlbLightmap* lightmap) {
   tinygltf::Value::Object baked;
   baked["exposure_ev"] = tinygltf::Value(double(exposureEV));
-  baked["colors"] = tinygltf::Value(std::string(
-      "linear outgoing radiance x 2^exposure_ev, clamped to [0, 1]; under a base colour "
-      "texture, irradiance / pi x 2^exposure_ev (the texture times its factor is the albedo)"));
+  if (lightmap) {
+    tinygltf::Value::Object atlas;
+    atlas["irradiance_uri"] = tinygltf::Value(lightmap->irradianceUri);
+    atlas["irradiance"] = tinygltf::Value(std::string(
+        "linear irradiance H (W per square scene unit), OpenEXR, on TEXCOORD_1; an engine "
+        "multiplies it by albedo / pi"));
+    atlas["texcoord"] = tinygltf::Value(1);
+    atlas["size"] = tinygltf::Value(lightmap->radiance.width);
+    atlas["texels_per_unit"] = tinygltf::Value(double(lightmap->texelsPerUnit));
+    atlas["shown"] = tinygltf::Value(
+        std::string("the material's base colour texture: outgoing radiance x 2^exposure_ev, sRGB"));
+    baked["lightmap"] = tinygltf::Value(atlas);
+  } else {
+    baked["colors"] = tinygltf::Value(std::string(
+        "linear outgoing radiance x 2^exposure_ev, clamped to [0, 1]; under a base colour "
+        "texture, irradiance / pi x 2^exposure_ev (the texture times its factor is the albedo)"));
+  }
   tinygltf::Value::Object extras;
   extras["radiosity"] = tinygltf::Value(baked);
-  builder.setAssetExtras(tinygltf::Value(extras));
+  return tinygltf::Value(extras);
+}
+
+}  // namespace
+
+std::string litMeshGlb(const LitMesh& mesh, float exposureEV, const GlbLightmap* lightmap) {
+  validate(mesh, lightmap);
+  ModelBuilder builder;
+  std::vector<uint32_t> local(mesh.positions.size(), ~0u);
+  for (const LitMeshGroup& group : groupsOf(mesh))
+    addGroup(builder, mesh, group, exposureEV, lightmap, local);
+  builder.setAssetExtras(bakeDescription(exposureEV, lightmap));
   // Serialized in memory (the buffer as the .glb's BIN chunk, compact JSON): tinygltf's file
   // writer does not check its stream, writeBytesAtomically does.
   std::ostringstream glb(std::ios::binary);
@@ -311,10 +381,11 @@ std::vector<uint32_t> glbVertexOrder(const LitMesh& mesh) {
   return order;
 }
 
-void writeLitMeshGlb(const std::string& path, const LitMesh& mesh, float exposureEV) {
+void writeLitMeshGlb(const std::string& path, const LitMesh& mesh, float exposureEV,
+                     const GlbLightmap* lightmap) {
   std::string bytes;
   try {
-    bytes = litMeshGlb(mesh, exposureEV);
+    bytes = litMeshGlb(mesh, exposureEV, lightmap);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(fmt::format("{}: {}", path, e.what()));
   }

@@ -3,9 +3,11 @@
 #include <radiosity/surface_solution.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <stdexcept>
 
 #include "output/gltf_export.h"
+#include "output/lightmap_atlas.h"
 #include "output/surface_samples.h"
 
 namespace rad {
@@ -61,6 +63,27 @@ void SurfaceSolution::exportPly(const std::string& path, float exposureEV) const
 
 void SurfaceSolution::exportGlb(const std::string& path, float exposureEV) const {
   writeLitMeshGlb(path, litMesh(), exposureEV);
+}
+
+void SurfaceSolution::exportLightmappedGlb(const std::string& path, int size,
+                                           float exposureEV) const {
+  const LightmapAtlas atlas = packLightmapAtlas(scene(), size);
+  LightmapImages images = shadeLightmapAtlas(atlas, *this);
+  const std::string exrPath = lightmapIrradiancePath(path);
+  writeImage(exrPath, images.irradiance, {0.0f, ExrPixelType::Float});
+  GlbLightmap lightmap{std::move(images.radiance),
+                       std::filesystem::path(exrPath).filename().string(), atlas.texelsPerUnit};
+  try {
+    writeLitMeshGlb(path, lightmappedMesh(scene(), atlas), exposureEV, &lightmap);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(exrPath, ignored);  // no half of the pair left behind
+    throw;
+  }
+}
+
+std::string lightmapIrradiancePath(const std::string& glbPath) {
+  return std::filesystem::path(glbPath).replace_extension(".lightmap.exr").string();
 }
 
 double largestRadiosityDifference(const SurfaceSolution& solution,

@@ -3,14 +3,12 @@
 // the picture changes where the beam moved and hardly elsewhere; the page logs no errors.
 // Usage: node viewer_test.mjs BINARY WEB_DIR OUT_DIR   (screenshots go to OUT_DIR)
 import { mkdirSync } from 'node:fs';
-import { createRequire } from 'node:module';
 import path from 'node:path';
 
+import { launchChromium, openTab } from './headless_chromium.mjs';
 import { startServer } from './serve_process.mjs';
 
 const [binary, webDir, outDir] = process.argv.slice(2);
-const require = createRequire(path.join(webDir, 'package.json'));
-const puppeteer = require('puppeteer-core');
 mkdirSync(outDir, { recursive: true });
 
 function fail(message) {
@@ -22,17 +20,9 @@ const server = await startServer(binary, ['cornell-spot', '--patches', '600', '-
   '--web-dir', webDir]);
 const url = server.url;
 
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  headless: true,
-  args: ['--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader'],
-});
+const browser = await launchChromium(webDir);
 try {
-  const page = await browser.newPage();
-  await page.setViewport({ width: 900, height: 600 });
-  const errors = [];
-  page.on('console', (message) => { if (message.type() === 'error') errors.push(message.text()); });
-  page.on('pageerror', (error) => errors.push(error.message));
+  const { tab: page, errors } = await openTab(browser, 900, 600);
   await page.goto(url);
   await page.waitForFunction(() => window.viewerState && window.viewerState.frames > 3, { timeout: 60000 });
 

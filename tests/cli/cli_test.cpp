@@ -539,6 +539,36 @@ TEST(Cli, SolveExportsLitMeshAsGlb) {
   EXPECT_EQ(gltf["asset"]["extras"]["radiosity"]["exposure_ev"], 2.5);
 }
 
+// --lightmap writes the .glb and its irradiance atlas beside it; it is refused before any work
+// without a .glb export and when the scene's charts cannot fit, leaving no file.
+TEST(Cli, SolveLightmapWritesTheGlbAndItsExrOrNothing) {
+  const fs::path dir = freshDir("solve_lightmap");
+  const std::string glb = (dir / "c.glb").string();
+  const std::vector<std::string> solve{"solve",       "cornell", "--method",  "patch",
+                                       "--patches",   "300",     "--ff-rays", "16",
+                                       "--cache-dir", "none",    "--quiet"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = solve;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run(args);
+  };
+  const CliResult ok = with({"--export", glb, "--lightmap", "128"});
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  EXPECT_TRUE(fs::exists(dir / "c.glb"));
+  EXPECT_TRUE(fs::exists(dir / "c.lightmap.exr"));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+
+  const CliResult noGlb = with({"--export", (dir / "c.csv").string(), "--lightmap", "128"});
+  EXPECT_EQ(noGlb.status, 2);
+  EXPECT_NE(noGlb.err.find(".glb"), std::string::npos) << noGlb.err;
+  const CliResult tooSmall = with({"--export", glb, "--lightmap", "16"});
+  EXPECT_EQ(tooSmall.status, 2);
+  EXPECT_NE(tooSmall.err.find("--lightmap 16"), std::string::npos) << tooSmall.err;
+  EXPECT_EQ(tooSmall.err.find("patches"), std::string::npos) << "refused after the solve";
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
 TEST(Cli, SolveRejectsUnknownExportFormat) {
   const fs::path dir = freshDir("voxel_badexport");
   const CliResult r = run({"solve", "cornell", "--export", (dir / "v.obj").string()});
