@@ -96,7 +96,7 @@ void addBenchCommand(CLI::App& app, Console& console, CommandAction& action) {
                   "distributed: surface voxels of the room (default 300000)")
       ->check(CLI::Range(size_t(1000), size_t(1) << 30));
   sub->add_option("--interior-detail", o->interiorDetail,
-                  "interior: N of atrium:N (default 180: 252k triangles)")
+                  "interior: N of atrium-textured:N (default 180: 252k triangles)")
       ->check(CLI::Range(1, 2000));
   sub->add_flag("--json", o->json, "Print the results as JSON");
   sub->callback(

@@ -1,5 +1,5 @@
-// `radiosity bench interior`: a real interior's size (the generated atrium, 250k triangles at its
-// default detail) rendered by each method with its defaults, each in a process of its own so
+// `radiosity bench interior`: a real interior's size (the generated textured atrium, 250k triangles
+// at its default detail) rendered by each method with its defaults, each in a process of its own so
 // that its peak memory is its own: the time of each stage and the peak resident memory, from the
 // child's stats file.
 #include <fmt/format.h>
@@ -14,7 +14,7 @@
 namespace rad::cli {
 
 nlohmann::json benchInterior(Console& console, int detail) {
-  const std::string scene = fmt::format("atrium:{}", detail);
+  const std::string scene = fmt::format("atrium-textured:{}", detail);
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / fmt::format("radiosity-bench-{}", getpid());
   std::filesystem::create_directories(dir);

@@ -20,7 +20,7 @@ void addSceneArgument(CLI::App& command, std::string& scene) {
   command
       .add_option("scene", scene,
                   "Scene file (.json .obj .gltf .glb) or built-in: cornell, "
-                  "cornell-spot, room:N, atrium:N")
+                  "cornell-spot, room:N, atrium:N, atrium-textured:N")
       ->required();
 }
 

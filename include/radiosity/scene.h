@@ -97,6 +97,9 @@ struct Light {
   /// Object: toward unit direction d it sends sum_k lobes[k] max(0, d . e_k) W/sr, e_k the axes
   /// +x, -x, +y, -y, +z, -z (a diffuse object's faces seen from d, summarized by axis).
   std::array<Color, 6> lobes{};
+  /// Object: the radius around `position` that the object's own surface lies within. Shadow
+  /// rays toward the light stop there: the light leaves that surface, which must not shadow it.
+  float radius = 0.0f;
 
   /// Radiant intensity (W/sr) toward the unit direction `toward` (from the light outward).
   Color intensityToward(const Vec3& toward) const;
@@ -199,6 +202,10 @@ struct Scene {
   /// The point's barycentrics on the triangle of `face` that holds it (the nearest where none
   /// does, a point just off the face's outline); the triangle goes into `triangle`.
   Vec2 locateOnFace(uint32_t face, const Vec3& point, uint32_t& triangle) const;
+  /// The same among triangles [first, first + count) of a face (a part of it a caller knows
+  /// the point lies on: a face of thousands of triangles costs as many tests).
+  Vec2 locateOnTriangles(uint32_t first, uint32_t count, const Vec3& point,
+                         uint32_t& triangle) const;
   Bounds bounds() const;
   /// Total emitted power (W): pi * Ke * area over emitting triangles plus every light's power.
   Color emittedPower() const;

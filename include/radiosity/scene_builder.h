@@ -35,6 +35,9 @@ class SceneBuilder {
   /// The same with texture coordinates (u across, v down from the image's top; non-finite
   /// ones are an InputError naming `where`).
   uint32_t addVertex(const Vec3& position, const Vec2& texcoord, const std::string& where);
+  /// Gives an added vertex texture coordinates (a generator mapping its faces after making
+  /// them). Throws InputError naming `where` when they are not finite.
+  void setTexcoord(uint32_t vertex, const Vec2& texcoord, const std::string& where);
   /// Adds a polygon given by vertex indices, counter-clockwise about its front side.
   /// A planar polygon becomes one Face (triangulated by ear clipping, so concave ones work);
   /// a non-planar one becomes a face per triangle. Throws InputError (naming `where`) for fewer

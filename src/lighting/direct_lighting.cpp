@@ -42,13 +42,14 @@ float DirectLighting::rayOffset(const Vec3& p) const {
   return kRelativeOffset * (maxAbs(p) + sceneExtent_);
 }
 
-bool DirectLighting::visible(const Vec3& p, const Vec3& n, const Vec3& target) const {
+bool DirectLighting::visible(const Vec3& p, const Vec3& n, const Vec3& target,
+                             float stopShort) const {
   Ray r;
   r.origin = p + rayOffset(p) * n;
   const Vec3 d = target - r.origin;
   const float distance = glm::length(d);
   r.direction = d / distance;
-  r.tFar = distance - rayOffset(target);
+  r.tFar = distance - std::max(rayOffset(target), stopShort);
   if (!(r.tFar > 0.0f)) return true;
   return !caster_->occluded(r);
 }
@@ -61,7 +62,8 @@ Color DirectLighting::fromLight(const Light& light, const Vec3& p, const Vec3& n
   const float cosReceiver = glm::dot(n, w);
   if (!(cosReceiver > 0.0f)) return Color(0.0f);
   const Color intensity = light.intensityToward(-w);
-  if (!(maxComponent(intensity) > 0.0f) || !visible(p, n, light.position)) return Color(0.0f);
+  if (!(maxComponent(intensity) > 0.0f) || !visible(p, n, light.position, light.radius))
+    return Color(0.0f);
   return intensity * (cosReceiver / distance2);
 }
 

@@ -47,8 +47,9 @@ class DirectLighting {
   /// Distance to lift a ray's origin off the surface at `p`, grown with the coordinates'
   /// magnitude (floats near magnitude m are good to about 6e-8 m).
   float rayOffset(const Vec3& p) const;
-  /// True if nothing lies between `p` (lifted along `n`) and `target`.
-  bool visible(const Vec3& p, const Vec3& n, const Vec3& target) const;
+  /// True if nothing lies between `p` (lifted along `n`) and `target`, or and the sphere of
+  /// radius `stopShort` around it (an object light's own surface).
+  bool visible(const Vec3& p, const Vec3& n, const Vec3& target, float stopShort = 0.0f) const;
 
  private:
   const RayCaster* caster_;

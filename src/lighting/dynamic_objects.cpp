@@ -68,6 +68,7 @@ DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceS
       indirect_(placed.positions.size(), Color(0.0f)) {
   const ObjectVertices vertices = objectVertices(placed);
   centres_.assign(placed.objects.size(), Vec3(0.0f));
+  radii_.assign(placed.objects.size(), 0.0f);
   for (const Light& light : solution.directLights())
     (light.type == LightType::Object ? objectLights_ : pointLights_).push_back(light);
   fromObjects_ = std::make_unique<DirectLighting>(solution.scene(), staticCaster, objectLights_);
@@ -83,6 +84,8 @@ DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceS
       box.extend(placed.positions[v]);
     }
     centres_[object] = centre;
+    for (uint32_t v : own)
+      radii_[object] = std::max(radii_[object], glm::distance(placed.positions[v], centre));
     // One probe at the centre, or for a large object a grid over its box (at most
     // probeSpacing apart), each vertex blending them by inverse squared distance.
     std::vector<Vec3> at = {centre};
@@ -131,9 +134,10 @@ DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceS
   }
 }
 
-std::vector<Light> DynamicObjectLighting::objectLights() const {
-  std::vector<std::array<Color, 6>> lobes(placed_.objects.size());
-  std::vector<uint8_t> has(placed_.objects.size(), 0);
+std::vector<DynamicObjectLighting::ObjectLobes> DynamicObjectLighting::objectLobes() const {
+  std::vector<ObjectLobes> out(placed_.objects.size());
+  std::vector<std::array<Vec3d, 6>> weighted(placed_.objects.size());
+  std::vector<std::array<double, 6>> weights(placed_.objects.size());
   for (uint32_t t = placed_.staticTriangles; t < placed_.triangles.size(); ++t) {
     const UVec3& tri = placed_.triangles[t];
     const Color rho =
@@ -141,20 +145,43 @@ std::vector<Light> DynamicObjectLighting::objectLights() const {
     const Color b = rho * (full_[tri.x] + full_[tri.y] + full_[tri.z]) / 3.0f;
     const Vec3 n = placed_.triangleNormal(t);
     const float weight = placed_.triangleArea(t) / glm::pi<float>();
+    const Vec3 centroid =
+        (placed_.positions[tri.x] + placed_.positions[tri.y] + placed_.positions[tri.z]) / 3.0f;
     const uint32_t object = placed_.faceOf(t).object;
-    has[object] = 1;
-    for (int k = 0; k < 6; ++k) lobes[object][size_t(k)] += b * (weight * axisLobe(n, k));
+    out[object].present = true;
+    for (size_t k = 0; k < 6; ++k) {
+      const Color lobe = b * (weight * axisLobe(n, int(k)));
+      out[object].lobes[k] += lobe;
+      // Where the lobe's light leaves from: its triangles' centroids, weighted by their share.
+      const double w = luminance(lobe);
+      weighted[object][k] += w * Vec3d(centroid);
+      weights[object][k] += w;
+    }
   }
+  for (size_t o = 0; o < out.size(); ++o)
+    for (size_t k = 0; k < 6; ++k)
+      out[o].origins[k] = weights[o][k] > 0.0 ? Vec3(weighted[o][k] / weights[o][k]) : centres_[o];
+  return out;
+}
+
+std::vector<Light> DynamicObjectLighting::objectLights() const {
+  const std::vector<ObjectLobes> lobes = objectLobes();
   std::vector<Light> lights;
   for (size_t o = 0; o < lobes.size(); ++o) {
-    if (!has[o]) continue;
-    Light light;
-    light.type = LightType::Object;
-    light.position = centres_[o];
-    light.lobes = lobes[o];
-    light.intensity = Color(1.0f);
-    light.group = "object:" + placed_.objects[o].name;
-    lights.push_back(light);
+    if (!lobes[o].present) continue;
+    // A light per lobe, from where the surface facing its way lies (not from the centre: a
+    // wall 0.45 from a 0.3 m cube's face got 12% too little of its light from 0.6).
+    for (size_t k = 0; k < 6; ++k) {
+      if (!(maxComponent(lobes[o].lobes[k]) > 0.0f)) continue;
+      Light light;
+      light.type = LightType::Object;
+      light.position = lobes[o].origins[k];
+      light.lobes[k] = lobes[o].lobes[k];
+      light.radius = radii_[o] + glm::distance(light.position, centres_[o]);
+      light.intensity = Color(1.0f);
+      light.group = "object:" + placed_.objects[o].name;
+      lights.push_back(light);
+    }
   }
   return lights;
 }
@@ -194,11 +221,10 @@ std::vector<DynamicObjectLighting::Summary> DynamicObjectLighting::summaries() c
     area[object] += a;
   }
   std::vector<Summary> out;
-  const std::vector<Light> lights = objectLights();
-  size_t k = 0;
+  const std::vector<ObjectLobes> lobes = objectLobes();
   for (size_t o = 0; o < sum.size(); ++o) {
     if (!(area[o] > 0.0)) continue;
-    out.push_back({placed_.objects[o].name, Color(sum[o] / area[o]), lights[k++].lobes});
+    out.push_back({placed_.objects[o].name, Color(sum[o] / area[o]), lobes[o].lobes});
   }
   return out;
 }

@@ -73,7 +73,9 @@ class DynamicObjectLighting : public SurfaceRadiance {
   std::span<const Light> directLights() const override { return pointLights_; }
   std::span<const Color> emissionScales() const override { return solution_.emissionScales(); }
 
-  /// Each object's reflected light as a light at its centre (LightType::Object), named after it.
+  /// Each object's reflected light as lights (LightType::Object), one per axis lobe that sends
+  /// light, each from the centroid of the surface facing its way; their group is named after
+  /// the object. Shadow rays toward them stop at the object's bounding sphere.
   std::vector<Light> objectLights() const;
   /// Adds the objects to `mesh` (the solution's lit mesh), a group each: their triangles with
   /// the radiance radiance() gives at their corners.
@@ -98,7 +100,16 @@ class DynamicObjectLighting : public SurfaceRadiance {
 
   const Scene& placed_;
   const SurfaceSolution& solution_;
+  // Per object of `placed`: the six lobes of its reflected light and where each leaves from.
+  struct ObjectLobes {
+    bool present = false;
+    std::array<Color, 6> lobes{};
+    std::array<Vec3, 6> origins{};
+  };
+  std::vector<ObjectLobes> objectLobes() const;
+
   std::vector<Vec3> centres_;  ///< per object of `placed` (its own objects' unused)
+  std::vector<float> radii_;   ///< per object: its vertices' largest distance from its centre
   std::vector<Light> pointLights_, objectLights_;  ///< the solution's, split by kind
   std::unique_ptr<DirectLighting> fromObjects_;    ///< objectLights_ through the static caster
   std::vector<Color> full_, indirect_;             ///< per vertex of `placed` (objects' only)

@@ -135,11 +135,9 @@ LightmapAtlas packLightmapAtlas(const Scene& scene, int size) {
 
 namespace {
 
-// The point of `face` nearest to a point of its plane (barycentrics clamped onto the triangle
-// that locateOnFace finds), as a surface hit on the chart's side.
-SurfaceHit hitOnFace(const Scene& scene, const LightmapChart& chart, const Vec3& point) {
-  uint32_t triangle = 0;
-  Vec2 b = scene.locateOnFace(chart.face, point, triangle);
+// The point at barycentrics `b` of `triangle` (clamped onto it), as a surface hit on the chart's
+// side.
+SurfaceHit hitOn(const Scene& scene, const LightmapChart& chart, uint32_t triangle, Vec2 b) {
   b = glm::max(b, Vec2(0.0f));
   if (b.x + b.y > 1.0f) b /= b.x + b.y;
   const UVec3& t = scene.triangles[triangle];
@@ -158,17 +156,47 @@ SurfaceHit hitOnFace(const Scene& scene, const LightmapChart& chart, const Vec3&
 LightmapImages shadeLightmapAtlas(const LightmapAtlas& atlas, const SurfaceSolution& solution) {
   const Scene& scene = solution.scene();
   LightmapImages images{Image(atlas.size, atlas.size), Image(atlas.size, atlas.size)};
-  const float unitsPerTexel = 1.0f / atlas.texelsPerUnit;
   tbb::parallel_for(size_t(0), atlas.charts.size(), [&](size_t i) {
     const LightmapChart& c = atlas.charts[i];
+    auto shade = [&](int x, int y, const SurfaceHit& hit) {
+      images.irradiance.at(c.x + x, c.y + y) = solution.irradiance(hit);
+      images.radiance.at(c.x + x, c.y + y) = solution.radiance(hit);
+    };
+    // The texel's centre, in the face's plane.
+    auto centre = [&](int x, int y) {
+      const float u = (float(x - LightmapAtlas::kGutter) + 0.5f) / atlas.texelsPerUnit;
+      const float v = (float(y - LightmapAtlas::kGutter) + 0.5f) / atlas.texelsPerUnit;
+      return c.origin + c.uAxis * u + c.vAxis * v;
+    };
+    // Triangle by triangle, the texels whose centres lie on it; then the rest (the gutters, the
+    // outline's outside) from the nearest point of the face, a search through its triangles.
+    std::vector<uint8_t> done(size_t(c.width) * size_t(c.height), 0);
+    const Face& face = scene.faces[c.face];
+    for (uint32_t t = face.firstTriangle; t < face.firstTriangle + face.triangleCount; ++t) {
+      Vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 texel =
+            atlas.texcoordOf(c, scene.positions[scene.triangles[t][k]]) * float(atlas.size) -
+            Vec2(float(c.x), float(c.y));
+        lo = glm::min(lo, texel);
+        hi = glm::max(hi, texel);
+      }
+      for (int y = std::max(0, int(lo.y)); y <= std::min(c.height - 1, int(hi.y)); ++y)
+        for (int x = std::max(0, int(lo.x)); x <= std::min(c.width - 1, int(hi.x)); ++x) {
+          const size_t k = size_t(y) * size_t(c.width) + size_t(x);
+          if (done[k]) continue;
+          const Vec2 b = scene.barycentricOf(t, centre(x, y));
+          if (std::min({b.x, b.y, 1.0f - b.x - b.y}) < 0.0f) continue;
+          shade(x, y, hitOn(scene, c, t, b));
+          done[k] = 1;
+        }
+    }
     for (int y = 0; y < c.height; ++y)
       for (int x = 0; x < c.width; ++x) {
-        // The texel's centre, in the face's plane.
-        const float u = (float(x - LightmapAtlas::kGutter) + 0.5f) * unitsPerTexel;
-        const float v = (float(y - LightmapAtlas::kGutter) + 0.5f) * unitsPerTexel;
-        const SurfaceHit hit = hitOnFace(scene, c, c.origin + c.uAxis * u + c.vAxis * v);
-        images.irradiance.at(c.x + x, c.y + y) = solution.irradiance(hit);
-        images.radiance.at(c.x + x, c.y + y) = solution.radiance(hit);
+        if (done[size_t(y) * size_t(c.width) + size_t(x)]) continue;
+        uint32_t triangle = 0;
+        const Vec2 b = scene.locateOnFace(c.face, centre(x, y), triangle);
+        shade(x, y, hitOn(scene, c, triangle, b));
       }
   });
   return images;

@@ -151,7 +151,7 @@ void PatchMesh::addRoot(uint32_t face, bool back, std::span<const uint32_t> corn
   node.root = uint32_t(roots_.size());
   for (size_t k = 0; k < corners.size(); ++k)
     node.corners[k] = weldedVertex(scene_->positions[corners[k]], normal);
-  roots_.push_back({face, uint32_t(nodes_.size()), back, 0});
+  roots_.push_back({face, uint32_t(nodes_.size()), back, 0, 0, 0});
   nodes_.push_back(node);
   // A quad root serves both triangles of its face; a triangle root the one it was made from.
   for (uint32_t t = f.firstTriangle; t < f.firstTriangle + f.triangleCount; ++t) {
@@ -160,7 +160,9 @@ void PatchMesh::addRoot(uint32_t face, bool back, std::span<const uint32_t> corn
         node.quad || (std::find(corners.begin(), corners.end(), tri.x) != corners.end() &&
                       std::find(corners.begin(), corners.end(), tri.y) != corners.end() &&
                       std::find(corners.begin(), corners.end(), tri.z) != corners.end());
-    if (mine) triangleRoot_[2 * t + (back ? 1 : 0)] = roots_.back().node;
+    if (!mine) continue;
+    triangleRoot_[2 * t + (back ? 1 : 0)] = roots_.back().node;
+    if (roots_.back().triangleCount++ == 0) roots_.back().firstTriangle = t;
   }
   float edge = 0.0f;
   for (size_t k = 0; k < corners.size(); ++k)
@@ -317,10 +319,12 @@ void PatchMesh::applyTextureMeans(uint32_t index) {
   Patch& p = patches_[index];
   const Material& m = scene_->materials[p.material];
   const float footprint = 0.25f * std::sqrt(p.area);
+  const PatchRoot& root = roots_[nodes_[p.node].root];
   Color rho(0.0f), emission(0.0f);
   for (const QuadraturePoint& q : midpointRule(*this, index, kPoints)) {
     uint32_t triangle = 0;
-    const Vec2 b = scene_->locateOnFace(p.face, q.position, triangle);
+    const Vec2 b =
+        scene_->locateOnTriangles(root.firstTriangle, root.triangleCount, q.position, triangle);
     rho += float(q.weight) * scene_->textureAt(m.rhoTexture, triangle, b, footprint);
     emission += float(q.weight) * scene_->textureAt(m.emissionTexture, triangle, b, footprint);
   }

@@ -44,6 +44,8 @@ struct PatchRoot {
   uint32_t node = 0;
   bool back = false;      ///< the mirrored back side of a two-sided face
   uint8_t baseDepth = 0;  ///< depth of the base level's leaves (before refinement)
+  /// The scene triangles it covers: its face's two (a quad) or the one it was made from.
+  uint32_t firstTriangle = 0, triangleCount = 0;
 };
 
 /// A vertex in the middle of a leaf's edge (a, b) that is not that leaf's corner: a finer

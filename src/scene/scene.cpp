@@ -60,11 +60,15 @@ Vec2 Scene::barycentricOf(uint32_t t, const Vec3& point) const {
 }
 
 Vec2 Scene::locateOnFace(uint32_t face, const Vec3& point, uint32_t& triangle) const {
-  const Face& f = faces[face];
+  return locateOnTriangles(faces[face].firstTriangle, faces[face].triangleCount, point, triangle);
+}
+
+Vec2 Scene::locateOnTriangles(uint32_t first, uint32_t count, const Vec3& point,
+                              uint32_t& triangle) const {
   float best = -std::numeric_limits<float>::infinity();
   Vec2 found(1.0f / 3.0f);
-  triangle = f.firstTriangle;
-  for (uint32_t t = f.firstTriangle; t < f.firstTriangle + f.triangleCount; ++t) {
+  triangle = first;
+  for (uint32_t t = first; t < first + count; ++t) {
     const Vec2 b = barycentricOf(t, point);
     const float inside = std::min({b.x, b.y, 1.0f - b.x - b.y});  // >= 0 inside
     if (inside > best) {

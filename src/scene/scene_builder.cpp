@@ -66,14 +66,18 @@ uint32_t SceneBuilder::addVertex(const Vec3& p, const std::string& where) {
 }
 
 uint32_t SceneBuilder::addVertex(const Vec3& p, const Vec2& texcoord, const std::string& where) {
+  const uint32_t v = addVertex(p, where);
+  setTexcoord(v, texcoord, where);
+  return v;
+}
+
+void SceneBuilder::setTexcoord(uint32_t vertex, const Vec2& texcoord, const std::string& where) {
   if (!std::isfinite(texcoord.x) || !std::isfinite(texcoord.y))
     throw InputError(where, "texture coordinates must be finite");
-  const uint32_t v = addVertex(p, where);
   scene_.texcoords.resize(scene_.positions.size(), Vec2(0.0f));
   hasTexcoord_.resize(scene_.positions.size(), 0);
-  scene_.texcoords[v] = texcoord;
-  hasTexcoord_[v] = 1;
-  return v;
+  scene_.texcoords.at(vertex) = texcoord;
+  hasTexcoord_[vertex] = 1;
 }
 
 // A textured material on faces without texture coordinates shows its texture's mean (the

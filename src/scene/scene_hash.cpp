@@ -46,6 +46,7 @@ void hashLights(Hasher& h, std::span<const Light> lights) {
     h.text(l.group);
     h.text(l.iesFile);
     h.value(l.lobes);
+    if (l.type == LightType::Object) h.value(l.radius);  // made by the program, never in files
   }
 }
 

@@ -38,12 +38,15 @@ Scene loadScene(const std::string& nameOrPath) {
   if (nameOrPath == "cornell-spot") return makeCornellBox(true);
   if (nameOrPath.rfind("room:", 0) == 0) return makeRoom(parseDetail(nameOrPath, "room"));
   if (nameOrPath.rfind("atrium:", 0) == 0) return makeAtrium(parseDetail(nameOrPath, "atrium"));
+  if (nameOrPath.rfind("atrium-textured:", 0) == 0)
+    return makeAtrium(parseDetail(nameOrPath, "atrium-textured"), true);
 
   std::error_code error;
   if (std::filesystem::is_directory(nameOrPath, error))
-    throw InputError(nameOrPath,
-                     "is a directory, not a scene file (.json, .obj, .gltf, .glb) or "
-                     "a built-in scene (cornell, cornell-spot, room:N, atrium:N)");
+    throw InputError(
+        nameOrPath,
+        "is a directory, not a scene file (.json, .obj, .gltf, .glb) or "
+        "a built-in scene (cornell, cornell-spot, room:N, atrium:N, atrium-textured:N)");
   std::string ext = std::filesystem::path(nameOrPath).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
@@ -52,7 +55,7 @@ Scene loadScene(const std::string& nameOrPath) {
     if (ext.empty() && !std::filesystem::exists(nameOrPath))
       throw InputError(nameOrPath,
                        "cannot open: no such file and not a built-in scene (cornell, "
-                       "cornell-spot, room:N, atrium:N)");
+                       "cornell-spot, room:N, atrium:N, atrium-textured:N)");
     throw InputError(nameOrPath, fmt::format("unsupported scene extension '{}' (supported: .json, "
                                              ".obj, .gltf, .glb, or a built-in name)",
                                              ext));
@@ -74,7 +77,7 @@ void requireEmitters(const Scene& scene) {
 }
 
 std::vector<std::string> builtinSceneNames() {
-  return {"cornell", "cornell-spot", "room:N", "atrium:N"};
+  return {"cornell", "cornell-spot", "room:N", "atrium:N", "atrium-textured:N"};
 }
 
 }  // namespace rad

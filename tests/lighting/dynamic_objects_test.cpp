@@ -129,12 +129,20 @@ TEST(DynamicObjects, ObjectLightCarriesWhatTheObjectReflects) {
   const RayCaster caster(furnace.scene), placedCaster(placed);
   const std::vector<Light> lights =
       DynamicObjectLighting(placed, furnace.solution, caster, placedCaster).objectLights();
-  ASSERT_EQ(lights.size(), 1u);
+  // A light per lobe, each from the middle of the face that sends it.
+  ASSERT_EQ(lights.size(), 6u);
   const float b0 = 0.5f * glm::pi<float>();  // rho 0.5 times pi L
   const float face = 0.2f * 0.2f;
+  float power = 0.0f;
+  for (const Light& l : lights) {
+    power += l.power().g;
+    EXPECT_EQ(l.group, "object:cube");
+  }
+  EXPECT_NEAR(power, b0 * 6.0f * face, 0.01f * b0 * 6.0f * face);
   EXPECT_NEAR(lights[0].intensityToward(Vec3(1, 0, 0)).r, b0 * face / glm::pi<float>(), 2e-3f);
-  EXPECT_NEAR(lights[0].power().g, b0 * 6.0f * face, 0.01f * b0 * 6.0f * face);
-  EXPECT_NEAR(glm::length(lights[0].position - Vec3(0.5f)), 0.0f, 1e-5f);
+  EXPECT_EQ(lights[0].intensityToward(Vec3(-1, 0, 0)).r, 0.0f);
+  EXPECT_NEAR(glm::distance(lights[0].position, Vec3(0.6f, 0.5f, 0.5f)), 0.0f, 1e-5f);
+  EXPECT_NEAR(lights[0].radius, 0.1f * std::sqrt(3.0f) + 0.1f, 1e-5f);
 }
 
 }  // namespace
@@ -298,6 +306,98 @@ TEST(DynamicObjects, ALargeObjectGetsSeveralProbes) {
   const float contrastOne = redness(one, 498.0f) / redness(one, 58.0f);
   const float contrastSeveral = redness(several, 498.0f) / redness(several, 58.0f);
   EXPECT_GT(contrastSeveral, 2.0f * contrastOne);  // measured: 1.14 with one probe, 3.10 with 5
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+// A cube of side `size` centred on its own origin, faces outward, each an n x n grid of quads
+// (so that the light across a face is sampled at its vertices, not only at its corners).
+std::shared_ptr<const Scene> gridCubeMesh(float size, int n, const Color& rho) {
+  SceneBuilder b("grid cube");
+  const uint32_t m = b.addMaterial({"white", rho, Color(0.0f), false});
+  const uint32_t o = b.addObject("cube");
+  const float cell = size / float(n);
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      Vec3 centre(0.0f), out(0.0f);
+      centre[axis] = out[axis] = side == 0 ? -0.5f * size : 0.5f * size;
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          Vec3 c = centre;
+          c[u] = -0.5f * size + (float(i) + 0.5f) * cell;
+          c[v] = -0.5f * size + (float(j) + 0.5f) * cell;
+          test::addQuadFacing(b, test::axisSquare(c, axis, cell), glm::normalize(out), m, o);
+        }
+    }
+  return std::make_shared<const Scene>(b.build());
+}
+
+// The check of the light a dynamic object throws back: a 2 x 2 m wall (rho 0.5) with a
+// spot just in front of it aimed away from it, at a white cube (rho 0.9, side 0.3) whose face
+// toward the wall the beam covers. The wall gets no light but the cube's, so its radiosity rises
+// by what the cube reflects; the patch method (the cube's light as six axis lobes at its centre,
+// bounced once more) must match the path tracer with the cube in the scene within 10%.
+TEST(DynamicObjects, AWhiteObjectBesideAWallRaisesItAsThePathTracerSays) {
+  SceneBuilder b("wall");
+  const uint32_t grey = b.addMaterial({"grey", Color(0.5f), Color(0.0f), false});
+  test::addQuadFacing(b, test::axisSquare(Vec3(0.0f), 2, 2.0f), Vec3(0, 0, 1), grey,
+                      b.addObject("wall"));
+  Scene scene = b.build();
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = Vec3(0.0f, 0.0f, 0.15f);
+  spot.direction = Vec3(0.0f, 0.0f, 1.0f);
+  spot.intensity = Color(1.0f);
+  spot.innerAngleDeg = 55.0f;  // the face's corners are 35 degrees off the axis
+  spot.outerAngleDeg = 60.0f;
+  scene.lights = {spot};
+  scene.dynamicObjects.push_back({"cube",
+                                  gridCubeMesh(0.3f, 10, Color(0.9f)),
+                                  std::nullopt,
+                                  {{0.0, Vec3(0.0f, 0.0f, 0.6f), std::nullopt}}});
+
+  PatchRadiositySettings settings;
+  settings.targetPatches = 1600;
+  settings.refineLevels = 0;
+  const RayCaster caster(scene);
+  const PatchModel model(scene, caster, settings);
+  const PatchRadiosity alone = model.solve(scene.lights);
+  const Scene placed = scene.withDynamicObjectsAt(0.0);
+  const RayCaster placedCaster(placed);
+  std::vector<Light> lights = scene.lights;
+  for (const Light& l : DynamicObjectLighting(placed, alone, caster, placedCaster).objectLights())
+    lights.push_back(l);
+  const PatchRadiosity withCube = model.solve(lights, placedCaster);
+  const float before = luminance(alone.objectRadiometry()[0].meanRadiosity);
+  const float after = luminance(withCube.objectRadiometry()[0].meanRadiosity);
+  EXPECT_EQ(before, 0.0f);  // the spot shines away from the wall
+
+  const std::map<std::string, ObjectRadiometry> traced =
+      test::tracedObjectMeans(placed, 40000, 16, 5);
+  const float expected = luminance(traced.at("wall").meanRadiosity);
+  std::printf("wall radiosity from the cube: %.5f, path tracer %.5f (%+.1f%%)\n", after, expected,
+              100.0 * (after / expected - 1.0));
+  EXPECT_NEAR(after, expected, 0.1f * expected);
+
+  // The voxel method the same way: its first shot takes the cube's lights.
+  VoxelRadiositySettings voxelSettings;
+  voxelSettings.targetVoxels = 20000;
+  voxelSettings.sphereRadius = 6;
+  const VoxelModel voxels(scene, caster, voxelSettings);
+  const VoxelRadiosity voxelAlone = voxels.solve(scene.lights);
+  std::vector<Light> voxelLights = scene.lights;
+  for (const Light& l :
+       DynamicObjectLighting(placed, voxelAlone, caster, placedCaster).objectLights())
+    voxelLights.push_back(l);
+  const float voxelAfter =
+      luminance(voxels.solve(voxelLights, placedCaster).objectRadiometry()[0].meanRadiosity);
+  std::printf("voxel: %.5f (%+.1f%%)\n", voxelAfter, 100.0 * (voxelAfter / expected - 1.0));
+  EXPECT_NEAR(voxelAfter, expected, 0.1f * expected);
 }
 
 }  // namespace

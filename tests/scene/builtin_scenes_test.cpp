@@ -121,11 +121,52 @@ TEST(BuiltinScenes, AtriumGrowsLinearlyAndIsClosedWithFacesTurnedIn) {
     }
 }
 
+// The textured atrium is the same hall: its floor a checker of tiles and its walls ashlar, whose
+// means over the surface keep the untextured reflectances (what the per-object comparisons of the
+// two rest on).
+TEST(BuiltinScenes, TexturedAtriumShowsItsPatternAtTheSameMeanReflectance) {
+  const Scene plain = loadScene("atrium:1"), textured = loadScene("atrium-textured:1");
+  EXPECT_EQ(textured.positions, plain.positions);
+  EXPECT_EQ(textured.triangles, plain.triangles);
+  ASSERT_EQ(textured.texcoords.size(), textured.positions.size());
+  EXPECT_TRUE(textured.warnings.empty()) << textured.warnings.front();
+  // The floor's mean reflectance over a 1,000 x 1,000 grid of points, texel by texel, against the
+  // plain floor's rho.
+  uint32_t floorFace = 0;
+  while (textured.objects[textured.faces[floorFace].object].name != "floor") ++floorFace;
+  const Face& floor = textured.faces[floorFace];
+  ASSERT_TRUE(textured.materials[floor.material].rhoTexture);
+  Vec3d sum(0.0);
+  const int n = 1000;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Vec3 p(14.0f * (float(i) + 0.5f) / n, 0.0f, 24.0f * (float(j) + 0.5f) / n);
+      uint32_t triangle = 0;
+      const Vec2 b = textured.locateOnFace(floorFace, p, triangle);
+      sum += Vec3d(textured.reflectanceAt(triangle, b));
+    }
+  const Color mean = Color(sum / double(n * n));
+  const Color expected = plain.materials[plain.faces[floorFace].material].rho;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], expected[c], 0.02f * expected[c]) << c;
+  // The pattern: 0.5 m tiles, neighbours of the other tone (the centres of two adjacent tiles
+  // differ by more than a quarter).
+  auto at = [&](float x, float z) {
+    uint32_t triangle = 0;
+    const Vec2 b = textured.locateOnFace(floorFace, Vec3(x, 0.0f, z), triangle);
+    return luminance(textured.reflectanceAt(triangle, b));
+  };
+  const float a = at(5.25f, 9.25f), b = at(5.75f, 9.25f), c = at(5.25f, 9.75f);
+  EXPECT_GT(std::abs(a - b), 0.25f * std::max(a, b));
+  EXPECT_GT(std::abs(a - c), 0.25f * std::max(a, c));
+  EXPECT_NEAR(at(5.25f, 9.25f), at(5.25f + 1.0f, 9.25f), 0.1f * a);  // the same tone a tile on
+}
+
 TEST(BuiltinScenes, NamesAndBadRoomDetail) {
   const std::vector<std::string> names = builtinSceneNames();
   EXPECT_NE(std::find(names.begin(), names.end(), "cornell"), names.end());
   EXPECT_NE(std::find(names.begin(), names.end(), "room:N"), names.end());
   EXPECT_NE(std::find(names.begin(), names.end(), "atrium:N"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "atrium-textured:N"), names.end());
   for (const char* bad : {"room:0", "room:-3", "room:abc", "room:", "atrium:0", "atrium:x"}) {
     const std::string m = test::errorOf([&] { loadScene(bad); });
     EXPECT_NE(m.find(bad), std::string::npos) << m;

@@ -3,6 +3,8 @@
 // to large ones, lit by two lanterns (point lights) and a spot that lights the vault from below.
 // N sets the tessellation of the curved parts, so the triangle count grows about linearly with N
 // (atrium:1 has 3.0k triangles, atrium:180 about 250k) while the geometry stays the same.
+// Textured ("atrium-textured:N"), its floor is tiled and its walls and vault are ashlar
+// (procedural textures, planar texture coordinates), at the same mean reflectances.
 // Units: metres; y up; the nave runs along z.
 
 #include <fmt/format.h>
@@ -15,6 +17,7 @@
 
 #include "scene/builtin/builtin_scenes.h"
 #include "scene/builtin/builtin_shapes.h"
+#include "scene/builtin/stone_textures.h"
 
 namespace rad {
 
@@ -157,19 +160,33 @@ std::vector<Light> lanternsAndUplight() {
   return lights;
 }
 
+// The materials; textured, the floor's, the walls' and the vault's under their textures.
+Materials addMaterials(SceneBuilder& b, bool textured) {
+  Material stone{"stone", Color(0.50f, 0.46f, 0.40f)};
+  Material plaster{"plaster", Color(0.72f, 0.68f, 0.60f)};
+  Material vault{"vault", Color(0.75f, 0.72f, 0.66f)};
+  if (textured) {
+    applyTexture(stone, makeFloorTiles(512, 4));
+    const std::shared_ptr<const Texture> ashlar = makeAshlar(512, 8);
+    applyTexture(plaster, ashlar);
+    applyTexture(vault, ashlar);
+  }
+  return {b.addMaterial(stone),
+          b.addMaterial(plaster),
+          b.addMaterial({"marble", Color(0.65f, 0.64f, 0.62f)}),
+          b.addMaterial(vault),
+          b.addMaterial({"gallery", Color(0.55f, 0.50f, 0.45f)}),
+          b.addMaterial({"iron", Color(0.25f, 0.24f, 0.22f)})};
+}
+
 }  // namespace
 
-Scene makeAtrium(int n) {
+Scene makeAtrium(int n, bool textured) {
+  const std::string name = fmt::format("{}:{}", textured ? "atrium-textured" : "atrium", n);
   if (n < 1 || n > kMaxDetail)
-    throw InputError(fmt::format("atrium:{}", n),
-                     fmt::format("N = {} out of range [1, {}]", n, kMaxDetail));
-  SceneBuilder b(fmt::format("atrium:{}", n));
-  const Materials m{b.addMaterial({"stone", Color(0.50f, 0.46f, 0.40f)}),
-                    b.addMaterial({"plaster", Color(0.72f, 0.68f, 0.60f)}),
-                    b.addMaterial({"marble", Color(0.65f, 0.64f, 0.62f)}),
-                    b.addMaterial({"vault", Color(0.75f, 0.72f, 0.66f)}),
-                    b.addMaterial({"gallery", Color(0.55f, 0.50f, 0.45f)}),
-                    b.addMaterial({"iron", Color(0.25f, 0.24f, 0.22f)})};
+    throw InputError(name, fmt::format("N = {} out of range [1, {}]", n, kMaxDetail));
+  SceneBuilder b(name);
+  const Materials m = addMaterials(b, textured);
   const Objects o{b.addObject("floor"),     b.addObject("walls"),   b.addObject("aisle_ceilings"),
                   b.addObject("vault"),     b.addObject("columns"), b.addObject("arches"),
                   b.addObject("galleries"), b.addObject("railings")};
@@ -194,6 +211,11 @@ Scene makeAtrium(int n) {
     addRailing(b, west ? kAisle - 0.1f : kWidth - kAisle + 0.1f, m.iron, o.railings);
   }
 
+  if (textured) {
+    mapPlanar(b, m.stone, 2.0f);    // 0.5 m tiles
+    mapPlanar(b, m.plaster, 2.4f);  // 0.3 m courses of 0.6 m blocks
+    mapPlanar(b, m.vault, 2.4f);
+  }
   Scene& s = b.scene();
   s.lights = lanternsAndUplight();
   Camera camera;

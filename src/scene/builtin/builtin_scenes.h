@@ -16,7 +16,8 @@ Scene makeRoom(int n);
 
 /// A generated interior of columns, arches, railings and a vault lit by point and spot lights,
 /// whose curved parts have detail n (>= 1; InputError otherwise): the kind of scene real
-/// interiors are, for accuracy and scale tests. Deterministic.
-Scene makeAtrium(int n);
+/// interiors are, for accuracy and scale tests; `textured`: its floor, walls and vault under
+/// procedural textures. Deterministic.
+Scene makeAtrium(int n, bool textured = false);
 
 }  // namespace rad
