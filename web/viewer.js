@@ -2,7 +2,8 @@
 // per-vertex radiance (README, "serve" API), orbit controls, the lights to drag or edit by number
 // and the light groups to dim; every change goes to the server, which relights and answers the
 // new colours. One request at a time: changes made meanwhile go in the next one, so dragging
-// never queues a backlog.
+// never queues a backlog. Dynamic objects are placed and lit by the server at the time the
+// slider (or Play) shows, the same way.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { TransformControls } from 'three/addons/controls/TransformControls.js';
@@ -10,7 +11,7 @@ import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
 const statusLine = document.getElementById('status');
 // What the browser test waits on: frames drawn, relights answered, requests failed.
-window.viewerState = { frames: 0, relights: 0, errors: 0, lastRelightMs: 0 };
+window.viewerState = { frames: 0, relights: 0, errors: 0, lastRelightMs: 0, objectUpdates: 0, objectTime: 0 };
 
 function report(text, isError = false) {
   statusLine.textContent = text;
@@ -128,6 +129,7 @@ async function sendState() {
     const ms = Number(response.headers.get('X-Relight-Ms'));
     radiance = await response.arrayBuffer();
     await showColours();
+    if (summary.dynamic_objects.length) showObjects();  // lit by the new light too
     window.viewerState.relights += 1;
     window.viewerState.lastRelightMs = ms;
     report(`relit in ${ms.toFixed(1)} ms`);
@@ -137,6 +139,66 @@ async function sendState() {
     inFlight = false;
     if (pending) { pending = false; sendState(); }
   }
+}
+
+// Dynamic objects: their triangles at the time asked, lit by probes of the solution (the colours
+// are linear radiance, as the scene's). One request at a time, the newest time wins.
+const objectParts = new THREE.Group();
+const objectMaterial = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.FrontSide });
+let objectTime = 0, objectsBusy = false, objectsAgain = false;
+
+async function showObjects() {
+  if (objectsBusy) { objectsAgain = true; return; }
+  objectsBusy = true;
+  try {
+    do {
+      objectsAgain = false;
+      const answer = await (await fetchOk(`api/dynamic?t=${objectTime}`)).json();
+      for (const part of objectParts.children) part.geometry.dispose();
+      objectParts.clear();
+      for (const object of answer.objects) {
+        const geometry = new THREE.BufferGeometry();
+        geometry.setAttribute('position', new THREE.Float32BufferAttribute(object.positions, 3));
+        geometry.setAttribute('color', new THREE.Float32BufferAttribute(object.colors, 3));
+        const part = new THREE.Mesh(geometry, objectMaterial);
+        part.name = object.name;
+        objectParts.add(part);
+      }
+      window.viewerState.objectUpdates += 1;
+      window.viewerState.objectTime = answer.t;
+    } while (objectsAgain);
+  } catch (error) {
+    report(error.message, true);
+  } finally {
+    objectsBusy = false;
+  }
+}
+
+function setUpTime() {
+  document.getElementById('time-section').hidden = false;
+  const slider = document.getElementById('time'), play = document.getElementById('play');
+  const end = Math.max(summary.paths_end_s, 0.01);
+  slider.max = String(end);
+  const show = (t) => {
+    objectTime = t;
+    slider.value = String(t);
+    document.getElementById('time-value').textContent = `${t.toFixed(2)} s`;
+    showObjects();
+  };
+  slider.addEventListener('input', () => show(Number(slider.value)));
+  let playing = false, last = 0;
+  play.addEventListener('click', () => {
+    playing = !playing;
+    play.textContent = playing ? 'Pause' : 'Play';
+    last = performance.now();
+  });
+  // Played in real time, looping over the paths; the server answers as fast as it can.
+  return () => {
+    if (!playing) return;
+    const now = performance.now();
+    show((objectTime + (now - last) / 1000) % end);
+    last = now;
+  };
 }
 
 // --- the panel -------------------------------------------------------------------------------
@@ -235,8 +297,11 @@ async function start() {
     meshes.push(object);
   });
   scene3d.add(gltf.scene);
+  scene3d.add(objectParts);
   radiance = await (await fetchOk('api/colors')).arrayBuffer();
   applyColors(radiance);
+  const advanceTime = summary.dynamic_objects.length ? setUpTime() : () => {};
+  if (summary.dynamic_objects.length) await showObjects();
 
   const c = summary.camera;
   camera.fov = c.fov_deg;
@@ -332,6 +397,7 @@ async function start() {
   report(summary.relights ? `${summary.patches} patches, ${summary.vertices} vertices`
     : `voxel solution (${summary.patches} voxel sides): light groups dim, lights stay`);
   renderer.setAnimationLoop(() => {
+    advanceTime();
     orbit.update();
     renderer.render(scene3d, camera);
     window.viewerState.frames += 1;

@@ -5,6 +5,7 @@
 #include <httplib.h>
 #include <radiosity/error.h>
 
+#include <charconv>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -81,6 +82,21 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
   http.Get("/api/objects.csv", [this](const httplib::Request&, httplib::Response& response) {
     withSession(response, [&](ViewerSession& session) {
       response.set_content(session.objectsCsv(), "text/csv");
+    });
+  });
+  http.Get("/api/dynamic", [this](const httplib::Request& request, httplib::Response& response) {
+    // ?t=SECONDS (0 when absent): the dynamic objects there, lit by probes.
+    const std::string text = request.has_param("t") ? request.get_param_value("t") : "0";
+    double seconds = 0.0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), seconds);
+    if (ec != std::errc() || end != text.data() + text.size())
+      return badRequest(response, fmt::format("t '{}' is not a number of seconds", text));
+    withSession(response, [&](ViewerSession& session) {
+      try {
+        response.set_content(session.objectsAt(seconds).dump(), "application/json");
+      } catch (const InputError& e) {
+        badRequest(response, e.what());
+      }
     });
   });
   http.Post("/api/lights", [this](const httplib::Request& request, httplib::Response& response) {

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <glm/gtx/component_wise.hpp>
 
+#include "lighting/dynamic_objects.h"
 #include "output/gltf_export.h"
 #include "output/surface_samples.h"
 
@@ -75,6 +76,7 @@ ViewerSession::ViewerSession(const Scene& scene, std::vector<Light> lights, Voxe
 }
 
 void ViewerSession::start(float displayEdge) {
+  if (!scene_.dynamicObjects.empty()) staticCaster_ = std::make_unique<RayCaster>(scene_);
   display_ = cutSurfaces(scene_, displayEdge);
   glbOrder_ = glbVertexOrder(display_.mesh);
   shade();
@@ -128,6 +130,8 @@ Json ViewerSession::summary() const {
                       {"emitting_materials", groups_[g].materials.size()}});
   const Camera camera = scene_.cameraOrDefault();
   const Bounds bounds = scene_.bounds();
+  Json dynamicObjects = Json::array();
+  for (const DynamicObject& o : scene_.dynamicObjects) dynamicObjects.push_back(o.name);
   return {{"scene", scene_.name},
           {"method", relighter_ ? "patch" : "voxel"},
           {"patches", solution().elementCount()},
@@ -141,7 +145,42 @@ Json ViewerSession::summary() const {
             {"up", array(camera.up)},
             {"fov_deg", camera.fovDeg}}},
           {"bounds", {{"min", array(bounds.min)}, {"max", array(bounds.max)}}},
+          {"dynamic_objects", dynamicObjects},
+          {"paths_end_s", pathsEnd()},
           {"last_relight_ms", lastRelightMs_}};
+}
+
+double ViewerSession::pathsEnd() const {
+  double end = 0.0;
+  for (const DynamicObject& o : scene_.dynamicObjects)
+    if (!o.path.empty()) end = std::max(end, o.path.back().t);
+  return std::min(end, kMaxViewerSeconds);
+}
+
+Json ViewerSession::objectsAt(double seconds) const {
+  if (!std::isfinite(seconds) || seconds < 0.0 || seconds > kMaxViewerSeconds)
+    refuse("/t", fmt::format("expected a time in [0, {:g}] s", kMaxViewerSeconds));
+  Json objects = Json::array();
+  if (scene_.dynamicObjects.empty()) return {{"t", seconds}, {"objects", objects}};
+  const Scene placed = scene_.withDynamicObjectsAt(seconds);
+  const RayCaster placedCaster(placed);
+  LitMesh mesh;
+  {
+    std::lock_guard relight(relightMutex_);
+    DynamicObjectLighting(placed, solution(), *staticCaster_, placedCaster).appendObjects(mesh);
+  }
+  // appendObjects gives every triangle three vertices of its own, a group per object.
+  for (const LitMeshGroup& g : mesh.groups) {
+    std::vector<float> positions, colors;
+    for (size_t v = 3 * size_t(g.firstTriangle); v < 3 * size_t(g.firstTriangle + g.triangleCount);
+         ++v) {
+      positions.insert(positions.end(),
+                       {mesh.positions[v].x, mesh.positions[v].y, mesh.positions[v].z});
+      colors.insert(colors.end(), {mesh.colors[v].r, mesh.colors[v].g, mesh.colors[v].b});
+    }
+    objects.push_back({{"name", g.name}, {"positions", positions}, {"colors", colors}});
+  }
+  return {{"t", seconds}, {"objects", objects}};
 }
 
 std::string ViewerSession::colors() const {

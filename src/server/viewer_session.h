@@ -13,6 +13,7 @@
 #include <radiosity/voxel_radiosity.h>
 
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -22,6 +23,9 @@
 #include "output/baked_mesh.h"
 
 namespace rad {
+
+/// The latest time the viewer places dynamic objects at (a day).
+inline constexpr double kMaxViewerSeconds = 86400.0;
 
 class ViewerSession {
  public:
@@ -48,6 +52,15 @@ class ViewerSession {
   /// Each scene object's mean irradiance and radiosity now, as CSV (objectRadiometryCsv).
   std::string objectsCsv() const;
 
+  /// The dynamic objects placed at `seconds` into their paths, lit by probes of the solution
+  /// now (DynamicObjectLighting): {"t": seconds, "objects": [{"name", "positions": [x, y, z,
+  /// ...], "colors": [r, g, b, ...]}]}, three vertices a triangle (CCW about its front), the
+  /// colours the linear radiance leaving each. Throws InputError for a time that is negative,
+  /// not finite or past kMaxViewerSeconds.
+  nlohmann::json objectsAt(double seconds) const;
+  /// The latest time the objects' paths set anything (0: none moves).
+  double pathsEnd() const;
+
   /// Applies a light state: {"lights": [{"id": i, "position": [x, y, z], "direction": [...],
   /// "intensity": [...]}], "groups": {"name": scale or [r, g, b]}}, every field optional but
   /// the id. Checks all of it first and throws InputError (naming the field) without changing
@@ -72,6 +85,7 @@ class ViewerSession {
   mutable std::mutex relightMutex_;     ///< the relighter and what it shows
   std::optional<Relighter> relighter_;  ///< the patch method's (one of the two is set)
   std::optional<VoxelRadiosity> voxel_;
+  std::unique_ptr<RayCaster> staticCaster_;  ///< the scene's own, for the objects' probes
   const SurfaceSolution& solution() const;
   void start(float displayEdge);
   uint64_t reached_ = 0;  ///< generation the relighter and the colours are at

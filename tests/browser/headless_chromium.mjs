@@ -23,3 +23,26 @@ export async function openTab(browser, width, height) {
   tab.on('pageerror', (error) => errors.push(error.message));
   return { tab, errors };
 }
+
+// Mean luminance (0..1) of the page's WebGL canvas #view in n x n blocks, read back through a 2D
+// canvas: what the browser tests compare before and after a change.
+export function pictureBlocks(tab, n = 12) {
+  return tab.evaluate((blocksPerSide) => {
+    const view = document.getElementById('view');
+    const copy = document.createElement('canvas');
+    copy.width = view.width; copy.height = view.height;
+    const context = copy.getContext('2d');
+    context.drawImage(view, 0, 0);
+    const pixels = context.getImageData(0, 0, copy.width, copy.height).data;
+    const out = new Array(blocksPerSide * blocksPerSide).fill(0), count = out.map(() => 0);
+    for (let y = 0; y < copy.height; ++y)
+      for (let x = 0; x < copy.width; ++x) {
+        const k = 4 * (y * copy.width + x);
+        const b = Math.floor((y * blocksPerSide) / copy.height) * blocksPerSide +
+          Math.floor((x * blocksPerSide) / copy.width);
+        out[b] += (0.2126 * pixels[k] + 0.7152 * pixels[k + 1] + 0.0722 * pixels[k + 2]) / 255;
+        count[b] += 1;
+      }
+    return out.map((v, b) => v / count[b]);
+  }, n);
+}

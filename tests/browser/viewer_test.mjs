@@ -5,7 +5,7 @@
 import { mkdirSync } from 'node:fs';
 import path from 'node:path';
 
-import { launchChromium, openTab } from './headless_chromium.mjs';
+import { launchChromium, openTab, pictureBlocks } from './headless_chromium.mjs';
 import { startServer } from './serve_process.mjs';
 
 const [binary, webDir, outDir] = process.argv.slice(2);
@@ -26,24 +26,7 @@ try {
   await page.goto(url);
   await page.waitForFunction(() => window.viewerState && window.viewerState.frames > 3, { timeout: 60000 });
 
-  // Mean luminance of the drawn picture in 12 x 12 blocks, read back from the WebGL canvas.
-  const blocks = () => page.evaluate(() => {
-    const view = document.getElementById('view');
-    const copy = document.createElement('canvas');
-    copy.width = view.width; copy.height = view.height;
-    const context = copy.getContext('2d');
-    context.drawImage(view, 0, 0);
-    const pixels = context.getImageData(0, 0, copy.width, copy.height).data;
-    const n = 12, out = new Array(n * n).fill(0), count = new Array(n * n).fill(0);
-    for (let y = 0; y < copy.height; ++y)
-      for (let x = 0; x < copy.width; ++x) {
-        const k = 4 * (y * copy.width + x);
-        const b = Math.floor((y * n) / copy.height) * n + Math.floor((x * n) / copy.width);
-        out[b] += (0.2126 * pixels[k] + 0.7152 * pixels[k + 1] + 0.0722 * pixels[k + 2]) / 255;
-        count[b] += 1;
-      }
-    return out.map((v, b) => v / count[b]);
-  });
+  const blocks = () => pictureBlocks(page);
   const before = await blocks();
   await page.screenshot({ path: path.join(outDir, 'viewer_before.png') });
 

@@ -7,6 +7,7 @@
 #include <httplib.h>
 #include <radiosity/error.h>
 #include <radiosity/relighter.h>
+#include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
 #include <radiosity/voxel_radiosity.h>
 #include <sys/wait.h>
@@ -21,6 +22,7 @@
 
 #include "output/baked_mesh.h"
 #include "output/gltf_export.h"
+#include "scene/builtin/builtin_shapes.h"
 #include "server/viewer_session.h"
 
 namespace rad {
@@ -36,6 +38,21 @@ PatchRadiositySettings smallSettings() {
 }
 
 constexpr float kDisplayEdge = 60.0f;
+
+// cornell-spot with a 100 mm box that moves 250 mm along x in 2 s on the floor.
+Scene cornellSpotWithAMovingBox() {
+  Scene scene = loadScene("cornell-spot");
+  SceneBuilder b("box");
+  addBox(b, Vec3(-50.0f, 0.0f, -50.0f), Vec3(50.0f, 100.0f, 50.0f),
+         b.addMaterial({"white", Color(0.8f), Color(0.0f), false}), b.addObject("box"),
+         BoxSide::Outside);
+  scene.dynamicObjects.push_back({"box",
+                                  std::make_shared<const Scene>(b.build()),
+                                  std::nullopt,
+                                  {{0.0, Vec3(150.0f, 0.0f, 250.0f), std::nullopt},
+                                   {2.0, Vec3(400.0f, 0.0f, 250.0f), std::nullopt}}});
+  return scene;
+}
 
 // A server on a free port of 127.0.0.1 over a session of cornell-spot, in a thread of its own.
 class ViewerServerTest : public ::testing::Test {
@@ -73,7 +90,7 @@ class ViewerServerTest : public ::testing::Test {
     return client_->Post("/api/lights", body, "application/json");
   }
 
-  const Scene scene_ = loadScene("cornell-spot");
+  const Scene scene_ = cornellSpotWithAMovingBox();
   const PatchModel model_{scene_, smallSettings()};
   fs::path web_;
   std::unique_ptr<ViewerSession> session_;
@@ -178,6 +195,41 @@ TEST_F(ViewerServerTest, BadRequestsAre400AndChangeNothing) {
   EXPECT_EQ(big->status, 400);
   EXPECT_EQ(client_->Get("/api/scene")->body, before);
   EXPECT_TRUE(client_->Get("/api/colors")->body == colorsBefore);
+}
+
+// The moving box as the page asks for it: where its path puts it at each time (held after its
+// last keyframe), lit, and a time that is not one refused.
+TEST_F(ViewerServerTest, ServesTheDynamicObjectsWhereTheirPathsPutThem) {
+  const nlohmann::json summary = nlohmann::json::parse(client_->Get("/api/scene")->body);
+  EXPECT_EQ(summary["dynamic_objects"], nlohmann::json::array({"box"}));
+  EXPECT_EQ(summary["paths_end_s"], 2.0);
+  auto at = [&](const std::string& t) {
+    const auto r = client_->Get("/api/dynamic?t=" + t);
+    EXPECT_TRUE(r && r->status == 200) << t;
+    return nlohmann::json::parse(r->body);
+  };
+  for (const auto& [t, x] : std::vector<std::pair<std::string, float>>{
+           {"0", 150.0f}, {"1", 275.0f}, {"2", 400.0f}, {"5", 400.0f}}) {
+    const nlohmann::json answer = at(t);
+    ASSERT_EQ(answer["objects"].size(), 1u) << t;
+    const auto positions = answer["objects"][0]["positions"].get<std::vector<float>>();
+    const auto colors = answer["objects"][0]["colors"].get<std::vector<float>>();
+    ASSERT_EQ(positions.size(), 6u * 2 * 9) << t;  // 6 faces, 2 triangles each, 3 vertices
+    ASSERT_EQ(colors.size(), positions.size());
+    float lo = 1e30f, hi = -1e30f, light = 0.0f;
+    for (size_t v = 0; v < positions.size(); v += 3) {
+      lo = std::min(lo, positions[v]);
+      hi = std::max(hi, positions[v]);
+      light += colors[v] + colors[v + 1] + colors[v + 2];
+    }
+    EXPECT_NEAR(0.5f * (lo + hi), x, 1e-3f) << t;
+    EXPECT_GT(light, 0.0f) << t;
+  }
+  for (const std::string bad : {"soon", "-1", "nan", "1e300", "1x"}) {
+    const auto r = client_->Get("/api/dynamic?t=" + bad);
+    ASSERT_TRUE(r) << bad;
+    EXPECT_EQ(r->status, 400) << bad;
+  }
 }
 
 TEST_F(ViewerServerTest, ServesThePageButNothingOutsideItsFolder) {
