@@ -136,7 +136,7 @@ int runSolve(SolveOptions& o, Console& console) {
     requireMemory(double(o.lightmap) * o.lightmap * kLightmapBytesPerTexel, "--lightmap",
                   fmt::format("a lightmap atlas of {0} x {0} texels", o.lightmap),
                   "give a smaller size");
-    packLightmapAtlas(scene, o.lightmap);
+    requireLightmapFits(scene, o.lightmap);
   }
   o.method.resolve(scene, "", console);
   InterruptGuard interruptible;
