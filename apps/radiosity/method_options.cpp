@@ -188,14 +188,14 @@ void MethodOptions::resolve(const Scene& scene, const std::string& solutionFile,
   else
     resolveFromSolution(scene, solutionFile, console);
   if (MpiProcesses::rank() == 0) trimCache(console);  // one process keeps the directory
-  const bool splits = settings_.method == "voxel" ||
+  const bool splits = settings_.method == "voxel" || settings_.method == "pathtrace" ||
                       (settings_.method == "patch" &&
                        settings_.patch.estimator == PatchFormFactorEstimator::Hemisphere);
   if (MpiProcesses::split() && !splits)
     console.warn(
         fmt::format("the {} method{} is not split among processes yet: each of the {} "
-                    "ranks computes it whole (the voxel method and the patch method's "
-                    "hemisphere form factors are split)",
+                    "ranks computes it whole (the path tracer, the voxel method and the patch "
+                    "method's hemisphere form factors are split)",
                     settings_.method, settings_.method == "patch" ? " with this estimator" : "",
                     MpiProcesses::count()));
 }
@@ -231,6 +231,7 @@ void MethodOptions::resolve(const Scene& scene) {
     throw InputError(scene.name + ": /solver/method",
                      fmt::format("method '{}' is not available here (available: {})",
                                  settings_.method, fmt::join(methods_, ", ")));
+  settings_.pathTracer.processes = MpiProcesses::share();
   settings_.voxel.processes = MpiProcesses::share();
   settings_.patch.processes = MpiProcesses::share();
 }

@@ -6,6 +6,7 @@
 
 #include <radiosity/image.h>
 #include <radiosity/object_radiometry.h>
+#include <radiosity/process_share.h>
 #include <radiosity/progress.h>
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
@@ -22,7 +23,11 @@ struct PathTracerSettings {
   uint64_t seed = 1;
   /// Where a render keeps its finished tiles (every half minute, and when stopped) and goes on
   /// from them when run again after a kill or Ctrl-C, to the same picture; empty: nowhere.
+  /// Not in a split render.
   std::string checkpointDir;
+  /// A render split among processes: each renders every count-th tile from its rank, and the
+  /// tiles are added up (each pixel from one process: the same picture, bit for bit).
+  ProcessShare processes;
 };
 
 struct PathTracerStats {

@@ -8,9 +8,11 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <optional>
+#include <span>
 
 #include "core/checksummed_file.h"
 #include "geometry/sampling.h"
@@ -132,6 +134,22 @@ class TileCheckpoint {
   std::string warning_;
 };
 
+// The processes' tiles, added up in every process (every pixel is one process's, the others'
+// zeros: the sum is that pixel exactly), and their rays.
+void gatherSplitRender(const ProcessShare& share, PathTracedImage& result) {
+  static_assert(sizeof(Color) == 3 * sizeof(float), "pixels are summed as floats");
+  share.sumAll(std::span<float>(reinterpret_cast<float*>(result.image.pixels.data()),
+                                3 * result.image.pixels.size()));
+  const std::vector<char> rays = share.gatherAll(std::span<const char>(
+      reinterpret_cast<const char*>(&result.stats.rays), sizeof(result.stats.rays)));
+  result.stats.rays = 0;
+  for (size_t at = 0; at + sizeof(uint64_t) <= rays.size(); at += sizeof(uint64_t)) {
+    uint64_t r = 0;
+    std::memcpy(&r, rays.data() + at, sizeof r);
+    result.stats.rays += r;
+  }
+}
+
 }  // namespace
 
 PathTracedImage renderPathTraced(const Scene& scene, const Camera& camera,
@@ -154,14 +172,21 @@ PathTracedImage renderPathTraced(const Scene& scene, const RayCaster& caster, co
   result.image = Image(camera.width, camera.height);
   const int tilesX = (camera.width + kTileSize - 1) / kTileSize;
   const int tilesY = (camera.height + kTileSize - 1) / kTileSize;
-  TileCheckpoint checkpoint(renderCheckpointFile(scene, camera, settings), tilesX * tilesY, tilesX,
-                            result.image);
+  const ProcessShare& share = settings.processes;
+  // A split render keeps no checkpoint: each process would keep its own tiles under one name.
+  TileCheckpoint checkpoint(
+      share.split() ? std::filesystem::path() : renderCheckpointFile(scene, camera, settings),
+      tilesX * tilesY, tilesX, result.image);
   result.stats.resumedTiles = checkpoint.resume(result.image, result.stats.warnings);
-  ProgressTicker ticker(progress, size_t(camera.width) * size_t(camera.height));
+  // Every count-th tile from the rank: the processes' shares of the picture interleave, so
+  // that an expensive region is shared too.
+  auto mine = [&](int tile) { return tile % share.count == share.rank; };
+  ProgressTicker ticker(progress,
+                        size_t(camera.width) * size_t(camera.height) / size_t(share.count));
   tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY), [&](const auto& range) {
     for (int tile = range.begin(); tile != range.end(); ++tile) {
       if (ticker.cancelled()) return;
-      if (checkpoint.done(tile)) continue;
+      if (!mine(tile) || checkpoint.done(tile)) continue;
       if (renderTile(integrator, pinhole, settings, tile, tilesX, result.image, ticker))
         checkpoint.finished(tile);
     }
@@ -177,6 +202,7 @@ PathTracedImage renderPathTraced(const Scene& scene, const RayCaster& caster, co
   checkpoint.remove();
 
   result.stats.rays = caster.raysCast() - raysBefore;
+  if (share.split()) gatherSplitRender(share, result);
   result.stats.paths =
       uint64_t(camera.width) * uint64_t(camera.height) * uint64_t(settings.samplesPerPixel);
   result.stats.seconds =
