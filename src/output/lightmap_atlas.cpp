@@ -1,15 +1,17 @@
 #include "output/lightmap_atlas.h"
 
-#include <radiosity/error.h>
-#define STB_RECT_PACK_IMPLEMENTATION
 #include <fmt/format.h>
-#include <stb_rect_pack.h>
+#include <radiosity/error.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
+
+// stb_rect_pack's implementation, compiled here once.
+#define STB_RECT_PACK_IMPLEMENTATION
+#include <stb_rect_pack.h>
 
 namespace rad {
 
