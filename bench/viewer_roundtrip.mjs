@@ -7,6 +7,9 @@ import { startServer } from '../tests/browser/serve_process.mjs';
 const [binary, patches = '10000', moves = '60'] = process.argv.slice(2);
 const server = await startServer(binary, ['cornell-spot', '--patches', patches, '--cache-dir', 'none']);
 try {
+  // The server listens before it solves (503 until then): measure the relights, not refusals.
+  while (!(await (await fetch(`${server.url}api/progress`)).json()).ready)
+    await new Promise((resolve) => setTimeout(resolve, 200));
   const scene = await (await fetch(`${server.url}api/scene`)).json();
   const roundTrips = [], relights = [];
   let bytes = 0;
@@ -15,6 +18,7 @@ try {
     const body = JSON.stringify({ lights: [{ id: 0, direction: [Math.sin(angle), -Math.cos(angle), 0] }] });
     const start = performance.now();
     const response = await fetch(`${server.url}api/lights`, { method: 'POST', body });
+    if (!response.ok) throw new Error(`POST /api/lights: HTTP ${response.status}`);
     bytes = (await response.arrayBuffer()).byteLength;
     if (k === 0) continue;  // the first move casts the rows of the nodes the beam refines
     roundTrips.push(performance.now() - start);
