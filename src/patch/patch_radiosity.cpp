@@ -274,7 +274,7 @@ void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback
 PatchSolution PatchRadiosity::Impl::solveSystem(const FormFactorTable& table,
                                                 const PatchSystem& system,
                                                 const ProgressCallback& progress) const {
-  const PatchSolverControl control{settings.tolerance, settings.maxIterations};
+  const PatchSolverControl control{settings.tolerance, settings.maxIterations, &settings.processes};
   switch (settings.solver) {
     case PatchSolverKind::Jacobi:
       return solveJacobi(table, system, control, progress);

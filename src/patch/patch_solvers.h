@@ -6,6 +6,7 @@
 // light put in, r_i = E_i + rho_i H_i - B_i: the power not yet accounted for, relative to what is
 // put in) is below the tolerance, or after maxIterations sweeps, and records it per sweep.
 
+#include <radiosity/process_share.h>
 #include <radiosity/progress.h>
 #include <radiosity/types.h>
 
@@ -34,6 +35,9 @@ struct PatchSystem {
 struct PatchSolverControl {
   double tolerance = 1e-3;
   int maxIterations = 1000;  ///< sweeps; progressive refinement: shots / patches
+  /// Jacobi split among processes: each sweeps its block of the patches and the sweep's
+  /// radiosity is exchanged (null or one process: the whole sweep here).
+  const ProcessShare* processes = nullptr;
 };
 
 struct PatchSolution {

@@ -99,7 +99,8 @@ TEST(Mpi, SplitVoxelSolveMatchesOneProcess) {
 
 TEST(Mpi, SplitPatchSolveIsTheOneProcessSolve) {
   // The hemisphere rows cast in blocks and exchanged: every rank holds the rows one process
-  // casts (each row's rays are its own stream's), so the export is the same, byte for byte.
+  // casts (each row's rays are its own stream's), so the export is the same, byte for byte;
+  // Jacobi's sweeps computed in blocks and gathered likewise.
   if (!mpiAvailable()) GTEST_SKIP() << "built without MPI or no mpirun";
   const fs::path dir = freshDir("mpi_patch");
   auto solve = [&](const std::string& name) {
@@ -112,6 +113,17 @@ TEST(Mpi, SplitPatchSolveIsTheOneProcessSolve) {
     EXPECT_EQ(readBytes((dir / "one.csv").string()),
               readBytes((dir / ("np" + ranks + ".csv")).string()))
         << ranks << " ranks";
+  }
+  // Jacobi sweeps split too: each rank its block of the patches, the sweep's H and B gathered.
+  const std::string jacobi = " --solver jacobi --tolerance 1e-5";
+  ASSERT_EQ(std::system((solve("jacobi_one") + jacobi).c_str()), 0);
+  for (const std::string ranks : {"2", "3"}) {
+    ASSERT_EQ(
+        std::system((kMpirun + "-np " + ranks + " " + solve("jacobi_np" + ranks) + jacobi).c_str()),
+        0);
+    EXPECT_EQ(readBytes((dir / "jacobi_one.csv").string()),
+              readBytes((dir / ("jacobi_np" + ranks + ".csv")).string()))
+        << ranks << " ranks, Jacobi";
   }
 }
 
