@@ -16,6 +16,7 @@
 #include "patch/form_factor_estimators.h"
 #include "patch/patch_quadrature.h"
 #include "patch/point_polygon_form_factor.h"
+#include "patch/row_exchange.h"
 #include "render/progress_ticker.h"
 
 namespace rad {
@@ -94,6 +95,14 @@ class ExactKernel {
   float offset_;
 };
 
+// The rows this process computes of a split run's n (all of them in one process).
+std::vector<uint32_t> ownRows(const ProcessShare& processes, size_t n) {
+  std::vector<uint32_t> rows;
+  forEachRowOf(processes, RowShare::Interleaved, n, processes.rank,
+               [&](size_t i) { rows.push_back(uint32_t(i)); });
+  return rows;
+}
+
 }  // namespace
 
 FormFactorRows exactFormFactors(const PatchMesh& mesh, const RayCaster& caster,
@@ -103,14 +112,19 @@ FormFactorRows exactFormFactors(const PatchMesh& mesh, const RayCaster& caster,
   std::vector<uint32_t> all(mesh.size());
   std::iota(all.begin(), all.end(), 0u);
   FormFactorRows rows(mesh.size());
-  ProgressTicker ticker(progress, rows.size());
-  tbb::parallel_for(size_t(0), rows.size(), [&](size_t i) {
+  // Split among processes: each every count-th row (a row's cost follows what its patch sees,
+  // which varies along the table), then every row to every process.
+  const std::vector<uint32_t> mine = ownRows(settings.processes, rows.size());
+  ProgressTicker ticker(progress, mine.size());
+  tbb::parallel_for(size_t(0), mine.size(), [&](size_t k) {
     if (ticker.cancelled()) return;
+    const uint32_t i = mine[k];
     Rng rng(settings.seed, i);
-    rows[i] = kernel.row(uint32_t(i), settings.rays, rng, all);
+    rows[i] = kernel.row(i, settings.rays, rng, all);
     ticker.tick();
   });
   ticker.throwIfCancelled();
+  if (settings.processes.split()) exchangeRows(settings.processes, RowShare::Interleaved, rows);
   return rows;
 }
 
@@ -133,13 +147,20 @@ std::optional<ExactColumns> exactColumns(const PatchMesh& mesh, const RayCaster&
     });
   if (std::find(missing.begin(), missing.end(), 1) != missing.end()) {
     const ExactKernel kernel(mesh, caster);
-    tbb::parallel_for(size_t(0), mesh.size(), [&](size_t i) {
+    // Split among processes as exactFormFactors does (all hold the known rows already).
+    const std::vector<uint32_t> mine = ownRows(settings.processes, mesh.size());
+    tbb::parallel_for(size_t(0), mine.size(), [&](size_t k) {
+      const uint32_t i = mine[k];
       if (!missing[i]) return;
       // A stream of its own, apart from the hemisphere rays' (seed, i).
       Rng rng(settings.seed ^ 0x6578616374636f6cull, store ? store->streamOf(uint32_t(i)) : i);
       exact.toExact[i] = kernel.row(uint32_t(i), kExactColumnPoints, rng, columns);
-      if (store) store->computed(uint32_t(i), exact.toExact[i]);
     });
+    if (settings.processes.split())
+      exchangeRows(settings.processes, RowShare::Interleaved, exact.toExact);
+    if (store)
+      for (uint32_t i = 0; i < mesh.size(); ++i)
+        if (missing[i]) store->computed(i, exact.toExact[i]);
   }
   // The exact patches' rows by reciprocity, in ascending column order (i ascends).
   exact.exactRows.resize(mesh.size());

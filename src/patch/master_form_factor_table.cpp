@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "core/checksummed_file.h"
+#include "patch/row_exchange.h"
 #include "render/progress_ticker.h"
 
 namespace rad {
@@ -73,34 +74,11 @@ MasterFormFactorTable::MasterFormFactorTable(int levels, int rays, uint64_t seed
 
 namespace {
 
-// The rows each process cast (its block of `hits`) to every process: blocks in rank order, each
-// row its count and then its hits, 12 bytes each.
-void exchangeRows(const ProcessShare& processes, std::vector<std::vector<HemisphereHit>>& hits,
-                  std::vector<std::atomic<uint8_t>>& done) {
-  const auto [first, last] = processes.block(hits.size());
-  std::vector<char> mine;
-  for (size_t i = first; i < last; ++i) {
-    const uint32_t count = uint32_t(hits[i].size());
-    mine.insert(mine.end(), reinterpret_cast<const char*>(&count),
-                reinterpret_cast<const char*>(&count) + sizeof count);
-    const auto* bytes = reinterpret_cast<const char*>(hits[i].data());
-    mine.insert(mine.end(), bytes, bytes + count * sizeof(HemisphereHit));
-  }
-  const std::vector<char> all = processes.gatherAll(mine);
-  size_t at = 0;
-  for (int rank = 0; rank < processes.count; ++rank) {
-    const auto [begin, end] = processes.block(hits.size(), rank);
-    for (size_t i = begin; i < end; ++i) {
-      uint32_t count = 0;
-      std::memcpy(&count, all.data() + at, sizeof count);
-      at += sizeof count;
-      hits[i].resize(count);
-      std::memcpy(static_cast<void*>(hits[i].data()), all.data() + at,
-                  count * sizeof(HemisphereHit));
-      at += count * sizeof(HemisphereHit);
-      done[i].store(1, std::memory_order_release);
-    }
-  }
+// The rows each process cast (its block of `hits`) to every process, each then done.
+void exchangeCastRows(const ProcessShare& processes, std::vector<std::vector<HemisphereHit>>& hits,
+                      std::vector<std::atomic<uint8_t>>& done) {
+  exchangeRows(processes, RowShare::Blocks, hits);
+  for (auto& d : done) d.store(1, std::memory_order_release);
 }
 
 }  // namespace
@@ -216,7 +194,7 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
                     "it casts only the rest",
                     diskFile_.string()));
   }
-  if (ff.processes.split()) exchangeRows(ff.processes, hits, done);
+  if (ff.processes.split()) exchangeCastRows(ff.processes, hits, done);
   {
     // Another solve may have cast the same row meanwhile: the first one kept stays.
     std::lock_guard lock(mutex_);
