@@ -170,9 +170,9 @@ std::vector<Light> DynamicObjectLighting::objectLights() const {
   for (size_t o = 0; o < lobes.size(); ++o) {
     if (!lobes[o].present) continue;
     // A light per lobe, from where the surface facing its way lies (not from the centre: a
-    // wall 0.45 from a 0.3 m cube's face got 12% too little of its light from 0.6).
+    // wall 0.45 from a 0.3 m cube's face got 12% too little of its light from 0.6). Six each,
+    // dark ones too, so that a relighter matches them frame to frame.
     for (size_t k = 0; k < 6; ++k) {
-      if (!(maxComponent(lobes[o].lobes[k]) > 0.0f)) continue;
       Light light;
       light.type = LightType::Object;
       light.position = lobes[o].origins[k];

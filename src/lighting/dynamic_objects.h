@@ -73,9 +73,9 @@ class DynamicObjectLighting : public SurfaceRadiance {
   std::span<const Light> directLights() const override { return pointLights_; }
   std::span<const Color> emissionScales() const override { return solution_.emissionScales(); }
 
-  /// Each object's reflected light as lights (LightType::Object), one per axis lobe that sends
-  /// light, each from the centroid of the surface facing its way; their group is named after
-  /// the object. Shadow rays toward them stop at the object's bounding sphere.
+  /// Each object's reflected light as six lights (LightType::Object), one per axis lobe, each
+  /// from the centroid of the surface facing its way; their group is named after the object.
+  /// Shadow rays toward them stop at the object's bounding sphere.
   std::vector<Light> objectLights() const;
   /// Adds the objects to `mesh` (the solution's lit mesh), a group each: their triangles with
   /// the radiance radiance() gives at their corners.
