@@ -188,16 +188,6 @@ void MethodOptions::resolve(const Scene& scene, const std::string& solutionFile,
   else
     resolveFromSolution(scene, solutionFile, console);
   if (MpiProcesses::rank() == 0) trimCache(console);  // one process keeps the directory
-  const bool splits = settings_.method == "voxel" || settings_.method == "pathtrace" ||
-                      (settings_.method == "patch" &&
-                       settings_.patch.estimator != PatchFormFactorEstimator::Pairwise);
-  if (MpiProcesses::split() && !splits)
-    console.warn(
-        fmt::format("the {} method{} is not split among processes yet: each of the {} "
-                    "ranks computes it whole (the path tracer, the voxel method and the patch "
-                    "method's hemisphere and exact form factors are split)",
-                    settings_.method, settings_.method == "patch" ? " with this estimator" : "",
-                    MpiProcesses::count()));
 }
 
 void MethodOptions::trimCache(Console& console) const {

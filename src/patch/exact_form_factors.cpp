@@ -95,14 +95,6 @@ class ExactKernel {
   float offset_;
 };
 
-// The rows this process computes of a split run's n (all of them in one process).
-std::vector<uint32_t> ownRows(const ProcessShare& processes, size_t n) {
-  std::vector<uint32_t> rows;
-  forEachRowOf(processes, RowShare::Interleaved, n, processes.rank,
-               [&](size_t i) { rows.push_back(uint32_t(i)); });
-  return rows;
-}
-
 }  // namespace
 
 FormFactorRows exactFormFactors(const PatchMesh& mesh, const RayCaster& caster,
@@ -114,7 +106,7 @@ FormFactorRows exactFormFactors(const PatchMesh& mesh, const RayCaster& caster,
   FormFactorRows rows(mesh.size());
   // Split among processes: each every count-th row (a row's cost follows what its patch sees,
   // which varies along the table), then every row to every process.
-  const std::vector<uint32_t> mine = ownRows(settings.processes, rows.size());
+  const std::vector<uint32_t> mine = rowsOf(settings.processes, RowShare::Interleaved, rows.size());
   ProgressTicker ticker(progress, mine.size());
   tbb::parallel_for(size_t(0), mine.size(), [&](size_t k) {
     if (ticker.cancelled()) return;
@@ -148,7 +140,8 @@ std::optional<ExactColumns> exactColumns(const PatchMesh& mesh, const RayCaster&
   if (std::find(missing.begin(), missing.end(), 1) != missing.end()) {
     const ExactKernel kernel(mesh, caster);
     // Split among processes as exactFormFactors does (all hold the known rows already).
-    const std::vector<uint32_t> mine = ownRows(settings.processes, mesh.size());
+    const std::vector<uint32_t> mine =
+        rowsOf(settings.processes, RowShare::Interleaved, mesh.size());
     tbb::parallel_for(size_t(0), mine.size(), [&](size_t k) {
       const uint32_t i = mine[k];
       if (!missing[i]) return;

@@ -17,6 +17,7 @@
 #include "geometry/sampling.h"
 #include "patch/form_factor_estimators.h"
 #include "patch/point_polygon_form_factor.h"
+#include "patch/row_exchange.h"
 #include "render/progress_ticker.h"
 
 namespace rad {
@@ -118,9 +119,13 @@ FormFactorRows pairwiseFormFactors(const PatchMesh& mesh, const RayCaster& caste
     double mean;
   };
   std::vector<std::vector<PairValue>> upper(n);
-  ProgressTicker ticker(progress, n);
-  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+  // Split among processes: each every count-th row (row i has n - i - 1 pairs: blocks would
+  // leave the first rank the most), then every row to every process.
+  const std::vector<uint32_t> mine = rowsOf(settings.processes, RowShare::Interleaved, n);
+  ProgressTicker ticker(progress, mine.size());
+  tbb::parallel_for(size_t(0), mine.size(), [&](size_t k) {
     if (ticker.cancelled()) return;
+    const size_t i = mine[k];
     Rng rng(settings.seed, i);
     for (uint32_t j = uint32_t(i) + 1; j < n; ++j) {
       if (!facing(mesh, uint32_t(i), j)) continue;
@@ -132,6 +137,7 @@ FormFactorRows pairwiseFormFactors(const PatchMesh& mesh, const RayCaster& caste
     ticker.tick();
   });
   ticker.throwIfCancelled();
+  if (settings.processes.split()) exchangeRows(settings.processes, RowShare::Interleaved, upper);
   // Row r gets its columns i < r (in increasing i) before its own j > r: sorted, as fromRows
   // takes them.
   FormFactorRows rows(n);

@@ -27,6 +27,13 @@ void forEachRowOf(const ProcessShare& processes, RowShare share, size_t n, int r
   }
 }
 
+/// The rows of n that this process computes (all of them in one process), in increasing order.
+inline std::vector<uint32_t> rowsOf(const ProcessShare& processes, RowShare share, size_t n) {
+  std::vector<uint32_t> rows;
+  forEachRowOf(processes, share, n, processes.rank, [&](size_t i) { rows.push_back(uint32_t(i)); });
+  return rows;
+}
+
 /// Every process's own rows (as `share` says) into every process.
 template <typename Entry>
 void exchangeRows(const ProcessShare& processes, RowShare share,

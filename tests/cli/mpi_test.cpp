@@ -100,7 +100,7 @@ TEST(Mpi, SplitVoxelSolveMatchesOneProcess) {
 TEST(Mpi, SplitPatchSolveIsTheOneProcessSolve) {
   // The hemisphere rows cast in blocks and exchanged: every rank holds the rows one process
   // casts (each row's rays are its own stream's), so the export is the same, byte for byte;
-  // Jacobi's sweeps computed in blocks and gathered likewise, and the exact estimator's rows.
+  // Jacobi's sweeps computed in blocks and gathered likewise, and the other estimators' rows.
   if (!mpiAvailable()) GTEST_SKIP() << "built without MPI or no mpirun";
   const fs::path dir = freshDir("mpi_patch");
   auto solve = [&](const std::string& name) {
@@ -125,12 +125,15 @@ TEST(Mpi, SplitPatchSolveIsTheOneProcessSolve) {
               readBytes((dir / ("jacobi_np" + ranks + ".csv")).string()))
         << ranks << " ranks, Jacobi";
   }
-  // The exact estimator's rows, every count-th a rank, exchanged likewise.
-  const std::string exact = " --ff-estimator exact --patches 300 --ff-rays 16";
-  ASSERT_EQ(std::system((solve("exact_one") + exact).c_str()), 0);
-  ASSERT_EQ(std::system((kMpirun + "-np 3 " + solve("exact_np3") + exact).c_str()), 0);
-  EXPECT_EQ(readBytes((dir / "exact_one.csv").string()),
-            readBytes((dir / "exact_np3.csv").string()));
+  // The exact and pairwise estimators' rows, every count-th a rank, exchanged likewise.
+  for (const std::string estimator : {"exact", "pairwise"}) {
+    const std::string flags = " --ff-estimator " + estimator + " --patches 300 --ff-rays 16";
+    ASSERT_EQ(std::system((solve(estimator + "_one") + flags).c_str()), 0);
+    ASSERT_EQ(std::system((kMpirun + "-np 3 " + solve(estimator + "_np3") + flags).c_str()), 0);
+    EXPECT_EQ(readBytes((dir / (estimator + "_one.csv")).string()),
+              readBytes((dir / (estimator + "_np3.csv")).string()))
+        << estimator;
+  }
 }
 
 TEST(Mpi, KilledRankEndsTheJobWithoutOutput) {
