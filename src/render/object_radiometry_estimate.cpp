@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <glm/gtc/constants.hpp>
+#include <span>
 
 #include "core/memory_usage.h"
 #include "geometry/sampling.h"
@@ -93,10 +94,14 @@ std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, const
                 fmt::format("{} points on each of {} objects", n, surfaces.size()),
                 "use fewer points per object");
   std::vector<Color> irradiance(totalPoints, Color(0.0f)), radiosity(totalPoints, Color(0.0f));
-  ProgressTicker ticker(progress, totalPoints);
+  // Split among processes: every count-th point a process, the points' values added up after
+  // (each point is one process's, the others' zeros: exact).
+  const ProcessShare& share = settings.processes;
+  ProgressTicker ticker(progress, totalPoints / size_t(share.count));
   tbb::parallel_for(tbb::blocked_range<size_t>(0, totalPoints), [&](const auto& range) {
     for (size_t index = range.begin(); index != range.end(); ++index) {
       if (ticker.cancelled()) return;
+      if (index % size_t(share.count) != size_t(share.rank)) continue;
       const ObjectSurface& s = surfaces[index / n];
       if (s.triangles.empty()) continue;
       Rng rng(settings.seed, uint64_t(index));
@@ -112,6 +117,9 @@ std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, const
     }
   });
   ticker.throwIfCancelled();
+  if (share.split())
+    for (std::vector<Color>* values : {&irradiance, &radiosity})
+      share.sumAll(std::span<float>(reinterpret_cast<float*>(values->data()), 3 * values->size()));
 
   std::vector<ObjectRadiometry> result(surfaces.size());
   for (size_t o = 0; o < surfaces.size(); ++o) {
@@ -127,7 +135,7 @@ std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, const
     result[o].meanRadiosity = Color(b / double(n));
   }
   if (stats) {
-    stats->rays = caster.raysCast() - raysBefore;
+    stats->rays = share.sumCounts(caster.raysCast() - raysBefore);
     stats->paths = uint64_t(totalPoints) * uint64_t(settings.samplesPerPixel);
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

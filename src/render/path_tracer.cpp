@@ -8,7 +8,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <optional>
@@ -140,14 +139,7 @@ void gatherSplitRender(const ProcessShare& share, PathTracedImage& result) {
   static_assert(sizeof(Color) == 3 * sizeof(float), "pixels are summed as floats");
   share.sumAll(std::span<float>(reinterpret_cast<float*>(result.image.pixels.data()),
                                 3 * result.image.pixels.size()));
-  const std::vector<char> rays = share.gatherAll(std::span<const char>(
-      reinterpret_cast<const char*>(&result.stats.rays), sizeof(result.stats.rays)));
-  result.stats.rays = 0;
-  for (size_t at = 0; at + sizeof(uint64_t) <= rays.size(); at += sizeof(uint64_t)) {
-    uint64_t r = 0;
-    std::memcpy(&r, rays.data() + at, sizeof r);
-    result.stats.rays += r;
-  }
+  result.stats.rays = share.sumCounts(result.stats.rays);
 }
 
 }  // namespace

@@ -176,26 +176,28 @@ TEST(Mpi, BenchComparesTheSplitWithOneProcess) {
 namespace rad {
 namespace {
 
-// The path tracer split among 2 and 3 processes (every count-th tile each, added up): the same
-// picture as one process, bit for bit, and the same rays counted.
+// The path tracer split among 2 and 3 processes (every count-th tile each, and every count-th of
+// the per-object estimate's points, added up): the same picture as one process, bit for bit, the
+// same per-object numbers and the same rays counted.
 TEST(Mpi, SplitPathTracedRenderIsTheSamePicture) {
   if (!mpiAvailable()) GTEST_SKIP() << "built without MPI or no mpirun";
   const fs::path dir = freshDir("mpi_pathtrace");
   auto render = [&](const std::string& name) {
     return kBinary + " --threads 1 -q render cornell --method pathtrace --spp 4 --width 80 " +
-           "--height 60 --cache-dir none --object-points 0 -o " + (dir / (name + ".pfm")).string() +
+           "--height 60 --cache-dir none --object-points 16 -o " + (dir / (name + ".pfm")).string() +
            " --stats " + (dir / (name + ".json")).string();
   };
   ASSERT_EQ(std::system(render("one").c_str()), 0);
   const std::string picture = readBytes((dir / "one.pfm").string());
-  const auto rays = readJson((dir / "one.json").string())["counts"]["rays"].get<uint64_t>();
+  const nlohmann::json one = readJson((dir / "one.json").string());
   for (const int ranks : {2, 3}) {
     const std::string name = "np" + std::to_string(ranks);
     ASSERT_EQ(std::system((kMpirun + "-np " + std::to_string(ranks) + " " + render(name)).c_str()),
               0);
     EXPECT_TRUE(readBytes((dir / (name + ".pfm")).string()) == picture) << ranks;
     const nlohmann::json stats = readJson((dir / (name + ".json")).string());
-    EXPECT_EQ(stats["counts"]["rays"].get<uint64_t>(), rays) << ranks;
+    EXPECT_EQ(stats["counts"]["rays"], one["counts"]["rays"]) << ranks;
+    EXPECT_EQ(stats["objects"], one["objects"]) << ranks;
     EXPECT_EQ(stats["distributed"]["ranks"].get<int>(), ranks);
   }
 }
