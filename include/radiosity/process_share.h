@@ -5,8 +5,6 @@
 // the same sum, whatever the timing.
 
 #include <cstddef>
-#include <cstdint>
-#include <cstring>
 #include <functional>
 #include <span>
 #include <utility>
@@ -24,19 +22,6 @@ struct ProcessShare {
   std::function<std::vector<char>(std::span<const char> bytes)> gatherAll;
 
   bool split() const { return count > 1; }
-  /// `value` summed over the processes (its own when count is 1). Called by every process.
-  uint64_t sumCounts(uint64_t value) const {
-    if (!split()) return value;
-    const std::vector<char> all =
-        gatherAll(std::span<const char>(reinterpret_cast<const char*>(&value), sizeof value));
-    uint64_t sum = 0;
-    for (size_t at = 0; at + sizeof value <= all.size(); at += sizeof value) {
-      uint64_t v = 0;
-      std::memcpy(&v, all.data() + at, sizeof v);
-      sum += v;
-    }
-    return sum;
-  }
   /// Rank r's block [begin, end) of n items: the blocks of the ranks in order, their sizes
   /// differing by one at most.
   std::pair<size_t, size_t> block(size_t n, int r) const {

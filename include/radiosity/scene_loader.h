@@ -9,7 +9,8 @@
 namespace rad {
 
 /// Loads a built-in scene ("cornell", "cornell-spot", "room:N", "atrium:N", "atrium-textured:N")
-/// or a file, chosen by its extension. Throws InputError naming the file (and line or JSON path) on any bad input.
+/// or a file, chosen by its extension. Throws InputError naming the file (and line or JSON path)
+/// on any bad input.
 /// Non-fatal problems (degenerate triangles dropped, ...) are left in Scene::warnings.
 Scene loadScene(const std::string& nameOrPath);
 

@@ -10,7 +10,6 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
@@ -112,20 +111,13 @@ class ModelBuilder {
   /// TEXCOORD_1, made on first use.
   int lightmapMaterial(const GlbLightmap& lightmap, float exposureEV) {
     if (lightmapMaterial_ >= 0) return lightmapMaterial_;
-    const Image& image = lightmap.radiance;
-    std::vector<uint8_t> rgb;
-    rgb.reserve(image.pixels.size() * 3);
-    for (const Color& c : image.pixels) {
-      const std::array<uint8_t, 3> p = toneMapPixel(c, exposureEV);
-      rgb.insert(rgb.end(), p.begin(), p.end());
-    }
     // Linear filtering without mipmaps: a mipmap level would blend neighbouring charts.
     tinygltf::Sampler sampler;
     sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
     sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
     sampler.wrapS = sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
     const int texture =
-        embedTexture("lightmap", encodePng(image.width, image.height, rgb), sampler);
+        embedTexture("lightmap", encodeTonemappedPng(lightmap.radiance, exposureEV), sampler);
     return lightmapMaterial_ = unlitMaterial("lightmap", Color(1.0f), texture, 1);
   }
 

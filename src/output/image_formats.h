@@ -20,6 +20,9 @@ void writePng(const std::filesystem::path& file, const Image& image, float expos
 /// 8-bit RGB texels (`width` x `height`, rows from the top) encoded as PNG bytes. Throws
 /// std::runtime_error if encoding fails.
 std::string encodePng(int width, int height, const std::vector<uint8_t>& rgb);
+/// `image` tone mapped (toneMapPixel at exposureEV) and encoded as PNG bytes. Throws as
+/// encodePng.
+std::string encodeTonemappedPng(const Image& image, float exposureEV);
 
 /// OpenEXR scanline file with R, G, B channels of the given type. Throws std::runtime_error on
 /// a write failure.

@@ -32,8 +32,7 @@ std::string encodePng(int width, int height, const std::vector<uint8_t>& rgb) {
   return std::string(encoded.begin(), encoded.end());
 }
 
-void writePng(const std::filesystem::path& file, const Image& image, float exposureEV,
-              const std::string& displayName) {
+std::string encodeTonemappedPng(const Image& image, float exposureEV) {
   std::vector<uint8_t> rgb(image.pixels.size() * 3);
   for (size_t i = 0; i < image.pixels.size(); ++i) {
     const std::array<uint8_t, 3> p = toneMapPixel(image.pixels[i], exposureEV);
@@ -41,10 +40,15 @@ void writePng(const std::filesystem::path& file, const Image& image, float expos
     rgb[3 * i + 1] = p[1];
     rgb[3 * i + 2] = p[2];
   }
+  return encodePng(image.width, image.height, rgb);
+}
+
+void writePng(const std::filesystem::path& file, const Image& image, float exposureEV,
+              const std::string& displayName) {
   // Encoding to memory first keeps stb's FILE handling out and lets us check the write.
   std::string encoded;
   try {
-    encoded = encodePng(image.width, image.height, rgb);
+    encoded = encodeTonemappedPng(image, exposureEV);
   } catch (const std::runtime_error&) {
     throw std::runtime_error("cannot write '" + displayName + "': PNG encoding failed");
   }

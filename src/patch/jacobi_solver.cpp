@@ -5,8 +5,8 @@
 #include <tbb/parallel_reduce.h>
 
 #include <chrono>
-#include <cstring>
 
+#include "core/process_collectives.h"
 #include "patch/patch_solver_terms.h"
 #include "patch/patch_solvers.h"
 
@@ -23,41 +23,8 @@ double relativeResidual(const FormFactorTable& table, const PatchSystem& system,
   return norm > 0.0 ? sum / norm : 0.0;
 }
 
-namespace {
-
-// A split sweep's end: every process's block of H and of the next B, gathered into every
-// process (each element as its process computed it), and the change of B summed in rank order.
-double exchangeSweep(const ProcessShare& share, std::vector<Color>& irradiance,
-                     std::vector<Color>& next, double change) {
-  const auto [first, last] = share.block(next.size());
-  std::vector<char> mine(sizeof change + 2 * (last - first) * sizeof(Color));
-  std::memcpy(mine.data(), &change, sizeof change);
-  std::memcpy(mine.data() + sizeof change, irradiance.data() + first,
-              (last - first) * sizeof(Color));
-  std::memcpy(mine.data() + sizeof change + (last - first) * sizeof(Color), next.data() + first,
-              (last - first) * sizeof(Color));
-  const std::vector<char> all = share.gatherAll(mine);
-  double total = 0.0;
-  size_t at = 0;
-  for (int rank = 0; rank < share.count; ++rank) {
-    const auto [begin, end] = share.block(next.size(), rank);
-    double c = 0.0;
-    std::memcpy(&c, all.data() + at, sizeof c);
-    total += c;
-    at += sizeof c;
-    std::memcpy(irradiance.data() + begin, all.data() + at, (end - begin) * sizeof(Color));
-    at += (end - begin) * sizeof(Color);
-    std::memcpy(next.data() + begin, all.data() + at, (end - begin) * sizeof(Color));
-    at += (end - begin) * sizeof(Color);
-  }
-  return total;
-}
-
-}  // namespace
-
 PatchSolution solveJacobi(const FormFactorTable& table, const PatchSystem& s,
                           const PatchSolverControl& control, const ProgressCallback& progress) {
-  static_assert(sizeof(Color) == 3 * sizeof(float), "radiosity is exchanged as floats");
   const auto start = std::chrono::steady_clock::now();
   PatchSolution out;
   const double norm = sourceNorm(s);
@@ -80,7 +47,11 @@ PatchSolution solveJacobi(const FormFactorTable& table, const PatchSystem& s,
           return acc;
         },
         std::plus<double>());
-    if (split) change = exchangeSweep(*control.processes, out.irradiance, next, change);
+    if (split) {  // every process's block of H and of the next B, and the change summed
+      gatherBlocks(*control.processes, out.irradiance);
+      gatherBlocks(*control.processes, next);
+      change = sumOverProcesses(*control.processes, change);
+    }
     out.radiosity.swap(next);
     if (endSweep(out, change, norm, control, progress)) break;
   }

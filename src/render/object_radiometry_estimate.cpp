@@ -11,9 +11,9 @@
 #include <algorithm>
 #include <chrono>
 #include <glm/gtc/constants.hpp>
-#include <span>
 
 #include "core/memory_usage.h"
+#include "core/process_collectives.h"
 #include "geometry/sampling.h"
 #include "render/path_integrator.h"
 #include "render/path_tracer_settings.h"
@@ -117,9 +117,8 @@ std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, const
     }
   });
   ticker.throwIfCancelled();
-  if (share.split())
-    for (std::vector<Color>* values : {&irradiance, &radiosity})
-      share.sumAll(std::span<float>(reinterpret_cast<float*>(values->data()), 3 * values->size()));
+  sumOverProcesses(share, irradiance);
+  sumOverProcesses(share, radiosity);
 
   std::vector<ObjectRadiometry> result(surfaces.size());
   for (size_t o = 0; o < surfaces.size(); ++o) {
@@ -135,7 +134,7 @@ std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, const
     result[o].meanRadiosity = Color(b / double(n));
   }
   if (stats) {
-    stats->rays = share.sumCounts(caster.raysCast() - raysBefore);
+    stats->rays = sumOverProcesses(share, caster.raysCast() - raysBefore);
     stats->paths = uint64_t(totalPoints) * uint64_t(settings.samplesPerPixel);
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

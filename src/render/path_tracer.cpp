@@ -11,9 +11,9 @@
 #include <filesystem>
 #include <mutex>
 #include <optional>
-#include <span>
 
 #include "core/checksummed_file.h"
+#include "core/process_collectives.h"
 #include "geometry/sampling.h"
 #include "render/camera_rays.h"
 #include "render/path_integrator.h"
@@ -133,15 +133,6 @@ class TileCheckpoint {
   std::string warning_;
 };
 
-// The processes' tiles, added up in every process (every pixel is one process's, the others'
-// zeros: the sum is that pixel exactly), and their rays.
-void gatherSplitRender(const ProcessShare& share, PathTracedImage& result) {
-  static_assert(sizeof(Color) == 3 * sizeof(float), "pixels are summed as floats");
-  share.sumAll(std::span<float>(reinterpret_cast<float*>(result.image.pixels.data()),
-                                3 * result.image.pixels.size()));
-  result.stats.rays = share.sumCounts(result.stats.rays);
-}
-
 }  // namespace
 
 PathTracedImage renderPathTraced(const Scene& scene, const Camera& camera,
@@ -194,7 +185,9 @@ PathTracedImage renderPathTraced(const Scene& scene, const RayCaster& caster, co
   checkpoint.remove();
 
   result.stats.rays = caster.raysCast() - raysBefore;
-  if (share.split()) gatherSplitRender(share, result);
+  // The processes' tiles added up (every pixel is one process's), and their rays.
+  sumOverProcesses(share, result.image.pixels);
+  result.stats.rays = sumOverProcesses(share, result.stats.rays);
   result.stats.paths =
       uint64_t(camera.width) * uint64_t(camera.height) * uint64_t(settings.samplesPerPixel);
   result.stats.seconds =

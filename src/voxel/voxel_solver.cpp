@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "core/memory_usage.h"
+#include "core/process_collectives.h"
 #include "core/rng.h"
 #include "lighting/direct_lighting.h"
 #include "render/progress_ticker.h"
@@ -47,13 +48,6 @@ Vec3 surfacePointOf(const VoxelGrid& grid, const RayCaster& caster, size_t entry
   if (!hit.valid() || !hit.frontFace || glm::dot(hit.geometricNormal, n) < kMinAgreement)
     return centroid;
   return probe.origin + hit.distance * probe.direction;
-}
-
-// Every process's colours replaced by their sum over the processes (nothing for one process).
-void sumOverProcesses(const ProcessShare& processes, std::vector<Color>& colours) {
-  if (!processes.split()) return;
-  static_assert(sizeof(Color) == 3 * sizeof(float));
-  processes.sumAll(std::span<float>(reinterpret_cast<float*>(colours.data()), 3 * colours.size()));
 }
 
 // Direct irradiance at every entry's surface point (surfacePointOf): the analytic lights once

@@ -1,14 +1,14 @@
 // The .glb files `radiosity solve --export` writes, through the Khronos glTF validator (the
 // gltf-validator npm package): the lightmap atlas export, the vertex-colour export and the
 // textured one. Fails on any error the validator reports; its warnings and infos are printed.
-// Usage: node validate_exports.mjs BINARY SOURCE_DIR OUT_DIR   (the .glb files go to OUT_DIR)
+// Usage: node validate_exports.mjs BINARY WEB_DIR OFFICE_SCENE OUT_DIR   (the .glb files go to OUT_DIR)
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
 
-const [binary, sourceDir, outDir] = process.argv.slice(2);
-const require = createRequire(path.resolve(sourceDir, 'web', 'package.json'));
+const [binary, webDir, office, outDir] = process.argv.slice(2);
+const require = createRequire(path.resolve(webDir, 'package.json'));
 const validator = require('gltf-validator');
 mkdirSync(outDir, { recursive: true });
 
@@ -17,10 +17,9 @@ const exports = [
   ['cornell_voxel_lightmap.glb', ['cornell', '--method', 'voxel', '--voxels', '20000',
     '--sphere-radius', '6', '--lightmap', '256']],
   ['cornell_colors.glb', ['cornell', '--method', 'patch', '--patches', '600']],
-  ['office_textured.glb', [path.join(sourceDir, 'scenes/office.json'), '--method', 'patch',
-    '--patches', '2000']],
-  ['office_lightmap.glb', [path.join(sourceDir, 'scenes/office.json'), '--method', 'patch',
-    '--patches', '2000', '--lightmap', '1024']],
+  ['office_textured.glb', [office, '--method', 'patch', '--patches', '2000']],
+  ['office_lightmap.glb', [office, '--method', 'patch', '--patches', '2000',
+    '--lightmap', '1024']],
 ];
 
 let failed = false;

@@ -147,9 +147,11 @@ TEST(BuiltinScenes, TexturedAtriumShowsItsPatternAtTheSameMeanReflectance) {
     }
   const Color mean = Color(sum / double(n * n));
   const Color expected = plain.materials[plain.faces[floorFace].material].rho;
+  // applyTexture sets the factor to rho over the texture's mean, and the floor holds 7 x 12 whole
+  // repeats of it: the grid's mean is rho up to its sampling of the tiles' edges.
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], expected[c], 0.02f * expected[c]) << c;
-  // The pattern: 0.5 m tiles, neighbours of the other tone (the centres of two adjacent tiles
-  // differ by more than a quarter).
+  // The pattern: 0.5 m tiles, neighbours of the other tone (makeFloorTiles' tones have
+  // luminances 0.93 and 0.68, 27% apart, the centres of two adjacent tiles more than a quarter).
   auto at = [&](float x, float z) {
     uint32_t triangle = 0;
     const Vec2 b = textured.locateOnFace(floorFace, Vec3(x, 0.0f, z), triangle);
