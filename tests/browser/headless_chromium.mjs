@@ -46,3 +46,13 @@ export function pictureBlocks(tab, n = 12) {
     return out.map((v, b) => v / count[b]);
   }, n);
 }
+
+// How the viewer page fared: its window.viewerState, and the problems to fail on (errors it
+// logged, errors it counted).
+export async function viewerOutcome(tab, errors) {
+  const state = await tab.evaluate(() => window.viewerState);
+  const problems = [];
+  if (errors.length) problems.push(`the page logged errors: ${errors.join('; ')}`);
+  if (state.errors) problems.push('the page reported errors');
+  return { state, problems };
+}

@@ -5,7 +5,7 @@
 import { mkdirSync } from 'node:fs';
 import path from 'node:path';
 
-import { launchChromium, openTab, pictureBlocks } from './headless_chromium.mjs';
+import { launchChromium, openTab, pictureBlocks, viewerOutcome } from './headless_chromium.mjs';
 import { startServer } from './serve_process.mjs';
 
 const [binary, webDir, sceneFile, outDir] = process.argv.slice(2);
@@ -57,10 +57,9 @@ try {
   await page.click('#play');
   await page.waitForFunction(() => window.viewerState.objectTime > 0.3, { timeout: 60000 });
   await page.click('#play');
-  if (errors.length) fail(`the page logged errors: ${errors.join('; ')}`);
-  const state = await page.evaluate(() => window.viewerState);
+  const { state, problems } = await viewerOutcome(page, errors);
   console.log(`${state.objectUpdates} object updates, time ${state.objectTime.toFixed(2)} s, ${state.errors} errors`);
-  if (state.errors) fail('the page reported errors');
+  problems.forEach(fail);
 } catch (error) {
   fail(error.stack || String(error));
 } finally {

@@ -5,7 +5,7 @@
 import { mkdirSync } from 'node:fs';
 import path from 'node:path';
 
-import { launchChromium, openTab, pictureBlocks } from './headless_chromium.mjs';
+import { launchChromium, openTab, pictureBlocks, viewerOutcome } from './headless_chromium.mjs';
 import { startServer } from './serve_process.mjs';
 
 const [binary, webDir, outDir] = process.argv.slice(2);
@@ -92,10 +92,9 @@ try {
   const legend = await page.evaluate(() => document.getElementById('legend-max').textContent);
   console.log(`false colour up to ${legend}`);
   if (!(parseFloat(legend) > 0)) fail(`false-colour legend '${legend}'`);
-  if (errors.length) fail(`the page logged errors: ${errors.join('; ')}`);
-  const state = await page.evaluate(() => window.viewerState);
+  const { state, problems } = await viewerOutcome(page, errors);
   console.log(`relight ${state.lastRelightMs} ms, ${state.frames} frames, ${state.errors} errors`);
-  if (state.errors) fail('the page reported errors');
+  problems.forEach(fail);
 } catch (error) {
   fail(error.stack || String(error));
 } finally {
