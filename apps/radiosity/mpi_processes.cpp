@@ -1,5 +1,6 @@
 #include "mpi_processes.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <vector>
@@ -56,6 +57,20 @@ void sumInFixedTree(std::span<float> values) {
   summing += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Integers summed by MPI_Allreduce, whose order does not matter for them; in chunks of at most
+// 2^28 (a count is an int). Counted as sent to the tree's root and back.
+void sumIntegersInPlace(std::span<int64_t> values) {
+  const auto start = std::chrono::steady_clock::now();
+  constexpr size_t kChunk = size_t(1) << 28;
+  for (size_t at = 0; at < values.size(); at += kChunk) {
+    const std::span<int64_t> chunk = values.subspan(at, std::min(kChunk, values.size() - at));
+    MPI_Allreduce(MPI_IN_PLACE, chunk.data(), int(chunk.size()), MPI_INT64_T, MPI_SUM,
+                  MPI_COMM_WORLD);
+    communicated += 2 * chunk.size() * sizeof(int64_t);
+  }
+  summing += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 // Every rank's bytes, concatenated in rank order, in every rank (a rank's part at most 2 GB: an
 // int count).
 std::vector<char> gatherInRankOrder(std::span<const char> bytes) {
@@ -107,6 +122,7 @@ ProcessShare MpiProcesses::share() {
 #ifdef RADIOSITY_HAS_MPI
   if (worldCount > 1) {
     share.sumAll = sumInFixedTree;
+    share.sumIntegers = sumIntegersInPlace;
     share.gatherAll = gatherInRankOrder;
   }
 #endif

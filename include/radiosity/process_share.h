@@ -5,6 +5,7 @@
 // the same sum, whatever the timing.
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <span>
 #include <utility>
@@ -17,6 +18,10 @@ struct ProcessShare {
   /// Replaces `values` in every process by the sum over the processes (in a fixed order). Called
   /// by every process with arrays of one length. Empty when count is 1.
   std::function<void(std::span<float> values)> sumAll;
+  /// Replaces `values` in every process by the sum over the processes: integers, so the sum is
+  /// exact and the order does not matter. Called by every process with arrays of one length.
+  /// Empty when count is 1.
+  std::function<void(std::span<int64_t> values)> sumIntegers;
   /// Every process's `bytes`, concatenated in rank order, in every process. Called by every
   /// process. Empty when count is 1.
   std::function<std::vector<char>(std::span<const char> bytes)> gatherAll;

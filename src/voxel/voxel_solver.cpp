@@ -19,6 +19,7 @@
 #include "lighting/direct_lighting.h"
 #include "render/progress_ticker.h"
 #include "voxel/direction_set.h"
+#include "voxel/exact_color_sum.h"
 #include "voxel/half_float.h"
 #include "voxel/voxel_checkpoint.h"
 
@@ -167,27 +168,63 @@ struct SweepDirections {
   std::unique_ptr<const DirectionSet> coarser;
 };
 
-// One iteration, one bounce: the direction pairs in turn, each swept by all threads (over bands
-// of its lines), so that every side's sum runs over the pairs in the same order for any thread
-// count.
-// Split among processes, each sweeps a fixed block of the direction pairs (the same pairs every
-// iteration: a pair's lines shift by its own seed, whoever sweeps it), and the processes' sums
-// are added in a fixed order.
+// The direction pairs of an iteration go in fixed blocks, whatever the number of processes:
+// each block's light is gathered in floats, then added exactly (ExactColorSum), so one process
+// and any split of the blocks give the same bounce, bit for bit. A block is 8 pairs at least
+// (its exact addition, a pass over the sides, then costs about a twentieth of its sweeps), and
+// their count the largest of these that allows: counts that share out evenly among many
+// process counts (240: 2, 3, 4, 5, 6, 8, 10, 12, 15 or 16 processes; 64, to within 1/4 block).
+constexpr size_t kPairsPerBlock = 8;
+constexpr std::array<size_t, 10> kBlockCounts = {240, 120, 60, 48, 24, 12, 6, 4, 2, 1};
+
+size_t pairBlocks(size_t pairs) {
+  if (pairs == 0) return 0;
+  for (size_t count : kBlockCounts)
+    if (count * kPairsPerBlock <= pairs) return count;
+  return 1;
+}
+
+// The counts' unit, 2^-58 of the power of two above the largest light sent: a side gathers at
+// most that light times the sum of cos x solid angle / pi over its hemisphere's directions
+// (about 1; above 1 by the sphere's error), so every sum stays below 2^60 counts, with room to
+// spare below the 2^62 kept, and a side that gathers a millionth of the largest light is
+// counted in units of 3e-12 of its value.
+float exactUnit(const DiscreteLineSweep::Source& source) {
+  uint16_t largest = 0;  // half floats of one sign order as their bits
+  for (const DiscreteLineSweep::SentLight& side : source.sides)
+    largest = std::max({largest, side.radiosity[0], side.radiosity[1], side.radiosity[2]});
+  int exponent = 0;
+  std::frexp(fromHalf(largest) * source.scale, &exponent);
+  return std::ldexp(1.0f, exponent - 58);
+}
+
+// One iteration, one bounce: the blocks of direction pairs in turn, each pair swept by all
+// threads (over bands of its lines), so that every side's float sum runs over a block's pairs in
+// the same order for any thread count. Split among processes, each sweeps its share of the
+// blocks (the same ones every iteration: a pair's lines shift by its own seed, whoever sweeps
+// it), and the exact sums are added.
 void gatherAllDirections(const DirectionSet& directions, DiscreteLineSweep& sweep,
                          std::vector<Color>& gathered, const DiscreteLineSweep::Source& source,
                          const VoxelSolverSettings& settings, int iteration,
                          ProgressTicker& ticker) {
-  std::fill(gathered.begin(), gathered.end(), Color(0.0f));
-  const auto [begin, end] = settings.processes.block(directions.pairCount());
-  for (size_t k = begin; k < end; ++k) {
-    ticker.throwIfCancelled();
-    const DiscreteDirection& d = directions.pairFirst(k);
-    const LineOffset offset =
-        settings.jitterLines ? lineOffset(d, settings.seed, iteration, k) : LineOffset{};
-    sweep.sweepPair(d, source, gathered, offset);
-    ticker.tick();
+  const size_t pairs = directions.pairCount();
+  const size_t blocks = pairBlocks(pairs);
+  ExactColorSum sum(gathered.size(), exactUnit(source));
+  const auto [firstBlock, lastBlock] = settings.processes.block(blocks);
+  for (size_t b = firstBlock; b < lastBlock; ++b) {
+    std::fill(gathered.begin(), gathered.end(), Color(0.0f));
+    for (size_t k = pairs * b / blocks; k < pairs * (b + 1) / blocks; ++k) {
+      ticker.throwIfCancelled();
+      const DiscreteDirection& d = directions.pairFirst(k);
+      const LineOffset offset =
+          settings.jitterLines ? lineOffset(d, settings.seed, iteration, k) : LineOffset{};
+      sweep.sweepPair(d, source, gathered, offset);
+      ticker.tick();
+    }
+    sum.add(gathered);
   }
-  sumOverProcesses(settings.processes, gathered);
+  sum.sumOverProcesses(settings.processes);
+  sum.store(gathered);
 }
 
 // A colour in three 24-bit floats, 9 bytes: a float rounded to its 15 high bits of mantissa
@@ -343,6 +380,7 @@ class SideLight {
 
 uint64_t voxelSolverBytesPerSide(const VoxelSolverSettings& settings) {
   return sizeof(Color) +                                // the bounce being gathered
+         ExactColorSum::kBytesPerColor +                // and its exact sum
          sizeof(Float24Color) +                         // irradiance so far
          sizeof(DiscreteLineSweep::SentLight) +         // light sent
          (settings.normalize ? sizeof(uint16_t) : 0) +  // normalization weights
@@ -437,8 +475,9 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   const size_t laterIterations =
       size_t(std::max(settings.iterations - std::max(firstIteration, 1), 0));
   const auto pairsOf = [&](const DirectionSet& d) {
-    const auto [begin, end] = settings.processes.block(d.pairCount());
-    return end - begin;
+    const size_t pairs = d.pairCount(), blocks = pairBlocks(pairs);
+    const auto [first, last] = settings.processes.block(blocks);
+    return pairs * last / blocks - pairs * first / blocks;
   };
   ProgressTicker ticker(progress, (firstIteration == 0 ? pairsOf(directions) : 0) +
                                       pairsOf(laterDirections) * laterIterations);
