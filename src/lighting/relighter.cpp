@@ -133,17 +133,20 @@ LitPatches Relighter::State::lightPatches(std::span<const Light> lights, const R
   return lit;
 }
 
-// A new quadtree: its rows from the master table, its system, and the state anchored at the old
-// solution carried over to the new patches.
+// A new quadtree: its table (the last one updated for the patches that split or merged, their
+// rows from the master table), its system, and the state anchored at the old solution carried
+// over to the new patches.
 void Relighter::State::changeMesh(LitPatches lit) {
   const std::vector<Color> guess =
       carryOver(*m.mesh, m.solution.radiosity, *lit.mesh, m.settings.refineLevels);
   transfer.reset();  // made for the old patches
+  const std::unique_ptr<PatchMesh> before = std::move(m.mesh);
+  const std::vector<uint32_t> beforeExact = m.ff.exactColumns;
   m.mesh = std::move(lit.mesh);
   m.lightDirect = std::move(lit.direct);
   m.chooseFormFactorSettings();
   m.stats.warnings.clear();
-  m.table = m.formFactors(*m.model->caster, {});
+  m.table = m.formFactorsAfter(*before, beforeExact, *m.model->caster);
   stats.rowsComputed = m.stats.rowsComputed;
   stats.rowsReused = m.stats.rowsReused;
   unsavedRows += stats.rowsComputed;

@@ -122,16 +122,19 @@ FormFactorRows exactFormFactors(const PatchMesh& mesh, const RayCaster& caster,
 
 std::optional<ExactColumns> exactColumns(const PatchMesh& mesh, const RayCaster& caster,
                                          const FormFactorSettings& settings,
-                                         const ExactRowStore* store) {
+                                         const ExactRowStore* store,
+                                         std::span<const uint8_t> wanted) {
   const std::vector<uint32_t>& columns = settings.exactColumns;
   if (columns.empty()) return std::nullopt;
   ExactColumns exact;
   exact.isExact.assign(mesh.size(), 0);
   for (const uint32_t j : columns) exact.isExact[j] = 1;
   exact.toExact.resize(mesh.size());
-  std::vector<uint8_t> missing(mesh.size(), 1);
+  std::vector<uint8_t> missing(wanted.begin(), wanted.end());
+  if (wanted.empty()) missing.assign(mesh.size(), 1);
   if (store)
     tbb::parallel_for(size_t(0), mesh.size(), [&](size_t i) {
+      if (!missing[i]) return;
       if (auto row = store->known(uint32_t(i))) {
         exact.toExact[i] = std::move(*row);
         missing[i] = 0;
@@ -157,6 +160,7 @@ std::optional<ExactColumns> exactColumns(const PatchMesh& mesh, const RayCaster&
   }
   // The exact patches' rows by reciprocity, in ascending column order (i ascends).
   exact.exactRows.resize(mesh.size());
+  if (!wanted.empty()) return exact;
   const std::vector<Patch>& patches = mesh.patches();
   for (uint32_t i = 0; i < mesh.size(); ++i)
     for (const FormFactorEntry& e : exact.toExact[i])

@@ -66,10 +66,12 @@ struct ExactRowStore {
   std::function<uint64_t(uint32_t patch)> streamOf;
 };
 /// Computes settings.exactColumns for every patch (those `store` does not know); nullopt when
-/// there are none. Thread-safe.
+/// there are none. `wanted`: per patch, whether its exact entries are wanted (empty: all); the
+/// others' stay empty, and so do exactRows unless all are wanted. Thread-safe.
 std::optional<ExactColumns> exactColumns(const PatchMesh& mesh, const RayCaster& caster,
                                          const FormFactorSettings& settings,
-                                         const ExactRowStore* store = nullptr);
+                                         const ExactRowStore* store = nullptr,
+                                         std::span<const uint8_t> wanted = {});
 
 /// One ray of the hemisphere estimator that found a surface: what it hit, as a key, and its
 /// share of the row (the sample's area weight over the rays cast). Packed to 12 bytes: the

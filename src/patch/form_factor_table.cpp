@@ -39,6 +39,15 @@ FormFactorTable FormFactorTable::fromRows(std::vector<std::vector<FormFactorEntr
   return t;
 }
 
+FormFactorTable FormFactorTable::withRowSizes(std::span<const uint64_t> counts) {
+  FormFactorTable t;
+  t.offsets_.assign(counts.size() + 1, 0);
+  for (size_t i = 0; i < counts.size(); ++i) t.offsets_[i + 1] = t.offsets_[i] + counts[i];
+  t.columns_.resize(t.offsets_.back());
+  t.values_.resize(t.offsets_.back());
+  return t;
+}
+
 FormFactorTable FormFactorTable::fromArrays(std::vector<uint64_t> offsets,
                                             std::vector<uint32_t> columns,
                                             std::vector<float> values, const ThresholdLoss& loss) {
@@ -117,7 +126,7 @@ double FormFactorTable::rowSum(size_t row) const {
 }
 
 void FormFactorTable::symmetrize(std::span<const float> area) {
-  // The transpose: row i lists (k, A_k F_ki) for everyone k who sees i, in increasing k. The
+  // The transpose: row i lists (k, F_ki) for everyone k who sees i, in increasing k. The
   // rows k are cut into a fixed number of runs; each run's entries per column are counted, so
   // that every run writes its own places in order: the same table whatever the threads did,
   // with no sort.
@@ -152,7 +161,7 @@ void FormFactorTable::symmetrize(std::span<const float> area) {
     uint64_t* next = place.data() + r * n;
     for (size_t k = r * runRows; k < std::min(n, (r + 1) * runRows); ++k)
       for (uint64_t e = offsets_[k]; e < offsets_[k + 1]; ++e)
-        transposed[next[columns_[e]]++] = {uint32_t(k), area[k] * values_[e]};
+        transposed[next[columns_[e]]++] = {uint32_t(k), values_[e]};
   });
   releaseMemory(place);
   // Row i of the result: the union of row i and transposed row i. A_i F_ij and A_j F_ji estimate
@@ -169,10 +178,10 @@ void FormFactorTable::symmetrize(std::span<const float> area) {
       const uint32_t ca = a < offsets_[i + 1] ? columns_[a] : ~0u;
       const uint32_t cb = b < tOffsets[i + 1] ? transposed[b].column : ~0u;
       const uint32_t c = std::min(ca, cb);
-      double fromI = 0.0, fromJ = 0.0;  // F_ij as i's rays found it, F_ji as j's did
+      float fromI = 0.0f, fromJ = 0.0f;  // F_ic as i's rays found it, F_ci as c's did
       if (ca == c) fromI = values_[a++];
-      if (cb == c) fromJ = transposed[b++].value / double(area[c]);
-      const float value = float((fromI + fromJ) * area[c] / (double(area[i]) + area[c]));
+      if (cb == c) fromJ = transposed[b++].value;
+      const float value = reciprocalMean(fromI, fromJ, area[i], area[c]);
       if (value > 0.0f) emit(c, value);
     }
   };
@@ -197,9 +206,11 @@ void FormFactorTable::symmetrize(std::span<const float> area) {
 FormFactorTable::ClosureRepair FormFactorTable::closeRows(double noise) {
   const size_t n = rows();
   std::vector<float> scale(n, 1.0f);
+  std::vector<double> sums(n);
+  tbb::parallel_for(size_t(0), n, [&](size_t i) { sums[i] = rowSum(i); });
   ClosureRepair repair;
   for (size_t i = 0; i < n; ++i) {
-    const double sum = rowSum(i);
+    const double sum = sums[i];
     repair.worstSum = std::max(repair.worstSum, sum);
     if (sum > 1.0 + noise) {
       scale[i] = float(1.0 / sum);

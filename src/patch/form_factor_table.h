@@ -38,6 +38,16 @@ ThresholdLoss lossOf(std::span<const RowThresholding> rows);
 /// patches that i sees most instead of being lost. Entries that are not positive are dropped.
 RowThresholding thresholdRow(std::vector<FormFactorEntry>& row, float threshold);
 
+/// Entry (i, j) of a symmetrized table (FormFactorTable::symmetrize) from the two estimates,
+/// F_ij by i's rays and F_ji by j's (0 for none), and the areas: the one formula, in floats and
+/// doubles as symmetrize() has it, so that a table updated in place (patch/table_update.h) holds
+/// the same bits as one symmetrized whole.
+inline float reciprocalMean(float fij, float fji, float ai, float aj) {
+  const float sent = aj * fji;  // A_j F_ji
+  const double fromI = fij, fromJ = double(sent) / double(aj);
+  return float((fromI + fromJ) * aj / (double(ai) + aj));
+}
+
 class FormFactorTable {
  public:
   FormFactorTable() = default;
@@ -48,6 +58,16 @@ class FormFactorTable {
   /// Assembles a table from its arrays (offsets has rows + 1 entries); for the disk cache.
   static FormFactorTable fromArrays(std::vector<uint64_t> offsets, std::vector<uint32_t> columns,
                                     std::vector<float> values, const ThresholdLoss& loss);
+
+  /// A table of rows `counts[i]` entries long, their entries left to write through rowColumns
+  /// and rowValues (each row's columns ascending, values positive).
+  static FormFactorTable withRowSizes(std::span<const uint64_t> counts);
+  std::span<uint32_t> rowColumns(size_t row) {
+    return {columns_.data() + offsets_[row], size_t(offsets_[row + 1] - offsets_[row])};
+  }
+  std::span<float> rowValues(size_t row) {
+    return {values_.data() + offsets_[row], size_t(offsets_[row + 1] - offsets_[row])};
+  }
 
   size_t rows() const { return offsets_.empty() ? 0 : offsets_.size() - 1; }
   size_t nonZeros() const { return values_.size(); }

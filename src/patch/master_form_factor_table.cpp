@@ -87,7 +87,9 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
                                                            const RayCaster& caster,
                                                            const std::vector<uint32_t>& basePatchOf,
                                                            const FormFactorSettings& ff,
-                                                           const ProgressCallback& progress) {
+                                                           const ProgressCallback& progress,
+                                                           std::span<const uint8_t> wanted) {
+  auto isWanted = [&](uint32_t p) { return wanted.empty() || wanted[p]; };
   auto address = [&](uint32_t p) { return mesh.nodeAddress(mesh.patches()[p].node); };
   auto streamOf = [&](uint32_t p) {
     const uint32_t node = mesh.patches()[p].node;
@@ -116,8 +118,13 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
         return row;
       },
       [&](uint32_t p, const std::vector<FormFactorEntry>&) { exactCast[p] = 1; }, streamOf};
-  const std::optional<ExactColumns> exactColumnsNow = exactColumns(mesh, caster, ff, &store);
-  const ExactColumns* exact = exactColumnsNow ? &*exactColumnsNow : nullptr;
+  Rows out;
+  // An exact patch's row wanted needs every patch's exact entries (its row is their reciprocal).
+  const bool exactRowWanted = std::any_of(ff.exactColumns.begin(), ff.exactColumns.end(),
+                                          [&](uint32_t j) { return isWanted(j); });
+  out.exact =
+      exactColumns(mesh, caster, ff, &store, exactRowWanted ? std::span<const uint8_t>{} : wanted);
+  const ExactColumns* exact = out.exact ? &*out.exact : nullptr;
 
   // Hemisphere rows not kept are cast (in parallel), then every row is assembled from its hits.
   std::vector<uint32_t> missing;
@@ -127,10 +134,10 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
     for (uint32_t p = 0; p < mesh.size(); ++p) {
       if (exact && exact->isExact[p]) continue;
       const auto it = rows_.find(address(p));
-      if (it == rows_.end() || !it->second.hasHits)
-        missing.push_back(p);
-      else
+      if (it != rows_.end() && it->second.hasHits)
         hitsOf[p] = &it->second.hits;
+      else if (isWanted(p))
+        missing.push_back(p);
     }
   }
   const HitKey keyOf = [&](uint32_t triangle, bool front, const Vec3& at) {
@@ -207,16 +214,19 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
     }
     keepExactRows();
   }
-  Rows out;
   out.computed = size_t(std::count(cast.begin(), cast.end(), 1));
-  out.reused = mesh.size() - out.computed;
+  const size_t made =
+      wanted.empty() ? mesh.size() : size_t(std::count(wanted.begin(), wanted.end(), 1));
+  out.reused = made - out.computed;
   const PatchOfKey patchOf(mesh, levels_);
   out.rows.resize(mesh.size());
   tbb::parallel_for(size_t(0), mesh.size(), [&](size_t i) {
     const uint32_t p = uint32_t(i);
+    if (!isWanted(p)) return;
     out.rows[i] = exact && exact->isExact[p] ? exactPatchRow(*exact, p)
                                              : rowFromHits(*hitsOf[p], p, patchOf, exact);
   });
+  out.hits = std::move(hitsOf);
   return out;
 }
 

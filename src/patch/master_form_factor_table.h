@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -35,13 +36,22 @@ class MasterFormFactorTable {
   /// base mesh) or, for a node that refinement made, one of its own. Rows of nodes kept from
   /// before are not cast again, nor their exact entries while the emitter nodes are the same.
   /// Thread-safe. Throws rad::Cancelled if `progress` returns false.
+  /// `wanted`: per patch, whether its row is made (empty: all); the others' rows stay empty
+  /// and are not cast.
   struct Rows {
     FormFactorRows rows;
     size_t computed = 0, reused = 0;  ///< rows cast now (hemisphere or exact part), rows kept
+    /// The exact columns (ff.exactColumns), when there are any.
+    std::optional<ExactColumns> exact;
+    /// Per patch, its rays' hits sorted by key (null for an exact patch, or one not wanted and
+    /// never cast); they stay valid as long as the table.
+    std::vector<const std::vector<HemisphereHit>*> hits;
   };
   Rows rowsFor(const PatchMesh& mesh, const RayCaster& caster,
                const std::vector<uint32_t>& basePatchOf, const FormFactorSettings& ff,
-               const ProgressCallback& progress);
+               const ProgressCallback& progress, std::span<const uint8_t> wanted = {});
+  /// The finest-key depth below the base patches (the constructor's `levels`).
+  int levels() const { return levels_; }
 
   /// Node rows kept.
   size_t rows() const;

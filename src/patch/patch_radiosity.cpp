@@ -4,6 +4,7 @@
 #include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/ray_caster.h>
+#include <tbb/parallel_for.h>
 
 #include <array>
 #include <bit>
@@ -22,6 +23,7 @@
 #include "patch/patch_model_state.h"
 #include "patch/patch_radiosity_impl.h"
 #include "patch/patch_solvers.h"
+#include "patch/table_update.h"
 
 namespace rad {
 
@@ -102,20 +104,49 @@ FormFactorTable PatchRadiosity::Impl::assembleTable(FormFactorRows rows) {
   stats.rowsScaledToClosure = closure.rows;
   stats.rowSumEstimatedMax = closure.worstSum;
   table.applyThreshold(area, settings.formFactorThreshold, emitterRows);
+  tableSymmetrizedOnly = closure.rows == 0 && !(settings.formFactorThreshold > 0.0f);
   return table;
 }
 
-// The table for this mesh, and its numbers in the stats (also when a relighter changes the mesh).
+// The table for this mesh, and its numbers in the stats.
 FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
                                                   const ProgressCallback& progress) {
   FormFactorTable table = loadOrComputeFormFactors(caster, progress);
+  recordTable(table);
+  return table;
+}
+
+void PatchRadiosity::Impl::recordTable(const FormFactorTable& table) {
   stats.nonZeros = table.nonZeros();
   stats.tableBytes = table.memoryBytes();
   recordThresholdLoss(table.thresholdLoss());
   std::vector<double> sums(table.rows());
-  for (size_t i = 0; i < sums.size(); ++i) sums[i] = table.rowSum(i);
+  tbb::parallel_for(size_t(0), sums.size(), [&](size_t i) { sums[i] = table.rowSum(i); });
   recordRowSums(sums, stats);
-  return table;
+}
+
+FormFactorTable PatchRadiosity::Impl::formFactorsAfter(const PatchMesh& before,
+                                                       std::span<const uint32_t> beforeExact,
+                                                       const RayCaster& caster) {
+  if (!model->master || !table || !tableSymmetrizedOnly) return formFactors(caster, {});
+  const auto start = std::chrono::steady_clock::now();
+  const int levels = model->master->levels();
+  const std::vector<uint8_t> fresh = newPatchesOf(before, *mesh, levels);
+  const MasterFormFactorTable::Rows rows =
+      model->master->rowsFor(*mesh, caster, model->basePatchOf, ff, {}, fresh);
+  std::optional<FormFactorTable> updated =
+      updatedTable({before, *table, beforeExact}, *mesh, ff.exactColumns, rows, levels);
+  if (!updated) return formFactors(caster, {});
+  const FormFactorTable::ClosureRepair closure = updated->closeRows(rowSumNoise(ff.rays));
+  stats.rowsScaledToClosure = closure.rows;
+  stats.rowSumEstimatedMax = closure.worstSum;
+  tableSymmetrizedOnly = closure.rows == 0;
+  stats.rowsComputed = rows.computed;
+  stats.rowsReused = mesh->size() - rows.computed;
+  stats.masterRows = model->master->rows();
+  stats.formFactorSeconds = secondsSince(start);
+  recordTable(*updated);
+  return std::move(*updated);
 }
 
 // The hemisphere estimator's table from the model's master table (rows kept by node, cast only

@@ -45,6 +45,9 @@ struct PatchRadiosity::Impl {
   bool keepTable = false;                ///< keep the form factors (for relighting)
   bool saveMaster = true;                ///< save the master table when rows were cast
   std::optional<FormFactorTable> table;  ///< the form factors of the patches, when kept
+  /// The last table assembled is the symmetrized one: its closure scaled no row and no
+  /// threshold applied (so a relighter can update it for a changed quadtree).
+  bool tableSymmetrizedOnly = false;
 
   /// Takes the model's base mesh, to be lit and solved for `lights` by build().
   Impl(std::shared_ptr<const PatchModel::State> model, std::span<const Light> lights);
@@ -65,6 +68,13 @@ struct PatchRadiosity::Impl {
   FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);
   FormFactorTable loadOrComputeFormFactors(const RayCaster& caster,
                                            const ProgressCallback& progress);
+  /// formFactors() for `mesh`, refined anew from the base mesh after `before` (whose exact
+  /// columns were `beforeExact`): the kept table of `before` updated for the patches that split
+  /// or merged (patch/table_update.h) where it is the symmetrized one, else assembled anew.
+  FormFactorTable formFactorsAfter(const PatchMesh& before, std::span<const uint32_t> beforeExact,
+                                   const RayCaster& caster);
+  /// Puts a table's numbers (entries, bytes, threshold loss, row sums) in the stats.
+  void recordTable(const FormFactorTable& table);
   /// The table of rows as the estimators give them: made reciprocal, closed (closeRows), then
   /// thresholded; the closure's numbers go into the stats.
   FormFactorTable assembleTable(FormFactorRows rows);
