@@ -39,8 +39,10 @@ FormFactorTable FormFactorTable::fromRows(std::vector<std::vector<FormFactorEntr
   return t;
 }
 
-FormFactorTable FormFactorTable::withRowSizes(std::span<const uint64_t> counts) {
-  FormFactorTable t;
+FormFactorTable FormFactorTable::withRowSizes(std::span<const uint64_t> counts,
+                                              FormFactorTable storage) {
+  FormFactorTable t = std::move(storage);
+  t.loss_ = {};
   t.offsets_.assign(counts.size() + 1, 0);
   for (size_t i = 0; i < counts.size(); ++i) t.offsets_[i + 1] = t.offsets_[i] + counts[i];
   t.columns_.resize(t.offsets_.back());

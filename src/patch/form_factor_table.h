@@ -60,8 +60,11 @@ class FormFactorTable {
                                     std::vector<float> values, const ThresholdLoss& loss);
 
   /// A table of rows `counts[i]` entries long, their entries left to write through rowColumns
-  /// and rowValues (each row's columns ascending, values positive).
-  static FormFactorTable withRowSizes(std::span<const uint64_t> counts);
+  /// and rowValues (each row's columns ascending, values positive). It takes the arrays of
+  /// `storage` (a table no longer needed), whose memory is then written again without the
+  /// system having to provide (and zero) fresh pages.
+  static FormFactorTable withRowSizes(std::span<const uint64_t> counts,
+                                      FormFactorTable storage = {});
   std::span<uint32_t> rowColumns(size_t row) {
     return {columns_.data() + offsets_[row], size_t(offsets_[row + 1] - offsets_[row])};
   }

@@ -148,6 +148,7 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
     for (uint32_t p = 0; exact && p < mesh.size(); ++p) {
       if (!exactCast[p]) continue;
       cast[p] = 1;
+      bytesKnown_ = false;
       MasterRow& row = rows_[address(p)];
       row.exactSet = exactSet;
       row.hasExact = true;
@@ -165,6 +166,8 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
       std::lock_guard lock(mutex_);
       for (size_t i = 0; i < missing.size(); ++i) {
         if (!done[i].load(std::memory_order_acquire)) continue;
+        bytesKnown_ = false;
+        bytesKnown_ = false;
         MasterRow& row = rows_[address(missing[i])];
         if (!row.hasHits) row.hits = hits[i];
         row.hasHits = true;
@@ -206,6 +209,7 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
     // Another solve may have cast the same row meanwhile: the first one kept stays.
     std::lock_guard lock(mutex_);
     for (size_t i = 0; i < missing.size(); ++i) {
+      bytesKnown_ = false;
       MasterRow& row = rows_[address(missing[i])];
       if (!row.hasHits) row.hits = std::move(hits[i]);
       row.hasHits = true;
@@ -237,10 +241,12 @@ size_t MasterFormFactorTable::rows() const {
 
 size_t MasterFormFactorTable::memoryBytes() const {
   std::lock_guard lock(mutex_);
-  size_t bytes = 0;
+  if (bytesKnown_) return bytes_;
+  bytes_ = 0;
   for (const auto& [address, row] : rows_)
-    bytes += 48 + (row.hits.capacity() + row.exact.capacity()) * sizeof(HemisphereHit);
-  return bytes;
+    bytes_ += 48 + (row.hits.capacity() + row.exact.capacity()) * sizeof(HemisphereHit);
+  bytesKnown_ = true;
+  return bytes_;
 }
 
 std::string MasterFormFactorTable::load(const std::filesystem::path& file,
@@ -250,6 +256,7 @@ std::string MasterFormFactorTable::load(const std::filesystem::path& file,
     std::lock_guard lock(mutex_);
     for (auto& [address, row] : *loaded.rows) {
       sortByKey(row.hits);  // a file from before rows were kept sorted
+      bytesKnown_ = false;
       rows_.try_emplace(address, std::move(row));
     }
   }

@@ -72,6 +72,10 @@ class MasterFormFactorTable {
   uint64_t seed_;
   mutable std::mutex mutex_;
   MasterRows rows_;
+  // memoryBytes(), counted again only after rows changed (a relighter asks at every change of
+  // the quadtree, and counting walks every row).
+  mutable size_t bytes_ = 0;
+  mutable bool bytesKnown_ = false;
   std::filesystem::path diskFile_;
   FormFactorCacheKey diskKey_;
 };

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -230,22 +231,29 @@ std::vector<HangingVertex> PatchMesh::hangingVertices() const {
   for (uint32_t p = 0; p < byDepth.size(); ++p) byDepth[p] = p;
   std::stable_sort(byDepth.begin(), byDepth.end(),
                    [&](uint32_t a, uint32_t b) { return nodeOf(a).depth < nodeOf(b).depth; });
-  // A refined neighbour puts its corners at the dyadic points of this leaf's edge.
-  auto edge = [&](auto&& self, uint32_t a, uint32_t b, const Vec3& normal, int levels) -> void {
+  // A refined neighbour puts its corners at the dyadic points of this leaf's edge. Each leaf's
+  // are found apart (in parallel: a relighter asks at every change of the quadtree), then
+  // listed in depth order.
+  auto edge = [&](auto&& self, std::vector<HangingVertex>& found, uint32_t a, uint32_t b,
+                  const Vec3& normal, int levels) -> void {
     if (levels == 0) return;
     const uint32_t m = findVertex(0.5f * (vertices_[a] + vertices_[b]), normal);
     if (m == kNoNode) return;
-    out.push_back({m, a, b});
-    self(self, a, m, normal, levels - 1);
-    self(self, m, b, normal, levels - 1);
+    found.push_back({m, a, b});
+    self(self, found, a, m, normal, levels - 1);
+    self(self, found, m, b, normal, levels - 1);
   };
-  for (uint32_t p : byDepth) {
+  std::vector<std::vector<HangingVertex>> ofLeaf(byDepth.size());
+  tbb::parallel_for(size_t(0), byDepth.size(), [&](size_t k) {
+    const uint32_t p = byDepth[k];
     const PatchNode& node = nodeOf(p);
     const int levels = kMaxDepth - node.depth;
-    for (int k = 0; k < node.cornerCount(); ++k)
-      edge(edge, node.corners[k], node.corners[(k + 1) % node.cornerCount()], patches_[p].normal,
-           levels);
-  }
+    for (int c = 0; c < node.cornerCount(); ++c)
+      edge(edge, ofLeaf[k], node.corners[c], node.corners[(c + 1) % node.cornerCount()],
+           patches_[p].normal, levels);
+  });
+  for (const std::vector<HangingVertex>& found : ofLeaf)
+    out.insert(out.end(), found.begin(), found.end());
   return out;
 }
 

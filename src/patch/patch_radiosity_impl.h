@@ -48,6 +48,9 @@ struct PatchRadiosity::Impl {
   /// The last table assembled is the symmetrized one: its closure scaled no row and no
   /// threshold applied (so a relighter can update it for a changed quadtree).
   bool tableSymmetrizedOnly = false;
+  /// The table before the kept one, when formFactorsAfter() replaced it and it is small enough
+  /// to keep: the next table made so takes its arrays.
+  std::optional<FormFactorTable> spareTable;
 
   /// Takes the model's base mesh, to be lit and solved for `lights` by build().
   Impl(std::shared_ptr<const PatchModel::State> model, std::span<const Light> lights);

@@ -98,7 +98,8 @@ std::vector<uint8_t> newPatchesOf(const PatchMesh& before, const PatchMesh& mesh
 
 std::optional<FormFactorTable> updatedTable(const SymmetrizedTable& before, const PatchMesh& mesh,
                                             std::span<const uint32_t> exactColumns,
-                                            const MasterFormFactorTable::Rows& rows, int levels) {
+                                            const MasterFormFactorTable::Rows& rows, int levels,
+                                            FormFactorTable storage) {
   const std::optional<PatchMatch> match = matchPatches(before.mesh, mesh, levels);
   if (!match || exactColumns.size() != before.exactColumns.size()) return std::nullopt;
   for (size_t k = 0; k < exactColumns.size(); ++k)
@@ -248,7 +249,7 @@ std::optional<FormFactorTable> updatedTable(const SymmetrizedTable& before, cons
                     ? newRows[indexOfAdded[q]].size()
                     : before.table.columns(p).size() - removedIn.of(q).size() + keptNew[q].size();
   });
-  FormFactorTable table = FormFactorTable::withRowSizes(counts);
+  FormFactorTable table = FormFactorTable::withRowSizes(counts, std::move(storage));
   tbb::parallel_for(size_t(0), mesh.size(), [&](size_t q) {
     const std::span<uint32_t> columns = table.rowColumns(q);
     const std::span<float> values = table.rowValues(q);

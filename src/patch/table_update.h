@@ -29,9 +29,12 @@ struct SymmetrizedTable {
 /// `rows`: MasterFormFactorTable::rowsFor(mesh, ...) with the rows of the patches `before` lacks
 /// wanted (newPatchesOf). Nullopt where it cannot be made so, and the table must be assembled
 /// anew: the exact columns changed (an emitter's patch split or merged, or their choice).
+/// `storage`: a table no longer needed, whose arrays the result takes (FormFactorTable::
+/// withRowSizes).
 std::optional<FormFactorTable> updatedTable(const SymmetrizedTable& before, const PatchMesh& mesh,
                                             std::span<const uint32_t> exactColumns,
-                                            const MasterFormFactorTable::Rows& rows, int levels);
+                                            const MasterFormFactorTable::Rows& rows, int levels,
+                                            FormFactorTable storage = {});
 
 /// Per patch of `mesh`, 1 where `before` has no patch of the same node.
 std::vector<uint8_t> newPatchesOf(const PatchMesh& before, const PatchMesh& mesh, int levels);
