@@ -196,7 +196,7 @@ void addAnimateCommand(CLI::App& app, Console& console, CommandAction& action) {
       ->check(finiteNumberIn(0.0, 1.0));
   sub->add_option("--relight-tolerance", o->relight.tolerance,
                   "Shoot each change until the unshot power is below this fraction of the light "
-                  "put in (default 2e-4)")
+                  "put in (default 5e-4)")
       ->check(finiteNumberIn(1e-9, 1.0));
   o->picture.addTo(*sub);
   addStatsOption(*sub, o->stats);
