@@ -96,170 +96,237 @@ std::vector<uint8_t> newPatchesOf(const PatchMesh& before, const PatchMesh& mesh
   return added;
 }
 
+namespace {
+
+// The steps of updatedTable, over the two meshes' patches paired by node.
+class TableUpdate {
+ public:
+  TableUpdate(const SymmetrizedTable& before, const PatchMesh& mesh,
+              const MasterFormFactorTable::Rows& rows, int levels, PatchMatch match)
+      : before_(before),
+        mesh_(mesh),
+        rows_(rows),
+        levels_(levels),
+        exact_(rows.exact ? &*rows.exact : nullptr),
+        oldOf_(std::move(match.oldOf)),
+        newOf_(std::move(match.newOf)),
+        indexOfAdded_(mesh.size(), kNoPatch) {
+    for (uint32_t q = 0; q < mesh.size(); ++q)
+      if (oldOf_[q] == kNoPatch) {
+        indexOfAdded_[q] = uint32_t(added_.size());
+        added_.push_back(q);
+      }
+    for (uint32_t p = 0; p < before.mesh.size(); ++p)
+      if (newOf_[p] == kNoPatch) removed_.push_back(p);
+  }
+
+  /// Every kept row that is not exact has its hits in the master table.
+  bool keptRowsHaveHits() const {
+    for (uint32_t q = 0; q < mesh_.size(); ++q)
+      if (oldOf_[q] != kNoPatch && !isExact(q) && !rows_.hits[q]) return false;
+    return true;
+  }
+  void pairKeptWithNew();
+  void makeNewRows();
+  FormFactorTable write(FormFactorTable storage) const;
+
+ private:
+  // A kept row q's estimates for a new patch j: F_qj by q's rays, F_jq by j's.
+  struct Pair {
+    uint32_t patch;  ///< j, or q where listed by new patch
+    float fqj, fjq;
+  };
+
+  std::pair<uint64_t, uint64_t> newRange(uint32_t q) const {
+    return mesh_.nodeKeys(mesh_.patches()[q].node, levels_);
+  }
+  std::pair<uint64_t, uint64_t> oldRange(uint32_t p) const {
+    return before_.mesh.nodeKeys(before_.mesh.patches()[p].node, levels_);
+  }
+  float area(uint32_t q) const { return mesh_.patches()[q].area; }
+  bool isExact(uint32_t q) const { return exact_ && exact_->isExact[q]; }
+  std::vector<uint32_t> newPatchesOver(std::span<const uint32_t> removedSeen) const;
+  void pairRow(uint32_t q, std::span<const uint32_t> removedSeen,
+               std::span<const FormFactorEntry> seen);
+
+  const SymmetrizedTable& before_;
+  const PatchMesh& mesh_;
+  const MasterFormFactorTable::Rows& rows_;
+  int levels_;
+  const ExactColumns* exact_;
+  std::vector<uint32_t> oldOf_, newOf_;  ///< per new patch its old one, per old its new one
+  std::vector<uint32_t> added_, removed_, indexOfAdded_;
+  /// Per removed patch, the new patches over it: [first, last) in added_.
+  std::vector<std::pair<uint32_t, uint32_t>> addedOver_;
+  std::vector<std::vector<Pair>> pairsOfKept_;         ///< per kept row, by new patch
+  std::vector<std::vector<FormFactorEntry>> keptNew_;  ///< per kept row, its new entries
+  std::vector<uint64_t> removedCount_;                 ///< per kept row, removed columns
+  std::vector<std::vector<FormFactorEntry>> newRows_;  ///< per new patch, its row
+};
+
+// The new patches a kept row may have entries for because its rays may land in them: those over
+// the removed patches its old row held (`removedSeen`), ascending.
+std::vector<uint32_t> TableUpdate::newPatchesOver(std::span<const uint32_t> removedSeen) const {
+  std::vector<uint32_t> over;
+  for (uint32_t r : removedSeen)
+    for (uint32_t a = addedOver_[r].first; a < addedOver_[r].second; ++a)
+      if (over.empty() || over.back() < added_[a]) over.push_back(added_[a]);
+  return over;
+}
+
+// Kept row q with every new patch j its rays may find or whose rays found it (`seen`: (j,
+// F_jq)): F_qj from q's hits in j's key range, walked once in key order (or, for an exact row,
+// by reciprocity from j's exact entry), and q's new entries.
+void TableUpdate::pairRow(uint32_t q, std::span<const uint32_t> removedSeen,
+                          std::span<const FormFactorEntry> seen) {
+  const std::vector<uint32_t> over = newPatchesOver(removedSeen);
+  if (over.empty() && seen.empty()) return;
+  const std::vector<HemisphereHit>* hits = isExact(q) ? nullptr : rows_.hits[q];
+  auto hit = hits ? hits->begin() : std::vector<HemisphereHit>::const_iterator{};
+  auto fromRow = [&](uint32_t j) {
+    if (!hits) return exactReciprocal(*exact_, j, q, area(j), area(q));
+    const std::pair<uint64_t, uint64_t> range = newRange(j);
+    const uint64_t first = range.first, last = range.second;
+    hit = std::partition_point(hit, hits->end(),
+                               [first](const HemisphereHit& h) { return uint64_t{h.key} < first; });
+    float sum = 0.0f;  // in key order, as rowFromHits and mergeByColumn add them
+    for (; hit != hits->end() && uint64_t{hit->key} < last; ++hit) sum += hit->weight;
+    return sum;
+  };
+  auto s = seen.begin();
+  for (size_t k = 0; k < over.size() || s != seen.end();) {
+    const uint32_t j =
+        std::min(k < over.size() ? over[k] : kNoPatch, s != seen.end() ? s->column : kNoPatch);
+    const float fjq = s != seen.end() && s->column == j ? (s++)->value : 0.0f;
+    if (k < over.size() && over[k] == j) ++k;
+    const Pair pair{j, fromRow(j), fjq};
+    pairsOfKept_[q].push_back(pair);
+    if (const float v = reciprocalMean(pair.fqj, pair.fjq, area(q), area(j)); v > 0.0f)
+      keptNew_[q].push_back({j, v});
+  }
+}
+
+void TableUpdate::pairKeptWithNew() {
+  addedOver_.assign(before_.mesh.size(), {0, 0});
+  for (uint32_t r : removed_) {
+    const std::span<const uint32_t> over = overlapping(
+        added_, [&](uint32_t q) { return newRange(q); }, oldRange(r));
+    const uint32_t first = uint32_t(over.data() - added_.data());
+    addedOver_[r] = {first, first + uint32_t(over.size())};
+  }
+  // By kept patch: the new rows' entries for it, (j, F_jq) with j ascending; the removed patches
+  // its old row held, ascending, from the removed patches' own rows (a symmetrized table holds
+  // (i, j) where it holds (j, i)) rather than from every kept row.
+  const auto seenBy = bucketed<FormFactorEntry>(mesh_.size(), added_, [&](uint32_t j, auto&& put) {
+    for (const FormFactorEntry& e : rows_.rows[j])
+      if (oldOf_[e.column] != kNoPatch) put(e.column, FormFactorEntry{j, e.value});
+  });
+  const auto removedIn = bucketed<uint32_t>(mesh_.size(), removed_, [&](uint32_t r, auto&& put) {
+    for (uint32_t c : before_.table.columns(r))
+      if (newOf_[c] != kNoPatch) put(newOf_[c], r);
+  });
+  pairsOfKept_.assign(mesh_.size(), {});
+  keptNew_.assign(mesh_.size(), {});
+  removedCount_.assign(mesh_.size(), 0);
+  tbb::parallel_for(size_t(0), mesh_.size(), [&](size_t q) {
+    if (oldOf_[q] == kNoPatch) return;
+    removedCount_[q] = removedIn.of(q).size();
+    pairRow(uint32_t(q), removedIn.of(q), seenBy.of(q));
+  });
+}
+
+// A new row: its entries for kept patches (their pairs, by reciprocity) and for new ones (the
+// union of the new rows' columns), in column order.
+void TableUpdate::makeNewRows() {
+  std::vector<uint32_t> kept;
+  for (uint32_t q = 0; q < mesh_.size(); ++q)
+    if (!pairsOfKept_[q].empty()) kept.push_back(q);
+  const auto keptOf = bucketed<Pair>(added_.size(), kept, [&](uint32_t q, auto&& put) {
+    for (const Pair& e : pairsOfKept_[q]) put(indexOfAdded_[e.patch], Pair{q, e.fqj, e.fjq});
+  });
+  std::vector<std::vector<uint32_t>> partners(added_.size());
+  for (uint32_t a = 0; a < added_.size(); ++a)
+    for (const FormFactorEntry& e : rows_.rows[added_[a]])
+      if (const uint32_t b = indexOfAdded_[e.column]; b != kNoPatch) {
+        partners[a].push_back(e.column);
+        partners[b].push_back(added_[a]);
+      }
+  newRows_.assign(added_.size(), {});
+  tbb::parallel_for(size_t(0), added_.size(), [&](size_t a) {
+    std::sort(partners[a].begin(), partners[a].end());
+    partners[a].erase(std::unique(partners[a].begin(), partners[a].end()), partners[a].end());
+    const uint32_t j = added_[a];
+    const std::span<const Pair> pairs = keptOf.of(a);
+    auto pair = pairs.begin();
+    auto keptBelow = [&](uint32_t column) {
+      for (; pair != pairs.end() && pair->patch < column; ++pair)
+        if (const float v = reciprocalMean(pair->fjq, pair->fqj, area(j), area(pair->patch));
+            v > 0.0f)
+          newRows_[a].push_back({pair->patch, v});
+    };
+    for (uint32_t k : partners[a]) {
+      keptBelow(k);
+      const float v =
+          reciprocalMean(entryOf(rows_.rows[j], k), entryOf(rows_.rows[k], j), area(j), area(k));
+      if (v > 0.0f) newRows_[a].push_back({k, v});
+    }
+    keptBelow(kNoPatch);
+  });
+}
+
+// Every row in the new numbering: a kept row's entries for kept patches renumbered, merged with
+// its new ones; a new row as made. Sized, then written in place.
+FormFactorTable TableUpdate::write(FormFactorTable storage) const {
+  std::vector<uint64_t> counts(mesh_.size());
+  tbb::parallel_for(size_t(0), mesh_.size(), [&](size_t q) {
+    const uint32_t p = oldOf_[q];
+    counts[q] = p == kNoPatch
+                    ? newRows_[indexOfAdded_[q]].size()
+                    : before_.table.columns(p).size() - removedCount_[q] + keptNew_[q].size();
+  });
+  FormFactorTable table = FormFactorTable::withRowSizes(counts, std::move(storage));
+  tbb::parallel_for(size_t(0), mesh_.size(), [&](size_t q) {
+    const std::span<uint32_t> columns = table.rowColumns(q);
+    const std::span<float> values = table.rowValues(q);
+    size_t at = 0;
+    auto emit = [&](const FormFactorEntry& e) {
+      columns[at] = e.column;
+      values[at++] = e.value;
+    };
+    const uint32_t p = oldOf_[q];
+    if (p == kNoPatch) {
+      for (const FormFactorEntry& e : newRows_[indexOfAdded_[q]]) emit(e);
+      return;
+    }
+    const auto oldColumns = before_.table.columns(p);
+    const auto oldValues = before_.table.values(p);
+    auto fresh = keptNew_[q].begin();
+    for (size_t e = 0; e < oldColumns.size(); ++e) {
+      const uint32_t c = newOf_[oldColumns[e]];
+      if (c == kNoPatch) continue;
+      for (; fresh != keptNew_[q].end() && fresh->column < c; ++fresh) emit(*fresh);
+      emit(FormFactorEntry{c, oldValues[e]});
+    }
+    for (; fresh != keptNew_[q].end(); ++fresh) emit(*fresh);
+  });
+  return table;
+}
+
+}  // namespace
+
 std::optional<FormFactorTable> updatedTable(const SymmetrizedTable& before, const PatchMesh& mesh,
                                             std::span<const uint32_t> exactColumns,
                                             const MasterFormFactorTable::Rows& rows, int levels,
                                             FormFactorTable storage) {
-  const std::optional<PatchMatch> match = matchPatches(before.mesh, mesh, levels);
+  std::optional<PatchMatch> match = matchPatches(before.mesh, mesh, levels);
   if (!match || exactColumns.size() != before.exactColumns.size()) return std::nullopt;
   for (size_t k = 0; k < exactColumns.size(); ++k)
     if (match->oldOf[exactColumns[k]] != before.exactColumns[k]) return std::nullopt;
-  const std::vector<uint32_t>&oldOf = match->oldOf, &newOf = match->newOf;
-  std::vector<uint32_t> added, removed;
-  for (uint32_t q = 0; q < mesh.size(); ++q)
-    if (oldOf[q] == kNoPatch) added.push_back(q);
-  for (uint32_t p = 0; p < before.mesh.size(); ++p)
-    if (newOf[p] == kNoPatch) removed.push_back(p);
-  auto newRange = [&](uint32_t q) { return mesh.nodeKeys(mesh.patches()[q].node, levels); };
-  auto oldRange = [&](uint32_t p) {
-    return before.mesh.nodeKeys(before.mesh.patches()[p].node, levels);
-  };
-  auto area = [&](uint32_t q) { return mesh.patches()[q].area; };
-  const ExactColumns* exact = rows.exact ? &*rows.exact : nullptr;
-  for (uint32_t q = 0; q < mesh.size(); ++q)
-    if (oldOf[q] != kNoPatch && !(exact && exact->isExact[q]) && !rows.hits[q])
-      return std::nullopt;  // a kept row's hits not in the master table: no way to update
-  std::vector<uint32_t> indexOfAdded(mesh.size(), kNoPatch);
-  for (uint32_t a = 0; a < added.size(); ++a) indexOfAdded[added[a]] = a;
-
-  // The new patches over each removed one: [first, last) in `added`.
-  std::vector<std::pair<uint32_t, uint32_t>> addedOver(before.mesh.size(), {0, 0});
-  for (uint32_t r : removed) {
-    const std::span<const uint32_t> over = overlapping(added, newRange, oldRange(r));
-    const uint32_t first = uint32_t(over.data() - added.data());
-    addedOver[r] = {first, first + uint32_t(over.size())};
-  }
-  // The new rows' entries for kept patches, by kept patch: (j, F_jq), j ascending.
-  const auto seenBy = bucketed<FormFactorEntry>(mesh.size(), added, [&](uint32_t j, auto&& put) {
-    for (const FormFactorEntry& e : rows.rows[j])
-      if (oldOf[e.column] != kNoPatch) put(e.column, FormFactorEntry{j, e.value});
-  });
-
-  // By kept patch, the removed patches its old row held, ascending: from the removed patches' own
-  // rows (a symmetrized table holds (i, j) where it holds (j, i)), not from every kept row.
-  const auto removedIn = bucketed<uint32_t>(mesh.size(), removed, [&](uint32_t r, auto&& put) {
-    for (uint32_t c : before.table.columns(r))
-      if (newOf[c] != kNoPatch) put(newOf[c], r);
-  });
-
-  // Per kept row q, the new patches it may have entries for: those over the removed patches
-  // its old row held (its rays may land in them), and those whose rays found it. For each,
-  // F_qj from q's hits in j's key range (or, for an exact row, by reciprocity from j's exact
-  // entry), and F_jq.
-  struct Pair {
-    uint32_t j;
-    float fqj, fjq;
-  };
-  std::vector<std::vector<Pair>> pairs(mesh.size());
-  tbb::parallel_for(size_t(0), mesh.size(), [&](size_t qi) {
-    const uint32_t q = uint32_t(qi);
-    if (oldOf[q] == kNoPatch) return;
-    std::vector<uint32_t> over;
-    for (uint32_t r : removedIn.of(q))
-      for (uint32_t a = addedOver[r].first; a < addedOver[r].second; ++a)
-        if (over.empty() || over.back() < added[a]) over.push_back(added[a]);
-    const std::span<const FormFactorEntry> seen = seenBy.of(q);
-    if (over.empty() && seen.empty()) return;
-    const bool exactRow = exact && exact->isExact[q];
-    const std::vector<HemisphereHit>* hits = exactRow ? nullptr : rows.hits[q];
-    auto hit = hits ? hits->begin() : std::vector<HemisphereHit>::const_iterator{};
-    auto fromRow = [&](uint32_t j) {
-      if (exactRow) return exactReciprocal(*exact, j, q, area(j), area(q));
-      const std::pair<uint64_t, uint64_t> range = newRange(j);
-      const uint64_t first = range.first, last = range.second;
-      hit = std::partition_point(
-          hit, hits->end(), [first](const HemisphereHit& h) { return uint64_t{h.key} < first; });
-      float sum = 0.0f;  // in key order, as rowFromHits and mergeByColumn add them
-      for (; hit != hits->end() && uint64_t{hit->key} < last; ++hit) sum += hit->weight;
-      return sum;
-    };
-    auto s = seen.begin();
-    for (size_t k = 0; k < over.size() || s != seen.end();) {
-      const uint32_t j =
-          std::min(k < over.size() ? over[k] : kNoPatch, s != seen.end() ? s->column : kNoPatch);
-      const float fjq = s != seen.end() && s->column == j ? (s++)->value : 0.0f;
-      if (k < over.size() && over[k] == j) ++k;
-      pairs[q].push_back({j, fromRow(j), fjq});
-    }
-  });
-  // The kept rows' new entries, and by new patch the kept rows' (q, F_qj, F_jq), q ascending.
-  std::vector<std::vector<FormFactorEntry>> keptNew(mesh.size());
-  tbb::parallel_for(size_t(0), mesh.size(), [&](size_t q) {
-    for (const Pair& e : pairs[q])
-      if (const float v = reciprocalMean(e.fqj, e.fjq, area(uint32_t(q)), area(e.j)); v > 0.0f)
-        keptNew[q].push_back({e.j, v});
-  });
-  std::vector<std::vector<Pair>> keptOf(added.size());
-  for (uint32_t q = 0; q < mesh.size(); ++q)
-    for (const Pair& e : pairs[q]) keptOf[indexOfAdded[e.j]].push_back({q, e.fqj, e.fjq});
-  // Between new patches: the union of their rows' columns.
-  std::vector<std::vector<uint32_t>> newPartners(added.size());
-  for (uint32_t a = 0; a < added.size(); ++a)
-    for (const FormFactorEntry& e : rows.rows[added[a]])
-      if (const uint32_t b = indexOfAdded[e.column]; b != kNoPatch) {
-        newPartners[a].push_back(e.column);
-        newPartners[b].push_back(added[a]);
-      }
-  // A new row: its entries for kept patches and for new ones, in column order.
-  std::vector<std::vector<FormFactorEntry>> newRows(added.size());
-  tbb::parallel_for(size_t(0), added.size(), [&](size_t a) {
-    std::vector<uint32_t>& partners = newPartners[a];
-    std::sort(partners.begin(), partners.end());
-    partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
-    const uint32_t j = added[a];
-    auto kept = keptOf[a].begin();
-    auto emitKeptBelow = [&](uint32_t column) {
-      for (; kept != keptOf[a].end() && kept->j < column; ++kept)
-        if (const float v = reciprocalMean(kept->fjq, kept->fqj, area(j), area(kept->j)); v > 0.0f)
-          newRows[a].push_back({kept->j, v});
-    };
-    for (uint32_t k : partners) {
-      emitKeptBelow(k);
-      const float v =
-          reciprocalMean(entryOf(rows.rows[j], k), entryOf(rows.rows[k], j), area(j), area(k));
-      if (v > 0.0f) newRows[a].push_back({k, v});
-    }
-    emitKeptBelow(kNoPatch);
-  });
-
-  // Every row in the new numbering: a kept row's entries for kept patches renumbered, merged
-  // with its new ones; a new row's entries with kept and new patches, merged. Counted, then
-  // written in place.
-  auto forEachEntry = [&](uint32_t q, auto&& emit) {
-    const uint32_t p = oldOf[q];
-    if (p == kNoPatch) {
-      for (const FormFactorEntry& e : newRows[indexOfAdded[q]]) emit(e);
-      return;
-    }
-    const auto columns = before.table.columns(p);
-    const auto values = before.table.values(p);
-    auto fresh = keptNew[q].begin();
-    for (size_t e = 0; e < columns.size(); ++e) {
-      const uint32_t c = newOf[columns[e]];
-      if (c == kNoPatch) continue;
-      for (; fresh != keptNew[q].end() && fresh->column < c; ++fresh) emit(*fresh);
-      emit(FormFactorEntry{c, values[e]});
-    }
-    for (; fresh != keptNew[q].end(); ++fresh) emit(*fresh);
-  };
-  std::vector<uint64_t> counts(mesh.size());
-  tbb::parallel_for(size_t(0), mesh.size(), [&](size_t q) {
-    const uint32_t p = oldOf[q];
-    counts[q] = p == kNoPatch
-                    ? newRows[indexOfAdded[q]].size()
-                    : before.table.columns(p).size() - removedIn.of(q).size() + keptNew[q].size();
-  });
-  FormFactorTable table = FormFactorTable::withRowSizes(counts, std::move(storage));
-  tbb::parallel_for(size_t(0), mesh.size(), [&](size_t q) {
-    const std::span<uint32_t> columns = table.rowColumns(q);
-    const std::span<float> values = table.rowValues(q);
-    size_t at = 0;
-    forEachEntry(uint32_t(q), [&](const FormFactorEntry& e) {
-      columns[at] = e.column;
-      values[at++] = e.value;
-    });
-  });
-  return table;
+  TableUpdate update(before, mesh, rows, levels, std::move(*match));
+  if (!update.keptRowsHaveHits()) return std::nullopt;
+  update.pairKeptWithNew();
+  update.makeNewRows();
+  return update.write(std::move(storage));
 }
 
 }  // namespace rad
