@@ -148,13 +148,13 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
     for (uint32_t p = 0; exact && p < mesh.size(); ++p) {
       if (!exactCast[p]) continue;
       cast[p] = 1;
-      bytesKnown_ = false;
-      MasterRow& row = rows_[address(p)];
-      row.exactSet = exactSet;
-      row.hasExact = true;
-      row.exact.clear();
-      for (const FormFactorEntry& e : exact->toExact[p])
-        row.exact.push_back({address(e.column), e.value});
+      changeRow(address(p), [&](MasterRow& row) {
+        row.exactSet = exactSet;
+        row.hasExact = true;
+        row.exact.clear();
+        for (const FormFactorEntry& e : exact->toExact[p])
+          row.exact.push_back({address(e.column), e.value});
+      });
     }
   };
   std::vector<std::vector<HemisphereHit>> hits(missing.size());
@@ -166,11 +166,10 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
       std::lock_guard lock(mutex_);
       for (size_t i = 0; i < missing.size(); ++i) {
         if (!done[i].load(std::memory_order_acquire)) continue;
-        bytesKnown_ = false;
-        bytesKnown_ = false;
-        MasterRow& row = rows_[address(missing[i])];
-        if (!row.hasHits) row.hits = hits[i];
-        row.hasHits = true;
+        changeRow(address(missing[i]), [&](MasterRow& row) {
+          if (!row.hasHits) row.hits = hits[i];
+          row.hasHits = true;
+        });
       }
       keepExactRows();
     }
@@ -209,11 +208,11 @@ MasterFormFactorTable::Rows MasterFormFactorTable::rowsFor(const PatchMesh& mesh
     // Another solve may have cast the same row meanwhile: the first one kept stays.
     std::lock_guard lock(mutex_);
     for (size_t i = 0; i < missing.size(); ++i) {
-      bytesKnown_ = false;
-      MasterRow& row = rows_[address(missing[i])];
-      if (!row.hasHits) row.hits = std::move(hits[i]);
-      row.hasHits = true;
-      hitsOf[missing[i]] = &row.hits;
+      changeRow(address(missing[i]), [&](MasterRow& row) {
+        if (!row.hasHits) row.hits = std::move(hits[i]);
+        row.hasHits = true;
+        hitsOf[missing[i]] = &row.hits;
+      });
       cast[missing[i]] = 1;
     }
     keepExactRows();
@@ -241,12 +240,11 @@ size_t MasterFormFactorTable::rows() const {
 
 size_t MasterFormFactorTable::memoryBytes() const {
   std::lock_guard lock(mutex_);
-  if (bytesKnown_) return bytes_;
-  bytes_ = 0;
-  for (const auto& [address, row] : rows_)
-    bytes_ += 48 + (row.hits.capacity() + row.exact.capacity()) * sizeof(HemisphereHit);
-  bytesKnown_ = true;
   return bytes_;
+}
+
+size_t MasterFormFactorTable::rowBytes(const MasterRow& row) {
+  return 48 + (row.hits.capacity() + row.exact.capacity()) * sizeof(HemisphereHit);
 }
 
 std::string MasterFormFactorTable::load(const std::filesystem::path& file,
@@ -256,8 +254,8 @@ std::string MasterFormFactorTable::load(const std::filesystem::path& file,
     std::lock_guard lock(mutex_);
     for (auto& [address, row] : *loaded.rows) {
       sortByKey(row.hits);  // a file from before rows were kept sorted
-      bytesKnown_ = false;
-      rows_.try_emplace(address, std::move(row));
+      if (const auto [it, inserted] = rows_.try_emplace(address, std::move(row)); inserted)
+        bytes_ += rowBytes(it->second);
     }
   }
   return loaded.warning;

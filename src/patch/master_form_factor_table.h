@@ -72,10 +72,17 @@ class MasterFormFactorTable {
   uint64_t seed_;
   mutable std::mutex mutex_;
   MasterRows rows_;
-  // memoryBytes(), counted again only after rows changed (a relighter asks at every change of
-  // the quadtree, and counting walks every row).
-  mutable size_t bytes_ = 0;
-  mutable bool bytesKnown_ = false;
+  // memoryBytes(), kept as rows change (a relighter asks at every change of the quadtree).
+  size_t bytes_ = 0;
+  static size_t rowBytes(const MasterRow& row);
+  // The row at `address` (made if new) changed by `change(row)`, under the lock.
+  template <class Change>
+  void changeRow(uint64_t address, const Change& change) {
+    const auto [it, inserted] = rows_.try_emplace(address);
+    if (!inserted) bytes_ -= rowBytes(it->second);
+    change(it->second);
+    bytes_ += rowBytes(it->second);
+  }
   std::filesystem::path diskFile_;
   FormFactorCacheKey diskKey_;
 };

@@ -118,6 +118,7 @@ class TableUpdate {
       }
     for (uint32_t p = 0; p < before.mesh.size(); ++p)
       if (newOf_[p] == kNoPatch) removed_.push_back(p);
+    for (uint32_t q : added_) addedRange_.push_back(newRange(q));
   }
 
   /// Every kept row that is not exact has its hits in the master table.
@@ -156,6 +157,7 @@ class TableUpdate {
   const ExactColumns* exact_;
   std::vector<uint32_t> oldOf_, newOf_;  ///< per new patch its old one, per old its new one
   std::vector<uint32_t> added_, removed_, indexOfAdded_;
+  std::vector<std::pair<uint64_t, uint64_t>> addedRange_;  ///< per new patch, its key range
   /// Per removed patch, the new patches over it: [first, last) in added_.
   std::vector<std::pair<uint32_t, uint32_t>> addedOver_;
   std::vector<std::vector<Pair>> pairsOfKept_;         ///< per kept row, by new patch
@@ -185,7 +187,7 @@ void TableUpdate::pairRow(uint32_t q, std::span<const uint32_t> removedSeen,
   auto hit = hits ? hits->begin() : std::vector<HemisphereHit>::const_iterator{};
   auto fromRow = [&](uint32_t j) {
     if (!hits) return exactReciprocal(*exact_, j, q, area(j), area(q));
-    const std::pair<uint64_t, uint64_t> range = newRange(j);
+    const std::pair<uint64_t, uint64_t> range = addedRange_[indexOfAdded_[j]];
     const uint64_t first = range.first, last = range.second;
     hit = std::partition_point(hit, hits->end(),
                                [first](const HemisphereHit& h) { return uint64_t{h.key} < first; });
@@ -210,7 +212,7 @@ void TableUpdate::pairKeptWithNew() {
   addedOver_.assign(before_.mesh.size(), {0, 0});
   for (uint32_t r : removed_) {
     const std::span<const uint32_t> over = overlapping(
-        added_, [&](uint32_t q) { return newRange(q); }, oldRange(r));
+        added_, [&](uint32_t q) { return addedRange_[indexOfAdded_[q]]; }, oldRange(r));
     const uint32_t first = uint32_t(over.data() - added_.data());
     addedOver_[r] = {first, first + uint32_t(over.size())};
   }
