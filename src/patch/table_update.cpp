@@ -189,12 +189,13 @@ void TableUpdate::pairRow(uint32_t q, std::span<const uint32_t> removedSeen,
     if (!hits) return exactReciprocal(*exact_, j, q, area(j), area(q));
     const std::pair<uint64_t, uint64_t> range = addedRange_[indexOfAdded_[j]];
     const uint64_t first = range.first, last = range.second;
-    hit = std::partition_point(hit, hits->end(),
-                               [first](const HemisphereHit& h) { return uint64_t{h.key} < first; });
+    // Stepped, not searched: the new patches come in key order, often more of them than hits.
+    while (hit != hits->end() && uint64_t{hit->key} < first) ++hit;
     float sum = 0.0f;  // in key order, as rowFromHits and mergeByColumn add them
     for (; hit != hits->end() && uint64_t{hit->key} < last; ++hit) sum += hit->weight;
     return sum;
   };
+  pairsOfKept_[q].reserve(over.size() + seen.size());
   auto s = seen.begin();
   for (size_t k = 0; k < over.size() || s != seen.end();) {
     const uint32_t j =
