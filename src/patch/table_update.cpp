@@ -46,7 +46,9 @@ std::span<const uint32_t> overlapping(std::span<const uint32_t> patches, const R
   return {begin, end};
 }
 
-// Items put in buckets 0..n-1 by one pass over `sources` in order: each bucket in that order.
+// Items put in buckets 0..n-1 by `each(source, put)` over `sources`, each bucket's items in the
+// order of the sources. The sources are cut into a fixed number of runs, each counted and then
+// written in parallel to its own places in every bucket (as FormFactorTable::symmetrize does).
 template <typename T>
 struct Buckets {
   std::vector<uint64_t> start;
@@ -58,14 +60,35 @@ struct Buckets {
 
 template <typename T, class Each>
 Buckets<T> bucketed(size_t n, std::span<const uint32_t> sources, const Each& each) {
+  constexpr size_t kRuns = 16;
+  const size_t runLength = (sources.size() + kRuns - 1) / kRuns;
+  auto run = [&](size_t r) {
+    const size_t first = std::min(sources.size(), r * runLength);
+    return sources.subspan(first, std::min(runLength, sources.size() - first));
+  };
+  // place[r * n + b]: where run r writes its next item of bucket b (first its count).
+  std::vector<uint64_t> place(kRuns * n, 0);
+  tbb::parallel_for(size_t(0), kRuns, [&](size_t r) {
+    uint64_t* count = place.data() + r * n;
+    for (uint32_t s : run(r)) each(s, [&](uint32_t bucket, const T&) { ++count[bucket]; });
+  });
   Buckets<T> b;
   b.start.assign(n + 1, 0);
-  for (uint32_t s : sources) each(s, [&](uint32_t bucket, const T&) { ++b.start[bucket + 1]; });
-  for (size_t i = 0; i < n; ++i) b.start[i + 1] += b.start[i];
+  for (size_t i = 0; i < n; ++i) {
+    uint64_t at = b.start[i];
+    for (size_t r = 0; r < kRuns; ++r) {
+      const uint64_t count = place[r * n + i];
+      place[r * n + i] = at;
+      at += count;
+    }
+    b.start[i + 1] = at;
+  }
   b.items.resize(b.start.back());
-  std::vector<uint64_t> next(b.start.begin(), b.start.end() - 1);
-  for (uint32_t s : sources)
-    each(s, [&](uint32_t bucket, const T& item) { b.items[next[bucket]++] = item; });
+  tbb::parallel_for(size_t(0), kRuns, [&](size_t r) {
+    uint64_t* next = place.data() + r * n;
+    for (uint32_t s : run(r))
+      each(s, [&](uint32_t bucket, const T& item) { b.items[next[bucket]++] = item; });
+  });
   return b;
 }
 
@@ -77,13 +100,6 @@ float exactReciprocal(const ExactColumns& exact, uint32_t j, uint32_t e, float a
                                        [&](const FormFactorEntry& x) { return x.column < e; });
   if (it == row.end() || it->column != e || !(areaE > 0.0f)) return 0.0f;
   return it->value * areaJ / areaE;
-}
-
-// The entry for `column` of a row sorted by column, 0 if none.
-float entryOf(const std::vector<FormFactorEntry>& row, uint32_t column) {
-  const auto it = std::partition_point(row.begin(), row.end(),
-                                       [&](const FormFactorEntry& e) { return e.column < column; });
-  return it != row.end() && it->column == column ? it->value : 0.0f;
 }
 
 }  // namespace
@@ -247,19 +263,18 @@ void TableUpdate::makeNewRows() {
   const auto keptOf = bucketed<Pair>(added_.size(), kept, [&](uint32_t q, auto&& put) {
     for (const Pair& e : pairsOfKept_[q]) put(indexOfAdded_[e.patch], Pair{q, e.fqj, e.fjq});
   });
-  std::vector<std::vector<uint32_t>> partners(added_.size());
-  for (uint32_t a = 0; a < added_.size(); ++a)
-    for (const FormFactorEntry& e : rows_.rows[added_[a]])
-      if (const uint32_t b = indexOfAdded_[e.column]; b != kNoPatch) {
-        partners[a].push_back(e.column);
-        partners[b].push_back(added_[a]);
-      }
+  // By new patch k, the new rows' entries for it: (j, F_jk), j ascending.
+  const auto newSeenBy =
+      bucketed<FormFactorEntry>(added_.size(), added_, [&](uint32_t j, auto&& put) {
+        for (const FormFactorEntry& e : rows_.rows[j])
+          if (const uint32_t b = indexOfAdded_[e.column]; b != kNoPatch)
+            put(b, FormFactorEntry{j, e.value});
+      });
   newRows_.assign(added_.size(), {});
   tbb::parallel_for(size_t(0), added_.size(), [&](size_t a) {
-    std::sort(partners[a].begin(), partners[a].end());
-    partners[a].erase(std::unique(partners[a].begin(), partners[a].end()), partners[a].end());
     const uint32_t j = added_[a];
     const std::span<const Pair> pairs = keptOf.of(a);
+    newRows_[a].reserve(pairs.size() + rows_.rows[j].size() + newSeenBy.of(a).size());
     auto pair = pairs.begin();
     auto keptBelow = [&](uint32_t column) {
       for (; pair != pairs.end() && pair->patch < column; ++pair)
@@ -267,11 +282,27 @@ void TableUpdate::makeNewRows() {
             v > 0.0f)
           newRows_[a].push_back({pair->patch, v});
     };
-    for (uint32_t k : partners[a]) {
+    // The new patches k in row j (F_jk) or whose rows hold j (F_kj), merged in column order.
+    const std::vector<FormFactorEntry>& row = rows_.rows[j];
+    const std::span<const FormFactorEntry> seen = newSeenBy.of(a);
+    auto own = row.begin();
+    auto next = [&] {
+      while (own != row.end() && indexOfAdded_[own->column] == kNoPatch) ++own;
+    };
+    next();
+    for (auto s = seen.begin(); own != row.end() || s != seen.end();) {
+      const uint32_t k = std::min(own != row.end() ? own->column : kNoPatch,
+                                  s != seen.end() ? s->column : kNoPatch);
+      float fjk = 0.0f, fkj = 0.0f;
+      if (own != row.end() && own->column == k) {
+        fjk = own->value;
+        ++own;
+        next();
+      }
+      if (s != seen.end() && s->column == k) fkj = (s++)->value;
       keptBelow(k);
-      const float v =
-          reciprocalMean(entryOf(rows_.rows[j], k), entryOf(rows_.rows[k], j), area(j), area(k));
-      if (v > 0.0f) newRows_[a].push_back({k, v});
+      if (const float v = reciprocalMean(fjk, fkj, area(j), area(k)); v > 0.0f)
+        newRows_[a].push_back({k, v});
     }
     keptBelow(kNoPatch);
   });
