@@ -12,6 +12,7 @@
 #include <cassert>
 #include <memory>
 
+#include "core/buckets.h"
 #include "core/memory_usage.h"
 
 namespace rad {
@@ -128,44 +129,20 @@ double FormFactorTable::rowSum(size_t row) const {
 }
 
 void FormFactorTable::symmetrize(std::span<const float> area) {
-  // The transpose: row i lists (k, F_ki) for everyone k who sees i, in increasing k. The
-  // rows k are cut into a fixed number of runs; each run's entries per column are counted, so
-  // that every run writes its own places in order: the same table whatever the threads did,
-  // with no sort.
+  // The transpose: row i lists (k, F_ki) for everyone k who sees i, in increasing k (bucketed:
+  // the same table whatever the threads did, with no sort).
   const size_t n = rows();
-  constexpr size_t kRuns = 16;
-  const size_t runRows = (n + kRuns - 1) / kRuns;
-  // place[r * n + i]: where run r writes its next entry of transposed row i (first its count).
-  std::vector<uint64_t> place(kRuns * n, 0);
-  tbb::parallel_for(size_t(0), kRuns, [&](size_t r) {
-    uint64_t* count = place.data() + r * n;
-    for (size_t k = r * runRows; k < std::min(n, (r + 1) * runRows); ++k)
-      for (uint64_t e = offsets_[k]; e < offsets_[k + 1]; ++e) ++count[columns_[e]];
-  });
-  std::vector<uint64_t> tOffsets(n + 1, 0);
-  for (size_t i = 0; i < n; ++i) {
-    uint64_t at = tOffsets[i];
-    for (size_t r = 0; r < kRuns; ++r) {
-      const uint64_t count = place[r * n + i];
-      place[r * n + i] = at;
-      at += count;
-    }
-    tOffsets[i + 1] = at;
-  }
-  // Left uninitialized: every place is written below, on every thread (zeroing 8 bytes an
-  // entry on one thread first took a third of the symmetrization on room:64).
   struct Sent {
     uint32_t column;
     float value;
   };
-  const std::unique_ptr<Sent[]> transposed(new Sent[columns_.size()]);
-  tbb::parallel_for(size_t(0), kRuns, [&](size_t r) {
-    uint64_t* next = place.data() + r * n;
-    for (size_t k = r * runRows; k < std::min(n, (r + 1) * runRows); ++k)
-      for (uint64_t e = offsets_[k]; e < offsets_[k + 1]; ++e)
-        transposed[next[columns_[e]]++] = {uint32_t(k), values_[e]};
+  std::vector<uint32_t> everyRow(n);
+  for (size_t k = 0; k < n; ++k) everyRow[k] = uint32_t(k);
+  Buckets<Sent> transpose = bucketed<Sent>(n, everyRow, [&](uint32_t k, auto&& put) {
+    for (uint64_t e = offsets_[k]; e < offsets_[k + 1]; ++e) put(columns_[e], Sent{k, values_[e]});
   });
-  releaseMemory(place);
+  const std::vector<uint64_t>& tOffsets = transpose.start;
+  const FilledLaterVector<Sent>& transposed = transpose.items;
   // Row i of the result: the union of row i and transposed row i. A_i F_ij and A_j F_ji estimate
   // one quantity G_ij, by n rays from each side: their variances go as A_i^2 F_ij / n and
   // A_j^2 F_ji / n = A_i A_j F_ij / n, so weighted by inverse variance (1 / A_i, 1 / A_j) they give

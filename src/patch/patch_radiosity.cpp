@@ -100,12 +100,17 @@ FormFactorTable PatchRadiosity::Impl::assembleTable(FormFactorRows rows) {
   std::vector<float> area;
   for (const Patch& p : mesh->patches()) area.push_back(p.area);
   if (settings.estimator != PatchFormFactorEstimator::Pairwise) table.symmetrize(area);
+  closeTable(table);
+  table.applyThreshold(area, settings.formFactorThreshold, emitterRows);
+  tableSymmetrizedOnly = tableSymmetrizedOnly && !(settings.formFactorThreshold > 0.0f);
+  return table;
+}
+
+void PatchRadiosity::Impl::closeTable(FormFactorTable& table) {
   const FormFactorTable::ClosureRepair closure = table.closeRows(rowSumNoise(ff.rays));
   stats.rowsScaledToClosure = closure.rows;
   stats.rowSumEstimatedMax = closure.worstSum;
-  table.applyThreshold(area, settings.formFactorThreshold, emitterRows);
-  tableSymmetrizedOnly = closure.rows == 0 && !(settings.formFactorThreshold > 0.0f);
-  return table;
+  tableSymmetrizedOnly = closure.rows == 0;
 }
 
 // The table for this mesh, and its numbers in the stats.
@@ -131,12 +136,13 @@ FormFactorTable PatchRadiosity::Impl::formFactorsAfter(const PatchMesh& before,
   if (!model->master || !table || !tableSymmetrizedOnly) return formFactors(caster, {});
   const auto start = std::chrono::steady_clock::now();
   const int levels = model->master->levels();
-  const std::vector<uint8_t> fresh = newPatchesOf(before, *mesh, levels);
+  std::optional<PatchMatch> match = matchPatches(before, *mesh, levels);
+  if (!match) return formFactors(caster, {});
   const MasterFormFactorTable::Rows rows =
-      model->master->rowsFor(*mesh, caster, model->basePatchOf, ff, {}, fresh);
+      model->master->rowsFor(*mesh, caster, model->basePatchOf, ff, {}, match->fresh());
   std::optional<FormFactorTable> updated =
-      updatedTable({before, *table, beforeExact}, *mesh, ff.exactColumns, rows, levels,
-                   spareTable ? std::move(*spareTable) : FormFactorTable{});
+      updatedTable({before, *table, beforeExact}, *mesh, std::move(*match), ff.exactColumns, rows,
+                   levels, spareTable ? std::move(*spareTable) : FormFactorTable{});
   spareTable.reset();
   if (!updated) return formFactors(caster, {});
   // Kept for the next change, unless large: it saves the page faults of a new table (4 ms of
@@ -144,10 +150,7 @@ FormFactorTable PatchRadiosity::Impl::formFactorsAfter(const PatchMesh& before,
   // seconds to update.
   constexpr size_t kSpareTableBytes = size_t(256) << 20;
   if (table->memoryBytes() <= kSpareTableBytes) spareTable = std::move(*table);
-  const FormFactorTable::ClosureRepair closure = updated->closeRows(rowSumNoise(ff.rays));
-  stats.rowsScaledToClosure = closure.rows;
-  stats.rowSumEstimatedMax = closure.worstSum;
-  tableSymmetrizedOnly = closure.rows == 0;
+  closeTable(*updated);
   stats.rowsComputed = rows.computed;
   stats.rowsReused = mesh->size() - rows.computed;
   stats.masterRows = model->master->rows();

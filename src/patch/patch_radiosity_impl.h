@@ -76,6 +76,9 @@ struct PatchRadiosity::Impl {
   /// or merged (patch/table_update.h) where it is the symmetrized one, else assembled anew.
   FormFactorTable formFactorsAfter(const PatchMesh& before, std::span<const uint32_t> beforeExact,
                                    const RayCaster& caster);
+  /// Scales back the rows past closure (FormFactorTable::closeRows), with its numbers in the
+  /// stats and tableSymmetrizedOnly.
+  void closeTable(FormFactorTable& table);
   /// Puts a table's numbers (entries, bytes, threshold loss, row sums) in the stats.
   void recordTable(const FormFactorTable& table);
   /// The table of rows as the estimators give them: made reciprocal, closed (closeRows), then

@@ -4,16 +4,9 @@
 
 #include <algorithm>
 
+#include "core/buckets.h"
+
 namespace rad {
-
-namespace {
-
-// The patches of two meshes refined from one base mesh, paired by node: both are numbered in
-// key order, so one walk pairs those of equal key ranges. Empty when a mesh is not in key order.
-struct PatchMatch {
-  std::vector<uint32_t> oldOf;  ///< per new patch, the old one of its node, or kNoPatch
-  std::vector<uint32_t> newOf;  ///< per old patch, the new one of its node, or kNoPatch
-};
 
 std::optional<PatchMatch> matchPatches(const PatchMesh& before, const PatchMesh& mesh, int levels) {
   PatchMatch m{std::vector<uint32_t>(mesh.size(), kNoPatch),
@@ -35,6 +28,14 @@ std::optional<PatchMatch> matchPatches(const PatchMesh& before, const PatchMesh&
   return m;
 }
 
+std::vector<uint8_t> PatchMatch::fresh() const {
+  std::vector<uint8_t> added(oldOf.size());
+  for (size_t q = 0; q < oldOf.size(); ++q) added[q] = oldOf[q] == kNoPatch;
+  return added;
+}
+
+namespace {
+
 // The patches among `patches` (ascending, so in key order) whose key ranges meet [first, last).
 template <class RangeOf>
 std::span<const uint32_t> overlapping(std::span<const uint32_t> patches, const RangeOf& rangeOf,
@@ -46,52 +47,6 @@ std::span<const uint32_t> overlapping(std::span<const uint32_t> patches, const R
   return {begin, end};
 }
 
-// Items put in buckets 0..n-1 by `each(source, put)` over `sources`, each bucket's items in the
-// order of the sources. The sources are cut into a fixed number of runs, each counted and then
-// written in parallel to its own places in every bucket (as FormFactorTable::symmetrize does).
-template <typename T>
-struct Buckets {
-  std::vector<uint64_t> start;
-  std::vector<T> items;
-  std::span<const T> of(size_t b) const {
-    return {items.data() + start[b], size_t(start[b + 1] - start[b])};
-  }
-};
-
-template <typename T, class Each>
-Buckets<T> bucketed(size_t n, std::span<const uint32_t> sources, const Each& each) {
-  constexpr size_t kRuns = 16;
-  const size_t runLength = (sources.size() + kRuns - 1) / kRuns;
-  auto run = [&](size_t r) {
-    const size_t first = std::min(sources.size(), r * runLength);
-    return sources.subspan(first, std::min(runLength, sources.size() - first));
-  };
-  // place[r * n + b]: where run r writes its next item of bucket b (first its count).
-  std::vector<uint64_t> place(kRuns * n, 0);
-  tbb::parallel_for(size_t(0), kRuns, [&](size_t r) {
-    uint64_t* count = place.data() + r * n;
-    for (uint32_t s : run(r)) each(s, [&](uint32_t bucket, const T&) { ++count[bucket]; });
-  });
-  Buckets<T> b;
-  b.start.assign(n + 1, 0);
-  for (size_t i = 0; i < n; ++i) {
-    uint64_t at = b.start[i];
-    for (size_t r = 0; r < kRuns; ++r) {
-      const uint64_t count = place[r * n + i];
-      place[r * n + i] = at;
-      at += count;
-    }
-    b.start[i + 1] = at;
-  }
-  b.items.resize(b.start.back());
-  tbb::parallel_for(size_t(0), kRuns, [&](size_t r) {
-    uint64_t* next = place.data() + r * n;
-    for (uint32_t s : run(r))
-      each(s, [&](uint32_t bucket, const T& item) { b.items[next[bucket]++] = item; });
-  });
-  return b;
-}
-
 // F_ej of an exact patch e for a patch j, by reciprocity from j's exact entry for e, as
 // exactColumns computes its rows.
 float exactReciprocal(const ExactColumns& exact, uint32_t j, uint32_t e, float areaJ, float areaE) {
@@ -101,18 +56,6 @@ float exactReciprocal(const ExactColumns& exact, uint32_t j, uint32_t e, float a
   if (it == row.end() || it->column != e || !(areaE > 0.0f)) return 0.0f;
   return it->value * areaJ / areaE;
 }
-
-}  // namespace
-
-std::vector<uint8_t> newPatchesOf(const PatchMesh& before, const PatchMesh& mesh, int levels) {
-  const std::optional<PatchMatch> match = matchPatches(before, mesh, levels);
-  std::vector<uint8_t> added(mesh.size(), 1);
-  if (match)
-    for (uint32_t q = 0; q < mesh.size(); ++q) added[q] = match->oldOf[q] == kNoPatch;
-  return added;
-}
-
-namespace {
 
 // The steps of updatedTable, over the two meshes' patches paired by node.
 class TableUpdate {
@@ -349,14 +292,14 @@ FormFactorTable TableUpdate::write(FormFactorTable storage) const {
 }  // namespace
 
 std::optional<FormFactorTable> updatedTable(const SymmetrizedTable& before, const PatchMesh& mesh,
+                                            PatchMatch match,
                                             std::span<const uint32_t> exactColumns,
                                             const MasterFormFactorTable::Rows& rows, int levels,
                                             FormFactorTable storage) {
-  std::optional<PatchMatch> match = matchPatches(before.mesh, mesh, levels);
-  if (!match || exactColumns.size() != before.exactColumns.size()) return std::nullopt;
+  if (exactColumns.size() != before.exactColumns.size()) return std::nullopt;
   for (size_t k = 0; k < exactColumns.size(); ++k)
-    if (match->oldOf[exactColumns[k]] != before.exactColumns[k]) return std::nullopt;
-  TableUpdate update(before, mesh, rows, levels, std::move(*match));
+    if (match.oldOf[exactColumns[k]] != before.exactColumns[k]) return std::nullopt;
+  TableUpdate update(before, mesh, rows, levels, std::move(match));
   if (!update.keptRowsHaveHits()) return std::nullopt;
   update.pairKeptWithNew();
   update.makeNewRows();

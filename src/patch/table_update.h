@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "patch/form_factor_table.h"
 #include "patch/master_form_factor_table.h"
@@ -25,18 +26,27 @@ struct SymmetrizedTable {
   std::span<const uint32_t> exactColumns;
 };
 
-/// The symmetrized table of `mesh`, from `before` (a mesh refined from the same base mesh) and
-/// `rows`: MasterFormFactorTable::rowsFor(mesh, ...) with the rows of the patches `before` lacks
-/// wanted (newPatchesOf). Nullopt where it cannot be made so, and the table must be assembled
+/// The patches of two meshes refined from one base mesh, paired by node.
+struct PatchMatch {
+  std::vector<uint32_t> oldOf;  ///< per new patch, the old one of its node, or kNoPatch
+  std::vector<uint32_t> newOf;  ///< per old patch, the new one of its node, or kNoPatch
+  /// Per new patch, 1 where the old mesh has no patch of its node (the rows to make).
+  std::vector<uint8_t> fresh() const;
+};
+/// Both meshes are numbered in key order, so one walk pairs the patches of equal key ranges;
+/// nullopt when a mesh is not in key order.
+std::optional<PatchMatch> matchPatches(const PatchMesh& before, const PatchMesh& mesh, int levels);
+
+/// The symmetrized table of `mesh`, from `before` (a mesh refined from the same base mesh, its
+/// patches paired with `mesh`'s by `match`) and `rows`: MasterFormFactorTable::rowsFor(mesh, ...)
+/// with match.fresh() wanted. Nullopt where it cannot be made so, and the table must be assembled
 /// anew: the exact columns changed (an emitter's patch split or merged, or their choice).
 /// `storage`: a table no longer needed, whose arrays the result takes (FormFactorTable::
 /// withRowSizes).
 std::optional<FormFactorTable> updatedTable(const SymmetrizedTable& before, const PatchMesh& mesh,
+                                            PatchMatch match,
                                             std::span<const uint32_t> exactColumns,
                                             const MasterFormFactorTable::Rows& rows, int levels,
                                             FormFactorTable storage = {});
-
-/// Per patch of `mesh`, 1 where `before` has no patch of the same node.
-std::vector<uint8_t> newPatchesOf(const PatchMesh& before, const PatchMesh& mesh, int levels);
 
 }  // namespace rad

@@ -178,10 +178,14 @@ constexpr size_t kPairsPerBlock = 8;
 constexpr std::array<size_t, 10> kBlockCounts = {240, 120, 60, 48, 24, 12, 6, 4, 2, 1};
 
 size_t pairBlocks(size_t pairs) {
-  if (pairs == 0) return 0;
   for (size_t count : kBlockCounts)
     if (count * kPairsPerBlock <= pairs) return count;
   return 1;
+}
+
+// The pairs [first, last) of block b of `blocks` (1 at least).
+std::pair<size_t, size_t> blockPairs(size_t pairs, size_t blocks, size_t b) {
+  return {pairs * b / blocks, pairs * (b + 1) / blocks};
 }
 
 // The counts' unit, 2^-58 of the power of two above the largest light sent: a side gathers at
@@ -213,7 +217,8 @@ void gatherAllDirections(const DirectionSet& directions, DiscreteLineSweep& swee
   const auto [firstBlock, lastBlock] = settings.processes.block(blocks);
   for (size_t b = firstBlock; b < lastBlock; ++b) {
     std::fill(gathered.begin(), gathered.end(), Color(0.0f));
-    for (size_t k = pairs * b / blocks; k < pairs * (b + 1) / blocks; ++k) {
+    const auto [firstPair, lastPair] = blockPairs(pairs, blocks, b);
+    for (size_t k = firstPair; k < lastPair; ++k) {
       ticker.throwIfCancelled();
       const DiscreteDirection& d = directions.pairFirst(k);
       const LineOffset offset =
@@ -477,7 +482,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   const auto pairsOf = [&](const DirectionSet& d) {
     const size_t pairs = d.pairCount(), blocks = pairBlocks(pairs);
     const auto [first, last] = settings.processes.block(blocks);
-    return pairs * last / blocks - pairs * first / blocks;
+    return blockPairs(pairs, blocks, last).first - blockPairs(pairs, blocks, first).first;
   };
   ProgressTicker ticker(progress, (firstIteration == 0 ? pairsOf(directions) : 0) +
                                       pairsOf(laterDirections) * laterIterations);

@@ -49,10 +49,12 @@ struct Fixture {
   std::optional<FormFactorTable> updated(const PatchMesh& before, const FormFactorTable& table,
                                          const PatchMesh& mesh) {
     const FormFactorSettings ff = settingsFor(mesh);
+    std::optional<PatchMatch> match = matchPatches(before, mesh, kLevels);
+    EXPECT_TRUE(match.has_value());
     const MasterFormFactorTable::Rows rows =
-        master.rowsFor(mesh, caster, basePatchOf, ff, {}, newPatchesOf(before, mesh, kLevels));
-    return updatedTable({before, table, settingsFor(before).exactColumns}, mesh, ff.exactColumns,
-                        rows, kLevels);
+        master.rowsFor(mesh, caster, basePatchOf, ff, {}, match->fresh());
+    return updatedTable({before, table, settingsFor(before).exactColumns}, mesh, std::move(*match),
+                        ff.exactColumns, rows, kLevels);
   }
   // The base mesh with the non-emitting patches whose centroids pass `where` split, twice
   // where `twice` passes too.
@@ -93,7 +95,7 @@ TEST(TableUpdate, EqualsTheTableAssembledAnewBitForBit) {
   const PatchMesh second = f.refined([](const Vec3& c) { return c.x > 60.0f && c.x < 150.0f; },
                                      [](const Vec3& c) { return c.x > 90.0f && c.x < 120.0f; });
   ASSERT_NE(first.size(), second.size());
-  const std::vector<uint8_t> fresh = newPatchesOf(first, second, kLevels);
+  const std::vector<uint8_t> fresh = matchPatches(first, second, kLevels)->fresh();
   const size_t changed = size_t(std::count(fresh.begin(), fresh.end(), 1));
   ASSERT_GT(changed, 20u);
   ASSERT_LT(changed, second.size() / 2);  // most rows kept
