@@ -31,11 +31,13 @@ SceneBuilder::SceneBuilder(std::string sceneName) {
 }
 
 uint32_t SceneBuilder::addMaterial(Material material) {
-  // A white texture or a factor of 1 is common in files; the solvers need rho below 1 (a closed
-  // room of rho 1 never converges), so 1 is taken as 0.999 and counted for one warning.
+  // A factor of 1 is common in files; the solvers need rho below 1 (a closed room of rho 1 never
+  // converges), so 1 is taken as 0.999, and counted for one warning where it is the reflectance
+  // itself: under a texture it is only the texture's scale (glTF's default), and the texels set
+  // the reflectance.
   if (maxComponent(material.rho) == 1.0f) {
     material.rho = glm::min(material.rho, Color(kMaxReflectance));
-    ++clampedMaterials_;
+    if (!material.rhoTexture) ++clampedMaterials_;
   }
   for (int c = 0; c < 3; ++c) {
     if (!(material.rho[c] >= 0.0f && material.rho[c] < 1.0f))

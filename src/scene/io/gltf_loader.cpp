@@ -32,12 +32,16 @@ namespace rad {
 namespace {
 
 // Images are kept encoded as tinygltf hands them over (a data URI's or a bufferView's bytes) and
-// decoded by Texture when a material uses them; width -1 marks them so.
+// decoded by Texture when a material uses them. tinygltf hands over no bytes for an image in a
+// file of its own (TINYGLTF_NO_EXTERNAL_IMAGE): only its URI, which textureMap reads.
 bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
                       const unsigned char* bytes, int size, void*) {
   image->image.assign(bytes, bytes + size);
-  image->width = -1;
   return true;
+}
+
+bool isDataUri(const std::string& uri) {
+  return uri.rfind("data:", 0) == 0;
 }
 
 TextureWrap wrapOf(int mode) {
@@ -222,11 +226,12 @@ TextureMap GltfReader::textureMap(const tinygltf::TextureInfo& info, const std::
   const tinygltf::Image& image = model_.images[size_t(texture.source)];
   const std::string key = fmt::format("{}#image{}", path_, texture.source);
   TextureMap map;
-  if (image.width == -1)
-    map.texture = textures_.encoded(image.image, key, material, path_);
-  else if (!image.uri.empty())
+  // A URI is relative to the glTF file and percent-encoded (glTF 2.0, 3.3: URIs, RFC 3986).
+  if (!image.uri.empty() && !isDataUri(image.uri))
     map.texture = textures_.file(
         resolvePath(parentDirectory(path_), tinygltf::dlib::urldecode(image.uri)), material, path_);
+  else
+    map.texture = textures_.encoded(image.image, key, material, path_);
   if (!map.texture) return {};
   if (texture.sampler >= 0 && size_t(texture.sampler) < model_.samplers.size()) {
     map.wrapU = wrapOf(model_.samplers[size_t(texture.sampler)].wrapS);
