@@ -1,8 +1,8 @@
 #pragma once
 // IES LM-63 (1995, 2002, 2019) photometric profiles: the luminous intensity distribution of a
 // luminaire as a table of candela over vertical and horizontal angles.
-// Layout and angle conventions: shared/reference/VALIDATION.md section 4 (AGi32's LM-63 pages,
-// Ashdown's "Parsing the IESNA LM-63 photometric data file").
+// Layout and angle conventions: docs/references.md section 4 (AGi32's LM-63 pages, Ashdown's
+// "Parsing the IESNA LM-63 photometric data file").
 
 #include <string>
 #include <vector>

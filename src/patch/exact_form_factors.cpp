@@ -1,8 +1,8 @@
-// Form factors from the exact point-to-polygon factor (Lambert's contour integral, VALIDATION.md
-// 1(f)) integrated over patch i by the midpoint rule on its parameter square, each point's factor
-// scaled by the visibility of patch j along one jittered ray (the "ray-traced form factor" of
-// Wallace, Elmquist and Haines, SIGGRAPH 1989, with the analytic kernel of Cohen and Wallace,
-// "Radiosity and Realistic Image Synthesis" (1993), eq. 3.53).
+// Form factors from the exact point-to-polygon factor (Lambert's contour integral,
+// docs/references.md 1(f)) integrated over patch i by the midpoint rule on its parameter square,
+// each point's factor scaled by the visibility of patch j along one jittered ray (the "ray-traced
+// form factor" of Wallace, Elmquist and Haines, SIGGRAPH 1989, with the analytic kernel of Cohen
+// and Wallace, "Radiosity and Realistic Image Synthesis" (1993), eq. 3.53).
 #include <tbb/parallel_for.h>
 
 #include <algorithm>

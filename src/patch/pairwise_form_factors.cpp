@@ -5,7 +5,7 @@
 // and visibility rays are computed once for both rows (reciprocity holds exactly). Patches that
 // touch (a shared edge or corner) make cos cos / (pi r^2) singular and the estimator's variance
 // infinite, so for those pairs the inner integral over j is taken exactly instead (Lambert's
-// contour formula, VALIDATION.md 1(f)) at stratified points of i, still with a visibility ray.
+// contour formula, docs/references.md 1(f)) at stratified points of i, still with a visibility ray.
 #include <tbb/parallel_for.h>
 
 #include <array>

@@ -13,7 +13,8 @@
 namespace rad {
 namespace {
 
-// A point light: E = I cos(theta) / d^2 at any floor point (theta from the floor's normal).
+// A point light: E = I cos(theta) / d^2 at any floor point (theta from the floor's normal;
+// docs/references.md 3.5).
 TEST(DirectLighting, PointLightFollowsTheInverseSquareCosineLaw) {
   const Vec3 light(0.2f, 1.5f, -0.3f);
   const Scene scene = test::floorUnderLight(2.0f, test::pointLight(light, Color(7.0f, 3.0f, 1.0f)));
@@ -73,7 +74,7 @@ TEST(DirectLighting, OccluderShadowsThePointsBehindIt) {
 }
 
 // Emissive triangles: the mean of many one-sample estimates at a point under a parallel square
-// emitter is pi Ke F (F by the corner formula of VALIDATION.md 1(d)).
+// emitter is pi Ke F (F by the corner formula, docs/references.md 1(d)).
 TEST(DirectLighting, EmitterEstimateAveragesToTheViewFactor) {
   SceneBuilder b("emitter");
   const uint32_t lamp = b.addMaterial({"lamp", Color(0.0f), Color(2.0f), false});

@@ -1,4 +1,4 @@
-// Form factors against the closed forms of shared/reference/VALIDATION.md section 1.
+// Form factors against the closed forms of docs/references.md section 1.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -25,9 +25,9 @@ struct Case {
   float patchSize;        // rectangles: 4 x 4 patches a unit; discs: a patch per triangle
 };
 
-// Two sizes of each configuration; the numbers are the closed forms, whose values VALIDATION.md
-// tabulates: 1(a) 0.199824896 and 0.475576437, 1(b) 0.200043776 and 0.232852603, 1(c)
-// 0.381966011 and 0.192235936.
+// Two sizes of each configuration; the numbers are the closed forms, whose values
+// docs/references.md tabulates: 1(a) 0.199824896 and 0.475576437, 1(b) 0.200043776 and 0.232852603,
+// 1(c) 0.381966011 and 0.192235936.
 std::vector<Case> cases() {
   return {
       {"1(a) 1x1 at 1", [] { return parallelRectangles(1, 1, 1); }, 0.199824896, 0, 0.25f},
@@ -40,7 +40,7 @@ std::vector<Case> cases() {
   };
 }
 
-// The closed forms as transcribed here reproduce VALIDATION.md's tabulated values.
+// The closed forms as transcribed here reproduce the values docs/references.md tabulates.
 TEST(FormFactorClosedForms, MatchTheCatalogue) {
   for (const Case& c : cases()) {
     const double f =
@@ -59,7 +59,7 @@ TEST(FormFactorClosedForms, MatchTheCatalogue) {
   EXPECT_NEAR(test::cornerElementF(3, 2, 0.5), 0.240894009, 1e-9);
 }
 
-// The contour formula at points, VALIDATION.md 1(d), 1(e) and 1(f), within 1e-6.
+// The contour formula at points, docs/references.md 1(d), 1(e) and 1(f), within 1e-6.
 TEST(PointPolygonFormFactor, MatchesClosedFormsWithin1e6) {
   const Vec3d origin(0.0), up(0, 0, 1);
   auto rectangle = [](double a, double b, double c) {  // facing down, toward the origin
@@ -73,7 +73,7 @@ TEST(PointPolygonFormFactor, MatchesClosedFormsWithin1e6) {
   EXPECT_NEAR(pointPolygonFormFactor(origin, up, square), 0.239456540, 1e-6);  // 1(f)
   const std::vector<Vec3d> triangle{{0, 0, 1}, {0, 1, 1}, {1, 0, 1}};          // facing down
   EXPECT_NEAR(pointPolygonFormFactor(origin, up, triangle), 0.0962250, 1e-6);  // 1(f)
-  // 1(e): disc of radius 1 at height 1 as a 4096-gon (VALIDATION.md lists 0.4999999 for it);
+  // 1(e): disc of radius 1 at height 1 as a 4096-gon (docs/references.md 1(e): 0.4999999);
   // tilted by 20 degrees: cos(20) * 0.2 at height 2.
   auto disc = [](double h) {
     std::vector<Vec3d> p;
@@ -87,7 +87,7 @@ TEST(PointPolygonFormFactor, MatchesClosedFormsWithin1e6) {
   const double w = glm::radians(20.0);
   EXPECT_NEAR(pointPolygonFormFactor(origin, Vec3d(std::sin(w), 0, std::cos(w)), disc(2)),
               0.187938524, 1e-6);
-  // A polygon straddling the tangent plane counts only above it (VALIDATION.md 1(f) pitfalls).
+  // A polygon straddling the tangent plane counts only above it (docs/references.md 1(f)).
   const std::vector<Vec3d> straddle{{1, 1, -1}, {1, 1, 1}, {-1, 1, 1}, {-1, 1, -1}};
   const std::vector<Vec3d> upper{{1, 1, 0}, {1, 1, 1}, {-1, 1, 1}, {-1, 1, 0}};
   EXPECT_NEAR(pointPolygonFormFactor(origin, up, straddle),

@@ -1,5 +1,5 @@
 // The patch solvers against a dense direct solve, and the closure and energy identities of
-// shared/reference/VALIDATION.md section 3.
+// docs/references.md section 3.
 #include <gtest/gtest.h>
 #include <radiosity/patch_radiosity.h>
 
@@ -114,8 +114,8 @@ TEST(PatchSolvers, AgreeWithDenseSolveWithDirectLightOnly) {
   expectSolversAgreeWithDenseSolve(cubeTable(scene, mesh, system), system);
 }
 
-// VALIDATION.md 3.7: every row of a closed box sums to 1 (the hemisphere rows before reciprocity
-// averaging, and the exact estimator's rows), within 1%.
+// docs/references.md 3.4: every row of a closed box sums to 1 (the hemisphere rows before
+// reciprocity averaging, and the exact estimator's rows), within 1%.
 TEST(FormFactorClosure, ClosedBoxRowsSumToOne) {
   const Scene cube = test::uniformCube(Color(0.5f), Color(0.0f));
   const PatchMesh mesh(cube, {0.25f, 0});
@@ -136,7 +136,7 @@ TEST(FormFactorClosure, ClosedBoxRowsSumToOne) {
   }
 }
 
-// VALIDATION.md 3.1 / 3.5: a closed box of uniform rho with one emitting face (E = 1) holds
+// docs/references.md 3.1 / 3.3: a closed box of uniform rho with one emitting face (E = 1) holds
 // sum A B = sum A E / (1 - rho): 2 for rho = 0.5 and 5 for rho = 0.8, within 1%.
 TEST(PatchRadiosityEnergy, ClosedRoomBalancesEmission) {
   for (float rho : {0.5f, 0.8f}) {

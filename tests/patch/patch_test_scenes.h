@@ -1,6 +1,6 @@
 #pragma once
 // Scenes for the patch method's tests, built by hand (independent of the loaders), and the
-// closed-form view factors of shared/reference/VALIDATION.md section 1 they are checked against.
+// closed-form view factors of docs/references.md section 1 they are checked against.
 
 #include <radiosity/scene_builder.h>
 
@@ -79,7 +79,7 @@ inline double objectFormFactor(const PatchMesh& mesh, const FormFactorTable& tab
   return flux / area;
 }
 
-// Closed forms of VALIDATION.md 1(a), 1(b), 1(c) (1(d) is in render/test_scenes.h).
+// Closed forms of docs/references.md 1(a), 1(b), 1(c) (1(d) is in render/test_scenes.h).
 inline double parallelRectanglesF(double a, double b, double c) {
   const double X = a / c, Y = b / c, pi = glm::pi<double>();
   return 2.0 / (pi * X * Y) *

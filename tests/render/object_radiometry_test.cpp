@@ -21,7 +21,7 @@ using test::axisSquare;
 constexpr double kPi = glm::pi<double>();
 
 TEST(ObjectRadiometry, WhiteFurnaceRadiosityIsPiKeOverOneMinusRho) {
-  // VALIDATION.md 3.2: B = E / (1 - rho) with E = pi Ke; then H = (B - E) / rho = B as well.
+  // docs/references.md 3.2: B = E / (1 - rho) with E = pi Ke; then H = (B - E) / rho = B as well.
   SceneBuilder b("furnace");
   Material m;
   m.rho = Color(0.5f);
@@ -70,7 +70,7 @@ TEST(ObjectRadiometry, DirectIrradianceFromSquareEmitterMatchesViewFactor) {
   settings.samplesPerPixel = 8192;
   const auto objects = estimateObjectRadiometry(b.build(), 4, settings);
   ASSERT_EQ(objects.size(), 1 + probes.size());
-  // Table 1(d), a = b = c = 1: the corner value 0.138531606 checks the formula as coded.
+  // docs/references.md 1(d), a = b = c = 1: 0.138531606 checks the formula as coded.
   ASSERT_NEAR(test::cornerElementF(1, 1, 1), 0.138531606, 1e-9);
   for (size_t i = 0; i < probes.size(); ++i) {
     const double f = test::pointToParallelRectangleF(probes[i].x, probes[i].y, 0, 1, 0, 1, 1);
@@ -86,7 +86,7 @@ TEST(ObjectRadiometry, DirectIrradianceFromSquareEmitterMatchesViewFactor) {
 }
 
 TEST(ObjectRadiometry, ClosedCubeEnergyBalance) {
-  // VALIDATION.md 3.1 / 3.5: unit cube, face 0 emits E = 1 (Ke = 1/pi), rho = 0.5 on all
+  // docs/references.md 3.1 / 3.3: unit cube, face 0 emits E = 1 (Ke = 1/pi), rho = 0.5 on all
   // faces: sum of A B = E / (1 - rho) = 2 exactly, whatever the distribution over the faces.
   SceneBuilder b("cube");
   Material wall, lamp;
@@ -101,11 +101,11 @@ TEST(ObjectRadiometry, ClosedCubeEnergyBalance) {
   for (const ObjectRadiometry& o : objects) total += o.area * o.meanRadiosity.g;
   std::printf("cube: sum A B = %.4f (exact 2)\n", total);
   EXPECT_NEAR(total, 2.0, 0.02);
-  // Face averages near the one-patch-per-face solution of 3.5 (B0 = 1.0909, B5 = 0.18175,
-  // Bs = 0.18184). The continuous solution is not uniform over a face, so its face averages
-  // differ from those: measured with 1024 points x 1024 paths, B0 = 1.104 (+1.2%),
-  // B5 = 0.171 (-6%), Bs = 0.181 (-0.3%). A 10% band still catches a misplaced emitter or a
-  // lost bounce.
+  // Face averages near the one-patch-per-face solution of docs/references.md 3.3
+  // (B0 = 1.0909, B5 = 0.18175, Bs = 0.18184). The continuous solution is not uniform over a face,
+  // so its face averages differ from those: measured with 1024 points x 1024 paths,
+  // B0 = 1.104 (+1.2%), B5 = 0.171 (-6%), Bs = 0.181 (-0.3%). A 10% band still catches a
+  // misplaced emitter or a lost bounce.
   EXPECT_NEAR(objects[0].meanRadiosity.g, 1.0909, 0.10 * 1.0909);
   EXPECT_NEAR(objects[1].meanRadiosity.g, 0.18175, 0.10 * 0.18175);
   for (int side = 2; side < 6; ++side)

@@ -41,7 +41,7 @@ Camera insideCube(int size) {
 }
 
 TEST(PathTracer, WhiteFurnaceRadianceIsKeOverOneMinusRho) {
-  // VALIDATION.md 3.2: B = E / (1 - rho) everywhere, so every pixel sees Ke / (1 - rho).
+  // docs/references.md 3.2: B = E / (1 - rho) everywhere, so every pixel sees Ke / (1 - rho).
   const Color ke(1.0f, 0.5f, 0.25f);
   const float rho = 0.5f;
   PathTracerSettings settings;
@@ -99,7 +99,7 @@ void forPixelFootprint(int x, int y, int n, F f) {
 }
 
 // Radiance leaving a rho = 0.5 plane lit by intensity I at (0, 1, 0): rho I cos / (pi d^2),
-// with cos = 1 / d (DESIGN.md "Units and conventions").
+// with cos = 1 / d (docs/references.md 3.5; units: docs/ARCHITECTURE.md "Units and conventions").
 float pointLitRadiance(const Vec3& p, float intensity) {
   const Vec3 d = Vec3(0, 1, 0) - p;
   const float d2 = glm::dot(d, d);

@@ -13,7 +13,7 @@
 
 namespace rad::test {
 
-/// VALIDATION.md 1(d): the view factor from a point to a parallel a x b rectangle at height c,
+/// docs/references.md 1(d): the view factor from a point to a parallel a x b rectangle at height c,
 /// the point's normal through a corner (Siegel & Howell via EES FDiff_1).
 inline double cornerElementF(double a, double b, double c) {
   const double X = a / c, Y = b / c;

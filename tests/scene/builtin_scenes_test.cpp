@@ -1,5 +1,5 @@
-// Built-in scenes: the Cornell box against the reference OBJ (tests/data/scene/cornell, a copy of
-// shared/reference/cornell), areas from VALIDATION.md 2.3 / 2.7; room:N scaling.
+// Built-in scenes: the Cornell box against the reference OBJ (tests/data/scene/cornell), areas
+// from docs/references.md 2.3 / 2.4; room:N scaling.
 
 #include <gtest/gtest.h>
 #include <radiosity/ray_caster.h>
@@ -16,7 +16,7 @@ TEST(BuiltinScenes, CornellMatchesReferenceObj) {
   const Scene builtin = loadScene("cornell");
   const Scene reference = loadScene(kData + "cornell/cornell_box.obj");
   EXPECT_EQ(builtin.triangles.size(), reference.triangles.size());
-  EXPECT_EQ(builtin.triangles.size(), 46u);  // VALIDATION.md 2.7: 46 faces in the triangle file
+  EXPECT_EQ(builtin.triangles.size(), 46u);  // docs/references.md 2.4: 46 triangles
   const auto a = test::summarize(builtin, 0.01), b = test::summarize(reference, 0.01);
   ASSERT_EQ(a.size(), 8u);
   for (const auto& [name, o] : b) {
@@ -29,7 +29,7 @@ TEST(BuiltinScenes, CornellMatchesReferenceObj) {
     for (const auto& [normal, area] : o.areaByNormal)
       EXPECT_NEAR(a.at(name).areaByNormal.at(normal), area, 1e-6 * o.area);
   }
-  // VALIDATION.md 2.3 / 2.7 areas (mm^2).
+  // docs/references.md 2.3 / 2.4 areas (mm^2).
   EXPECT_NEAR(a.at("floor").area, 308231.0, 0.5);
   EXPECT_NEAR(a.at("back_wall").area, 303376.6, 0.5);
   EXPECT_NEAR(a.at("ceiling").area, 297265.2, 0.5);
@@ -40,7 +40,7 @@ TEST(BuiltinScenes, CornellMatchesReferenceObj) {
   double total = 0.0;
   for (const auto& [name, o] : a) total += o.area;
   EXPECT_NEAR(total, 1920695.7, 2.0);
-  // VALIDATION.md 2.6 materials and the light's Ke.
+  // docs/references.md 2.5 materials and the light's Ke.
   EXPECT_EQ(a.at("floor").material->rho, Color(0.7383f, 0.7360f, 0.7387f));
   EXPECT_EQ(a.at("left_wall_red").material->rho, Color(0.4939f, 0.0489f, 0.0512f));
   EXPECT_EQ(a.at("right_wall_green").material->rho, Color(0.0684f, 0.3985f, 0.0866f));
@@ -50,7 +50,7 @@ TEST(BuiltinScenes, CornellMatchesReferenceObj) {
   EXPECT_TRUE(a.at("light").areaByNormal.count(test::key(Vec3(0, -1, 0), 1e-3)));
   ASSERT_TRUE(builtin.camera);
   EXPECT_EQ(builtin.camera->eye, Vec3(278, 273, -800));
-  EXPECT_NEAR(builtin.camera->fovDeg, 39.3077f, 1e-4);  // VALIDATION.md 2.2
+  EXPECT_NEAR(builtin.camera->fovDeg, 39.3077f, 1e-4);  // docs/references.md 2.2
   EXPECT_EQ(builtin.camera->width, 512);
   EXPECT_TRUE(builtin.lights.empty());
 }

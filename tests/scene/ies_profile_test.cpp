@@ -1,4 +1,4 @@
-// IES LM-63 parser and evaluator. References: VALIDATION.md section 4 (layout, symmetry rules,
+// IES LM-63 parser and evaluator. References: docs/references.md section 4 (layout, symmetry,
 // the flux of the photompy tilt file) and closed-form integrals stated beside each test.
 
 #include <radiosity/error.h>
@@ -24,7 +24,7 @@ std::string readFile(const std::string& path) {
   return s.str();
 }
 
-// Direction of (V, H) in the luminaire frame of VALIDATION.md 4.5 (V from nadir -z, H from +x
+// Direction of (V, H) in the luminaire frame of docs/references.md 4.3 (V from nadir -z, H from +x
 // toward +y).
 double at(const IesProfile& p, double vDeg, double hDeg) {
   const double v = vDeg * kPi / 180.0, h = hDeg * kPi / 180.0;
@@ -50,7 +50,7 @@ TEST(IesProfile, TiltIncludeFileHeaderAndTable) {
   EXPECT_DOUBLE_EQ(p.horizontalAngles[2], 90.0);
   ASSERT_EQ(p.tiltAngles.size(), 7u);
   EXPECT_DOUBLE_EQ(p.tiltFactors.back(), 0.75);
-  // Field 12 is 1.10000 (file generation type) and must not scale the table (VALIDATION 4.6).
+  // Field 12 is 1.10000 (file generation type), not a scale factor (docs/references.md 4.2).
   EXPECT_DOUBLE_EQ(p.candela[4], 500.0);
   EXPECT_DOUBLE_EQ(p.maxCandela(), 10000.0);
 }
@@ -64,7 +64,7 @@ TEST(IesProfile, InterpolatesAndFoldsQuadrantSymmetry) {
   // Midpoints: linear in V, bilinear in (V, H).
   EXPECT_NEAR(at(p, 11.25, 0), 9000.0, 1e-6);
   EXPECT_NEAR(at(p, 11.25, 22.5), 0.25 * (10000 + 8000 + 10000 + 7500), 1e-6);
-  // Last H = 90: each quadrant mirrors the first (VALIDATION 4.5 folding rules).
+  // Last H = 90: each quadrant mirrors the first (docs/references.md 4.3).
   EXPECT_NEAR(at(p, 45, 180), 5000.0, 1e-6);
   EXPECT_NEAR(at(p, 45, 270), 4000.0, 1e-6);
   EXPECT_NEAR(at(p, 45, 135), 4500.0, 1e-6);
@@ -74,7 +74,7 @@ TEST(IesProfile, InterpolatesAndFoldsQuadrantSymmetry) {
 }
 
 TEST(IesProfile, TiltFileFluxMatchesValidation) {
-  // VALIDATION.md 4.7 item 2: 20 826.25 lm without tilt factors.
+  // docs/references.md 4.5: 20 826.25 lm without tilt factors.
   const IesProfile p = loadIesProfile(kIesDir + "photompy_tilt_include_v19.ies");
   EXPECT_NEAR(p.totalFlux(), 20826.25, 0.01);
 }
@@ -103,7 +103,7 @@ TEST(IesProfile, TypeBFile) {
   EXPECT_EQ(p.type, PhotometricType::B);
   EXPECT_EQ(p.candela.size(), 25u);
   EXPECT_DOUBLE_EQ(p.maxCandela(), 25000.0);
-  // Photometric zero is the aim (-z); H = 0..90 is mirrored laterally (Ashdown, VALIDATION 4.5).
+  // Photometric zero is the aim (-z); H = 0..90 is mirrored laterally (docs/references.md 4.3).
   EXPECT_NEAR(p.candelaToward(0, 0, -1), 25000.0, 1e-6);
   const double s = std::sin(22.5 * kPi / 180), c = std::cos(22.5 * kPi / 180);
   EXPECT_NEAR(p.candelaToward(s, 0, -c), 24000.0, 1e-6);

@@ -146,7 +146,7 @@ TEST(SceneFiles, JsonSceneComposesFilesLightsCameraSolver) {
   EXPECT_EQ(s.lights[1].spinDegPerS, Vec3(0, 45, 0));
   ASSERT_EQ(s.lights[2].type, LightType::Ies);
   ASSERT_TRUE(s.lights[2].ies);
-  // Default scale 1/179 W/sr per cd (Radiance WHTEFFICACY, VALIDATION.md 4.6) times the colour.
+  // Default 1/179 W/sr per cd (Radiance WHTEFFICACY, docs/references.md 4.4) times the colour.
   EXPECT_NEAR(s.lights[2].intensity.g, 0.5 / 179.0, 1e-9);
   EXPECT_NEAR(s.lights[2].power().r, 20826.25 / 179.0, 1e-2);
   ASSERT_TRUE(s.camera);

@@ -56,7 +56,7 @@ VoxelSolution solveFurnace(const Scene& scene, const VoxelGrid& grid, int iterat
 
 TEST(VoxelSolver, UniformFurnaceConvergesToEOverOneMinusRho) {
   // Closed enclosure, every surface emits E and reflects rho: B = E / (1 - rho) everywhere
-  // (VALIDATION.md 3.2). With per-voxel normalization every side gathers a full hemisphere.
+  // (docs/references.md 3.2). With per-voxel normalization every side gathers a full hemisphere.
   const Color ke(1.0f, 0.5f, 0.25f);
   const Scene scene = test::uniformCube(Color(0.5f), ke);
   const VoxelGrid grid = voxelize(scene, 1.0f / 24.0f);
@@ -73,7 +73,7 @@ TEST(VoxelSolver, FurnaceHoldsWithACoarserSphereForLaterBounces) {
   // The sweeps after the first on a sphere of R = 3 (90 directions, against 606 at R = 8; python3
   // brute-force counts of the digital sphere): each bounce is normalized for the sphere it was
   // gathered on, so every side still gathers a whole hemisphere and B = E / (1 - rho)
-  // (VALIDATION.md 3.2). Normalized for R = 8, the bounces gathered on R = 3 came out off.
+  // (docs/references.md 3.2). Normalized for R = 8, the bounces gathered on R = 3 came out off.
   const Color ke(1.0f, 0.5f, 0.25f);
   const Scene scene = test::uniformCube(Color(0.5f), ke);
   const VoxelGrid grid = voxelize(scene, 1.0f / 24.0f);
@@ -88,7 +88,7 @@ TEST(VoxelSolver, FurnaceHoldsWithACoarserSphereForLaterBounces) {
 
 // B over the objects `addObject` adds to the furnace (every surface emits E = pi and reflects
 // rho = 0.5 inside the unit cube), area-weighted: pi / (1 - rho) if every ray from them meets a
-// surface (VALIDATION.md 3.2).
+// surface (docs/references.md 3.2).
 template <typename AddObject>
 double meanRadiosityInFurnace(const AddObject& addObject, float voxelSize) {
   SceneBuilder b("furnace with an object");
@@ -167,7 +167,7 @@ CoarseLampRoom coarseLampRoom(float lampKe, float n) {
 
 // The inward cube, every face of one rho and face 3 a lamp (Ke = 1), in voxels of 1/20, with
 // what a closed enclosure's energy balance asks of it: sum A B = sum A E / (1 - rho) exactly
-// (VALIDATION.md 3.1), per channel.
+// (docs/references.md 3.1), per channel.
 struct UniformRoom {
   Scene scene;
   VoxelGrid grid;
@@ -205,9 +205,9 @@ TEST(VoxelSolver, ClosedRoomBalancesEnergy) {
 }
 
 TEST(VoxelSolver, BrightRoomBalancesEnergyAfterFiveIterations) {
-  // Walls of rho 0.8 send on 80% of each bounce, so five iterations after the first shot leave
-  // out 0.8^6 = 26% of the reflected light: sum A B = sum A E (1 + rho (1 - 0.8^6) / (1 - rho)),
-  // 21% below sum A E / (1 - rho) (VALIDATION.md 3.1). The tail estimate adds the bounces after
+  // Walls of rho 0.8 send on 80% of each bounce, so five iterations after the first shot leave out
+  // 0.8^6 = 26% of the reflected light: sum A B = sum A E (1 + rho (1 - 0.8^6) / (1 - rho)), 21%
+  // below sum A E / (1 - rho) (docs/references.md 3.1). The tail estimate adds the bounces after
   // the last, extrapolated from the last two: the balance must hold to 2% with it.
   UniformRoom room = uniformRoom(Color(0.8f));
   room.settings.iterations = 5;

@@ -6,8 +6,9 @@
 namespace rad {
 
 /// The Cornell box (Cornell University Program of Computer Graphics, "Cornell Box Data"), in
-/// millimetres, geometry identical to shared/reference/cornell/cornell_box.obj. With `spot`,
-/// the ceiling light is switched off and a spot light below it is aimed at the floor.
+/// millimetres, geometry identical to tests/data/scene/cornell/cornell_box.obj (docs/references.md
+/// 2.4). With `spot`, the ceiling light is switched off and a spot light below it is aimed at the
+/// floor.
 Scene makeCornellBox(bool spot);
 
 /// A procedural furnished room whose triangle count grows roughly linearly with n (>= 1;

@@ -1,7 +1,7 @@
 // The Cornell box. Geometry: the Cornell "Cornell Box Data" page as written in
-// shared/reference/cornell/cornell_box.obj (VALIDATION.md 2.3, 2.7): the ceiling is 8 quads
+// tests/data/scene/cornell/cornell_box.obj (docs/references.md 2.3, 2.4): the ceiling is 8 quads
 // around the light's 130 x 105 mm hole, the warped red wall is two triangles, the front is open
-// and the blocks have no bottoms. Materials: VALIDATION.md 2.6.
+// and the blocks have no bottoms. Materials: docs/references.md 2.5.
 
 #include "scene/builtin/builtin_scenes.h"
 
@@ -37,7 +37,7 @@ struct Part {
   std::vector<std::vector<uint32_t>> faces;
 };
 
-// Materials (linear sRGB, VALIDATION.md 2.6): the measured Cornell reflectance spectra times
+// Materials (linear sRGB, docs/references.md 2.5): the measured Cornell reflectance spectra times
 // CIE D65, integrated against the CIE 1931 2-degree observer, normalised so a perfect white
 // reflector is 1, converted with the BT.709 XYZ->RGB matrix for that D65 white.
 enum { kWhite, kRed, kGreen, kLight };
@@ -71,8 +71,8 @@ Scene makeCornellBox(bool spot) {
   builder.addMaterial({"red", Color(0.4939f, 0.0489f, 0.0512f)});
   builder.addMaterial({"green", Color(0.0684f, 0.3985f, 0.0866f)});
   // Ke: the Cornell light spectrum (400: 0, 500: 8, 600: 15.6, 700: 18.4) to linear sRGB, XYZ
-  // divided by the CIE Y integral (VALIDATION.md 2.6); relative units. rho 0.78 as in Mitsuba's
-  // cbox (not a Cornell measurement).
+  // divided by the CIE Y integral (docs/references.md 2.5); relative units. rho 0.78 as in
+  // Mitsuba's cbox (not a Cornell measurement).
   const Color lightKe = spot ? Color(0.0f) : Color(20.7115f, 10.8551f, 2.7708f);
   builder.addMaterial({"light", Color(0.78f), lightKe});
 
@@ -89,7 +89,7 @@ Scene makeCornellBox(bool spot) {
     // Just below the light's centre (x 278, z 279.5), aimed straight down. The axial intensity
     // (W/sr, the same relative units as Ke) gives the floor point below it the irradiance the
     // ceiling light gives there: I / d^2 = pi Ke F with d = 538.8 mm and the point-to-light form
-    // factor F = 0.014206958 (VALIDATION.md 2.8), i.e. I = (268360, 140650, 35901).
+    // factor F = 0.014206958 (docs/references.md 2.6), i.e. I = (268360, 140650, 35901).
     Light light;
     light.type = LightType::Spot;
     light.position = Vec3(278.0f, 538.8f, 279.5f);

@@ -1,7 +1,7 @@
 // IES LM-63 photometric file parser and evaluator.
-// Based on: the LM-63 layout and conventions collected in shared/reference/VALIDATION.md section 4
-// (AGi32's "IESNA LM-63 Format" pages; I. Ashdown, "Parsing the IESNA LM-63 photometric data
-// file", 1998; Radiance ies2rad.c for the Type C frame).
+// Based on: the LM-63 layout and conventions of docs/references.md section 4 (AGi32's "IESNA LM-63
+// Format" pages; I. Ashdown, "Parsing the IESNA LM-63 photometric data file", 1998; Radiance
+// ies2rad.c for the Type C frame).
 //
 // Choices where the sources are silent or disagree:
 // - Field 12 is never a multiplier except in LM-63-1986/1991 files, where it is the
@@ -11,7 +11,7 @@
 //   (H = atan2(x, -z), V = elevation asin(y)); Type B planes share its x axis
 //   (V = atan2(y, -z), H = asin(x)). A table whose horizontal angles start at 0 is mirrored
 //   laterally (Ashdown: "laterally symmetric ... first 0, last 90").
-// - Type C horizontal angles increase from +x toward +y (VALIDATION.md 4.5 "codable mapping").
+// - Type C horizontal angles increase from +x toward +y (docs/references.md 4.3).
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
