@@ -3,12 +3,13 @@
 //
 // tests/data/scene/external/quads.gltf holds ten 1 x 1 quads, each with its own material
 // (baseColorFactor 0.8; 1 for "rgb16", glTF's usual white scale under a texture, which is no
-// reflectance of 1 to warn of) and image; its buffer is "quad data.bin" (URI quad%20data.bin). Every
-// image is a uniform 4 x 4 field of sRGB 188, the PNGs written byte by byte by a script (Python's
-// zlib; 16-bit ones 188 x 257): grey ("textures/grey 8.png", URI textures/grey%208.png), grey+alpha,
-// RGB, RGBA, palette, 16-bit grey, RGB and RGBA, "100%.png" (URI 100%25.png), and an 8 x 8 JPEG by
-// ffmpeg (`-f lavfi -i color=c=0xBCBCBC:s=8x8 -frames:v 1 -q:v 1`). sRGB 188 is linear 0.502886
-// (IEC 61966-2-1: ((188/255 + 0.055) / 1.055)^2.4, computed apart from the code under test).
+// reflectance of 1 to warn of) and image; its buffer is "quad data.bin" (URI quad%20data.bin).
+// Every image is a uniform 4 x 4 field of sRGB 188, the PNGs written byte by byte by a script
+// (Python's zlib; 16-bit ones 188 x 257): grey ("textures/grey 8.png", URI textures/grey%208.png),
+// grey+alpha, RGB, RGBA, palette, 16-bit grey, RGB and RGBA, "100%.png" (URI 100%25.png), and an 8
+// x 8 JPEG by ffmpeg (`-f lavfi -i color=c=0xBCBCBC:s=8x8 -frames:v 1 -q:v 1`). sRGB 188 is linear
+// 0.502886 (IEC 61966-2-1: ((188/255 + 0.055) / 1.055)^2.4, computed apart from the code under
+// test).
 #include <gtest/gtest.h>
 #include <radiosity/scene_loader.h>
 #include <radiosity/texture.h>
