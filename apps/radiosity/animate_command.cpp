@@ -26,7 +26,9 @@ namespace rad::cli {
 namespace {
 
 struct AnimateOptions {
-  explicit AnimateOptions(CLI::App& command) : method(command, {"patch"}) {}
+  // The relighter keeps one light state: the groups are scaled in the lights, not solved apart.
+  explicit AnimateOptions(CLI::App& command)
+      : method(command, {{"patch"}, {"light_groups"}, true}) {}
   MethodOptions method;
   PictureOptions picture;
   std::string scene, output = "frames/frame_%04d.png", video, stats, solution;

@@ -21,6 +21,22 @@
 
 namespace rad::cli {
 
+namespace {
+
+// CLI11's help, less the value a "--no-" flag sets ("--no-normalize{false}"): beside "(default
+// true)" it read as the default.
+class HelpFormatter : public CLI::Formatter {
+ public:
+  std::string make_option_name(const CLI::Option* option, bool positional) const override {
+    std::string name = CLI::Formatter::make_option_name(option, positional);
+    for (size_t open; (open = name.find('{')) != std::string::npos;)
+      name.erase(open, name.find('}', open) - open + 1);
+    return name;
+  }
+};
+
+}  // namespace
+
 int runCli(const std::vector<std::string>& args) {
   return runCli(args, std::cout, std::cerr);
 }
@@ -30,6 +46,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   CLI::App app{"radiosity " RADIOSITY_VERSION " - global illumination by radiosity", "radiosity"};
   app.require_subcommand(1);
   app.fallthrough();
+  app.formatter(std::make_shared<HelpFormatter>());  // before the subcommands, which copy it
   app.set_version_flag("--version", "radiosity " RADIOSITY_VERSION " (" RADIOSITY_BUILD_TYPE ")");
   int threads = 0;
   bool quiet = false, verbose = false;

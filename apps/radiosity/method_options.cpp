@@ -91,28 +91,14 @@ CLI::Validator checkOf(const SettingDeclaration& d) {
 
 }  // namespace
 
-MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
-    : methods_(std::move(methods)) {
+MethodOptions::MethodOptions(CLI::App& c, MethodUse use) : methods_(std::move(use.methods)) {
   for (const SettingDeclaration& d : solverSettingDeclarations()) {
-    if (d.name == "method") {
-      options_[d.name] = c.add_option("--method", text_[d.name],
-                                      fmt::format("{} (default: {})", d.help, methods_.front()))
-                             ->check(CLI::IsMember(methods_));
-    } else if (d.type == SettingType::Flag) {
-      const std::string flag = d.flag();
-      options_[d.name] =
-          c.add_flag(flag + ",!--no-" + flag.substr(2), switches_[d.name], d.fullHelp())
-              ->group(d.group);
-    } else {
-      const char* type = d.type == SettingType::Integer  ? "INT"
-                         : d.type == SettingType::Number ? "NUMBER"
-                         : d.type == SettingType::Choice ? "NAME"
-                                                         : "TEXT";
-      options_[d.name] =
-          c.add_option(d.flag(), text_[d.name], d.fullHelp())->check(checkOf(d))->type_name(type);
-      if (d.group != "General") options_[d.name]->group(d.group);
-    }
+    const bool read = std::any_of(methods_.begin(), methods_.end(),
+                                  [&](const std::string& m) { return d.readBy(m); });
+    const bool unread = std::find(use.unread.begin(), use.unread.end(), d.name) != use.unread.end();
+    if (read && !unread && (d.name != "method" || methods_.size() > 1)) addSetting(c, d);
   }
+  if (!use.groupScales) return;
   c.add_option("--group", groupText_,
                "Scale a light group's light, NAME=SCALE or NAME=r,g,b (0: off; repeatable); "
                "solves the groups apart (--light-groups). A light's group is its \"group\", "
@@ -120,10 +106,31 @@ MethodOptions::MethodOptions(CLI::App& c, std::vector<std::string> methods)
       ->type_name("NAME=SCALE");
 }
 
+void MethodOptions::addSetting(CLI::App& c, const SettingDeclaration& d) {
+  if (d.name == "method") {
+    options_[d.name] = c.add_option("--method", text_[d.name],
+                                    fmt::format("{} (default: {})", d.help, methods_.front()))
+                           ->check(CLI::IsMember(methods_));
+  } else if (d.type == SettingType::Flag) {
+    const std::string flag = d.flag();
+    options_[d.name] =
+        c.add_flag(flag + ",!--no-" + flag.substr(2), switches_[d.name], d.fullHelp())
+            ->group(d.group);
+  } else {
+    const char* type = d.type == SettingType::Integer  ? "INT"
+                       : d.type == SettingType::Number ? "NUMBER"
+                       : d.type == SettingType::Choice ? "NAME"
+                                                       : "TEXT";
+    options_[d.name] =
+        c.add_option(d.flag(), text_[d.name], d.fullHelp())->check(checkOf(d))->type_name(type);
+    if (d.group != "General") options_[d.name]->group(d.group);
+  }
+}
+
 SolverSettings MethodOptions::given() const {
   SolverSettings given;
   for (const SettingDeclaration& d : solverSettingDeclarations()) {
-    if (!*options_.at(d.name)) continue;
+    if (!options_.contains(d.name) || !*options_.at(d.name)) continue;
     if (d.type == SettingType::Flag) {
       given.values[d.name] = switches_.at(d.name);
       continue;

@@ -26,11 +26,19 @@ class Option;
 
 namespace rad::cli {
 
+/// What a command reads of the methods' settings, so that its --help lists only those.
+struct MethodUse {
+  std::vector<std::string> methods;  ///< the methods it offers, the first the default
+  std::vector<std::string> unread;   ///< settings of those methods it does not read, by name
+  bool groupScales = true;           ///< takes --group
+};
+
 class MethodOptions {
  public:
-  /// `methods` lists the methods the command accepts, the first being the default. Adds a flag
-  /// for every declared setting (solver_settings.h).
-  MethodOptions(CLI::App& command, std::vector<std::string> methods);
+  /// Adds a flag for every declared setting (solver_settings.h) that one of the command's
+  /// methods reads and the command does not leave unread, --method when it offers more than
+  /// one, and --group.
+  MethodOptions(CLI::App& command, MethodUse use);
 
   /// Resolves the settings: the flags given, then the scene's "solver" values, then the
   /// methods' defaults; any --group solves the light groups apart. Throws InputError for a
@@ -57,6 +65,7 @@ class MethodOptions {
  private:
   SolverSettings given() const;
   void parseGroups(const Scene& scene);
+  void addSetting(CLI::App& command, const SettingDeclaration& d);
 
   std::vector<std::string> methods_;
   std::vector<std::string> groupText_;
@@ -65,7 +74,7 @@ class MethodOptions {
   /// What each flag was given, by setting name (std::map: CLI11 keeps pointers to them).
   std::map<std::string, std::string> text_;
   std::map<std::string, bool> switches_;
-  std::map<std::string, CLI::Option*> options_;
+  std::map<std::string, CLI::Option*> options_;  ///< the settings the command offers, by name
 };
 
 /// What a solve of the commands reports besides the solution: its numbers, and the per-object

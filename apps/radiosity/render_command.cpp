@@ -24,7 +24,8 @@ namespace rad::cli {
 namespace {
 
 struct RenderOptions {
-  explicit RenderOptions(CLI::App& command) : method(command, {"pathtrace", "voxel", "patch"}) {}
+  explicit RenderOptions(CLI::App& command)
+      : method(command, {{"pathtrace", "voxel", "patch"}, {}, true}) {}
   MethodOptions method;
   double time = 0.0;
   PictureOptions picture;

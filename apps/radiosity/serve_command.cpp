@@ -3,7 +3,6 @@
 // (src/server: ViewerSession, ViewerServer). A voxel solution is shown and its light groups
 // dimmed, not relit.
 #include <fmt/format.h>
-#include <radiosity/error.h>
 #include <radiosity/relighter.h>
 #include <radiosity/voxel_radiosity.h>
 
@@ -29,7 +28,9 @@ namespace rad::cli {
 namespace {
 
 struct ServeOptions {
-  explicit ServeOptions(CLI::App& command) : method(command, {"patch", "voxel"}) {}
+  // No pictures; the page dims and switches the light groups (a voxel solution's solved apart).
+  explicit ServeOptions(CLI::App& command)
+      : method(command, {{"patch", "voxel"}, {"spp", "light_groups"}, false}) {}
   MethodOptions method;
   std::string scene, solution, host = "127.0.0.1", webDir = RADIOSITY_WEB_DIR;
   int port = 8080;
@@ -69,8 +70,6 @@ int runServe(ServeOptions& o, Console& console) {
   RunStats stats;
   const Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
   o.method.resolve(scene, o.solution, console);
-  if (!o.method.groupScales().empty())
-    throw InputError("--group", "serve: the page dims and switches the groups");
   const RayCaster caster(scene);  // the relighter's, for as long as it serves
   // Listening from the start: the page shows the solve's progress until the session is there.
   ViewerServer server(o.webDir);

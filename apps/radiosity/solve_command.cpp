@@ -26,7 +26,8 @@ namespace rad::cli {
 namespace {
 
 struct SolveOptions {
-  explicit SolveOptions(CLI::App& command) : method(command, {"voxel", "patch"}) {}
+  // No pictures: no samples per pixel.
+  explicit SolveOptions(CLI::App& command) : method(command, {{"voxel", "patch"}, {"spp"}, true}) {}
   MethodOptions method;
   double time = 0.0;
   float exposure = 0.0f;

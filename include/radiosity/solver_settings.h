@@ -37,6 +37,8 @@ struct SettingDeclaration {
   double min = 0.0, max = 0.0;  ///< numbers: the valid range
   bool minOpen = false, maxOpen = false;  ///< the ends themselves are not valid
   std::vector<std::string> choices;       ///< Choice: the valid names
+  /// The methods that read it ("pathtrace", "patch", "voxel"); empty: every one.
+  std::vector<std::string> methods;
   /// The default as --help states it, where the method's own default does not say it all.
   std::string defaultText;
   std::function<void(MethodSettings&, const SettingValue&)> apply;
@@ -44,6 +46,8 @@ struct SettingDeclaration {
 
   /// "--patch-size"; a Flag also has "--no-" + the rest.
   std::string flag() const;
+  /// Whether `method` reads it.
+  bool readBy(std::string_view method) const;
   /// Why `value` is not valid here (its type, range or choices), or "" if it is.
   std::string problem(const SettingValue& value) const;
   /// The value a command-line word stands for, or nullopt with `why` set.

@@ -51,6 +51,14 @@ SettingType typeOf() {
     return SettingType::Number;
 }
 
+// The methods that read a group's settings: one method's group its own, the general ones all.
+std::vector<std::string> methodsOf(const std::string& group) {
+  if (group == kPathTracer) return {"pathtrace"};
+  if (group == kVoxel) return {"voxel"};
+  if (group == kPatch) return {"patch"};
+  return {};
+}
+
 // A setting stored in one field of one method's settings.
 template <class Section, class Field>
 SettingDeclaration field(std::string name, const std::string& group,
@@ -61,6 +69,7 @@ SettingDeclaration field(std::string name, const std::string& group,
   d.name = std::move(name);
   d.type = typeOf<Field>();
   d.group = group;
+  d.methods = methodsOf(group);
   d.help = std::move(help);
   d.min = min;
   d.max = max;
@@ -82,6 +91,7 @@ SettingDeclaration choice(std::string name, const std::string& group,
   d.name = std::move(name);
   d.type = SettingType::Choice;
   d.group = group;
+  d.methods = methodsOf(group);
   d.help = std::move(help);
   d.choices = choiceNames(names);
   d.apply = [section, member, &names](MethodSettings& m, const SettingValue& v) {
@@ -122,6 +132,7 @@ std::vector<SettingDeclaration> declare() {
                     "Solve each light group apart (patch, voxel: a solve per group), so that "
                     "--group dims, tints or switches them off with their full bounce; on with "
                     "any --group"));
+  d.back().methods = {"patch", "voxel"};
   d.back().apply = [](M& m, const SettingValue& v) {
     m.patch.lightGroups = m.voxel.lightGroups = std::get<bool>(v);
   };
@@ -133,6 +144,7 @@ std::vector<SettingDeclaration> declare() {
                     "iteration adds over B's; patch: the unsolved power over the light put in)",
                     0, kInfinity));
   d.back().defaultText = "0 (every iteration) for voxel, 1e-3 for patch";
+  d.back().methods = {"patch", "voxel"};
   d.back().apply = [](M& m, const SettingValue& v) {
     m.voxel.tolerance = m.patch.tolerance = std::get<double>(v);
   };
@@ -173,8 +185,10 @@ std::vector<SettingDeclaration> declare() {
   d.push_back(field("patch_size", kPatch, &M::patch, &P::patchSize,
                     "Longest patch edge in scene units (the base level)", 0, kInfinity, true));
   d.back().defaultText = "from --patches";
-  d.push_back(field("patches", kPatch, &M::patch, &P::targetPatches,
-                    "Approximate number of patches (the base level) beyond the one each face is at least", 1, 4294967296.0));
+  d.push_back(
+      field("patches", kPatch, &M::patch, &P::targetPatches,
+            "Approximate number of patches (the base level) beyond the one each face is at least",
+            1, 4294967296.0));
   d.push_back(choice("ff_estimator", kPatch, &M::patch, &P::estimator, kFormFactorEstimatorNames,
                      "Form factors by: hemisphere (rays from each patch), pairwise (point pairs), "
                      "exact (point-to-polygon, visibility rays)"));
@@ -259,6 +273,10 @@ std::string SettingDeclaration::flag() const {
   std::string f = "--" + name;
   std::replace(f.begin(), f.end(), '_', '-');
   return f;
+}
+
+bool SettingDeclaration::readBy(std::string_view method) const {
+  return methods.empty() || std::find(methods.begin(), methods.end(), method) != methods.end();
 }
 
 std::string SettingDeclaration::problem(const SettingValue& value) const {
@@ -382,12 +400,9 @@ MethodSettings resolveMethodSettings(const SolverSettings& scene, const SolverSe
 }
 
 std::vector<std::pair<std::string, SettingValue>> settingsOf(const MethodSettings& settings) {
-  const std::string& group = settings.method == "pathtrace" ? kPathTracer
-                             : settings.method == "voxel"   ? kVoxel
-                                                            : kPatch;
   std::vector<std::pair<std::string, SettingValue>> out;
   for (const SettingDeclaration& d : solverSettingDeclarations())
-    if (d.group == kGeneral || d.group == group) out.emplace_back(d.name, d.current(settings));
+    if (d.readBy(settings.method)) out.emplace_back(d.name, d.current(settings));
   return out;
 }
 
