@@ -157,7 +157,7 @@ int runAnimate(AnimateOptions& o, Console& console) {
                            {"ms_per_relight", median(relightMs)},
                            {"ms_per_render", median(renderMs)}};
     stats.settings = settingsOf(o.method.settings());
-    writeStatsFile(o.stats, scene, o.scene, "patch", total.seconds(), stats);
+    writeStatsFile(o.stats, scene, o.scene, "patch", total.seconds(), console, stats);
   }
   console.info(fmt::format(
       "animated {} frames of {} ({}x{}, {:g} fps) in {:.2f} s: {:.1f} ms per relight, {:.1f} ms "

@@ -53,7 +53,9 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   app.add_option("--threads", threads,
                  "Worker threads (default and 0: all cores; at most the cores)")
       ->check(nonNegativeNumber());
-  app.add_flag("-q,--quiet", quiet, "Print errors only");
+  app.add_flag("-q,--quiet", quiet,
+               "Print errors only: no progress, summary or warnings (--stats still records the "
+               "warnings)");
   app.add_flag("-v,--verbose", verbose, "Print the banner, timings and details");
 
   CommandAction action;
@@ -100,7 +102,9 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   if (threads > 0)
     threadLimit.emplace(tbb::global_control::max_allowed_parallelism, size_t(threads));
   try {
-    return action();
+    const int status = action();
+    console.summarizeWarnings();
+    return status;
   } catch (const InputError& e) {
     console.finishProgress();
     err << "radiosity: " << e.what() << "\n";

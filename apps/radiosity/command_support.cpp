@@ -99,9 +99,11 @@ int statusAfterOutputs(Console& console) {
 }
 
 void writeStatsFile(const std::string& path, const Scene& scene, const std::string& sceneName,
-                    const std::string& method, double totalSeconds, RunStats& stats) {
+                    const std::string& method, double totalSeconds, const Console& console,
+                    RunStats& stats) {
   stats.scene = sceneName;
   stats.method = method;
+  stats.warnings = console.warnings();
   stats.emittedPower = scene.emittedPower();
   if (!stats.lightGroups.empty()) {
     stats.emittedPower = Color(0.0f);

@@ -49,8 +49,10 @@ void checkSolutionOutput(const std::string& path);
 /// Ctrl-C came while they were written (each is whole: outputs are written atomically).
 int statusAfterOutputs(Console& console);
 
-/// Completes the stats (scene, method, emitted power, total time, peak memory) and writes them.
+/// Completes the stats (scene, method, emitted power, total time, peak memory, the warnings
+/// given so far) and writes them.
 void writeStatsFile(const std::string& path, const Scene& scene, const std::string& sceneName,
-                    const std::string& method, double totalSeconds, RunStats& stats);
+                    const std::string& method, double totalSeconds, const Console& console,
+                    RunStats& stats);
 
 }  // namespace rad::cli

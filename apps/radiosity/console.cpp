@@ -26,9 +26,18 @@ extern "C" void onInterrupt(int) {
 }  // namespace
 
 void Console::warn(const std::string& message) {
-  if (!warnings_) return;
+  if (!speaksWarnings_) return;
+  warnings_.push_back(message);
+  if (quiet_) return;
   finishProgress();
   err_ << "radiosity: warning: " << message << "\n";
+}
+
+void Console::summarizeWarnings() {
+  if (quiet_ || warnings_.empty()) return;
+  finishProgress();
+  err_ << fmt::format("radiosity: {} warning{}\n", warnings_.size(),
+                      warnings_.size() == 1 ? "" : "s");
 }
 
 void Console::info(const std::string& message) {

@@ -1,12 +1,14 @@
 #pragma once
 // What a command prints and where: results on `out`, warnings, progress and the summary line on
-// `err`; --quiet silences all but errors, --verbose adds the banner and timings.
+// `err`; --quiet silences all but errors (its warnings are kept for the stats file), --verbose
+// adds the banner and timings.
 
 #include <radiosity/progress.h>
 
 #include <chrono>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace rad::cli {
 
@@ -18,9 +20,10 @@ class Console {
   void setQuiet(bool quiet) { quiet_ = quiet; }
   void setVerbose(bool verbose) { verbose_ = verbose; }
   /// Off in the processes of a split run past rank 0: rank 0 gives the run's warnings.
-  void setWarnings(bool warnings) { warnings_ = warnings; }
+  void setWarnings(bool warnings) { speaksWarnings_ = warnings; }
   bool verbose() const { return verbose_; }
 
+  /// Printed unless --quiet, and kept either way (warnings()).
   void warn(const std::string& message);
   void info(const std::string& message);    ///< unless --quiet
   void detail(const std::string& message);  ///< only with --verbose
@@ -30,14 +33,19 @@ class Console {
   ProgressCallback progress(const std::string& label);
   /// Ends a progress bar's line.
   void finishProgress();
+  /// The warnings given so far (none in the processes of a split run past rank 0).
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  /// The run's closing line when it had warnings ("3 warnings"), unless --quiet.
+  void summarizeWarnings();
 
  private:
   std::ostream& out_;
   std::ostream& err_;
   bool quiet_ = false;
   bool verbose_ = false;
-  bool warnings_ = true;
+  bool speaksWarnings_ = true;
   bool barDrawn_ = false;
+  std::vector<std::string> warnings_;
 };
 
 /// Installs a SIGINT handler for the lifetime of the object: the first Ctrl-C asks running

@@ -123,7 +123,7 @@ int runRender(RenderOptions& o, Console& console) {
   writeImage(o.output, image, o.picture.writeOptions());
   if (!o.stats.empty()) {
     stats.settings = settingsOf(o.method.settings());
-    writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
+    writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), console, stats);
   }
   console.info(fmt::format("rendered {} {}x{} with {} in {:.2f} s -> {}{}", o.scene, camera.width,
                            camera.height, o.method.method(), total.seconds(), o.output,

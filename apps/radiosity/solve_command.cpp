@@ -107,7 +107,7 @@ int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solut
   if (!o.save.empty()) solution.save(o.save, solvedWith(o.method.settings()));
   if (!o.stats.empty()) {
     stats.settings = settingsOf(o.method.settings());
-    writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), stats);
+    writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), console, stats);
   }
   console.info(fmt::format("solved {} with {}: {}{}{}{}{}", o.scene, o.method.method(),
                            describeRun(solution.stats(), total.seconds()),

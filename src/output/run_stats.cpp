@@ -63,6 +63,7 @@ nlohmann::json toJson(const RunStats& s) {
       {"energy", {{"emitted", rgb(s.emittedPower)}, {"absorbed", rgb(s.absorbedPower)}}},
       {"objects", objects},
       {"memory_peak_bytes", s.memoryPeakBytes},
+      {"warnings", {{"count", s.warnings.size()}, {"messages", s.warnings}}},
   };
   if (!s.dynamicObjects.empty()) {
     nlohmann::json& objects = j["dynamic_objects"] = nlohmann::json::array();
@@ -91,7 +92,9 @@ nlohmann::json toJson(const RunStats& s) {
 }
 
 void writeRunStats(const std::string& path, const RunStats& stats) {
-  writeTextAtomically(path, toJson(stats).dump(2) + "\n");
+  // Names and warnings quote the input files, whose bytes need not be UTF-8.
+  writeTextAtomically(
+      path, toJson(stats).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 }  // namespace rad

@@ -54,6 +54,8 @@ struct RunStats {
   nlohmann::json distributed;
   /// The settings the method ran with, by name (solver_settings.h), under "settings".
   std::vector<std::pair<std::string, SettingValue>> settings;
+  /// The run's warnings, printed or not (--quiet), under "warnings": their count and messages.
+  std::vector<std::string> warnings;
 };
 
 /// Power absorbed by the objects, sum of (1 - rho) H A = H A - (B - E) A with E the objects'
