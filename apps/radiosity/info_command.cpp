@@ -13,6 +13,24 @@ namespace rad::cli {
 
 namespace {
 
+// The scene's length unit, and its area and emitted power in it: pi Ke A is watts, Ke being
+// radiance per square scene unit (a scene in mm with Ke of a few tens emits hundreds of kW).
+void printUnitAndPower(const Scene& scene, std::ostream& out) {
+  const LengthUnit& unit = scene.unit;
+  out << (unit.known() ? fmt::format("unit       {} ({:g} m)\n", unit.name, unit.metres)
+                       : "unit       unknown (lengths in scene units; a scene file's \"unit\" "
+                         "names it)\n");
+  const Color power = scene.emittedPower();
+  out << fmt::format("emitted    ({:.6g}, {:.6g}, {:.6g}) W (Ke taken per {}^2)\n", power.r,
+                     power.g, power.b, unit.symbol());
+  double area = 0.0;
+  for (const Face& f : scene.faces) area += f.area;
+  out << fmt::format("area       {:.6g} {}^2", area, unit.symbol());
+  if (unit.known() && unit.name != "m")
+    out << fmt::format(" ({:.6g} m^2)", area * unit.metres * unit.metres);
+  out << "\n";
+}
+
 int runInfo(const std::string& sceneName, Console& console) {
   const Scene scene = loadScene(sceneName);
   std::ostream& out = console.out();
@@ -46,11 +64,7 @@ int runInfo(const std::string& sceneName, Console& console) {
   if (!b.empty())
     out << fmt::format("bounds     ({:g}, {:g}, {:g}) - ({:g}, {:g}, {:g})\n", b.min.x, b.min.y,
                        b.min.z, b.max.x, b.max.y, b.max.z);
-  const Color power = scene.emittedPower();
-  out << fmt::format("emitted    ({:.6g}, {:.6g}, {:.6g}) W\n", power.r, power.g, power.b);
-  double area = 0.0;
-  for (const Face& f : scene.faces) area += f.area;
-  out << fmt::format("area       {:.6g}\n", area);
+  printUnitAndPower(scene, out);
   std::vector<std::string> warnings = scene.warnings;
   if (!scene.hasEmitters())
     warnings.push_back("no emitting surface and no light: renders will be black");

@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -160,8 +161,25 @@ struct SolverSettings {
   std::map<std::string, SettingValue, std::less<>> values;
 };
 
+/// A scene's length unit: what one scene unit is in metres. Emission Ke is radiance per square
+/// scene unit (W/(sr unit^2)) and irradiance W per square scene unit; the unit converts them to
+/// SI. Unknown for an OBJ alone and a scene file that does not say ("unit").
+struct LengthUnit {
+  std::string name;     ///< "mm", "cm", "m", "in" or "ft"; empty when unknown
+  double metres = 0.0;  ///< metres per scene unit; 0 when unknown
+  bool known() const { return metres > 0.0; }
+  /// The name, or "scene unit" when unknown.
+  std::string symbol() const { return known() ? name : "scene unit"; }
+};
+
+/// The unit of that name ("mm", "cm", "m", "in", "ft"), or nullopt.
+std::optional<LengthUnit> lengthUnitNamed(std::string_view name);
+/// The names lengthUnitNamed knows, for messages.
+std::vector<std::string> lengthUnitNames();
+
 struct Scene {
   std::string name;  ///< built-in name or file path
+  LengthUnit unit;   ///< built-in scenes and glTF files know theirs (glTF: metres)
   std::vector<Vec3> positions;
   /// Texture coordinates, one per position, or none (a textured material then uses its
   /// texture's mean).

@@ -7,6 +7,26 @@
 
 namespace rad {
 
+namespace {
+
+// The one table of length units a scene can be in.
+const LengthUnit kLengthUnits[] = {
+    {"mm", 0.001}, {"cm", 0.01}, {"m", 1.0}, {"in", 0.0254}, {"ft", 0.3048}};
+
+}  // namespace
+
+std::optional<LengthUnit> lengthUnitNamed(std::string_view name) {
+  for (const LengthUnit& u : kLengthUnits)
+    if (u.name == name) return u;
+  return std::nullopt;
+}
+
+std::vector<std::string> lengthUnitNames() {
+  std::vector<std::string> names;
+  for (const LengthUnit& u : kLengthUnits) names.push_back(u.name);
+  return names;
+}
+
 Vec3 Scene::triangleNormal(uint32_t t) const {
   const UVec3& tri = triangles[t];
   const Vec3d a = positions[tri.x], b = positions[tri.y], c = positions[tri.z];

@@ -64,10 +64,12 @@ Scene loadScene(const std::string& nameOrPath) {
     throw InputError(nameOrPath, "cannot open the scene file (missing or unreadable)");
   if (ext == ".json") return loadSceneJson(nameOrPath);
   SceneBuilder builder(nameOrPath);
-  if (ext == ".obj")
+  if (ext == ".obj") {
     loadObj(builder, nameOrPath, glm::mat4(1.0f));
-  else
+  } else {
     loadGltf(builder, nameOrPath, glm::mat4(1.0f));
+    builder.scene().unit = *lengthUnitNamed("m");  // glTF's, by its specification
+  }
   return builder.build();
 }
 

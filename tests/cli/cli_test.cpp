@@ -208,7 +208,18 @@ TEST(Cli, InfoPrintsCountsAndPower) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("objects    8"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("lights     0"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("emitted"), std::string::npos) << r.out;
+  // In millimetres: Ke per square millimetre, so pi Ke A of the 130 x 105 mm light is watts, and
+  // the area in square metres too.
+  EXPECT_NE(r.out.find("unit       mm (0.001 m)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(") W (Ke taken per mm^2)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" mm^2 ("), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" m^2)"), std::string::npos) << r.out;
+  // An OBJ alone does not say its unit.
+  const CliResult obj =
+      run({"info", std::string(RADIOSITY_TEST_DATA_DIR) + "/scene/small/small.obj"});
+  ASSERT_EQ(obj.status, 0) << obj.err;
+  EXPECT_NE(obj.out.find("unit       unknown"), std::string::npos) << obj.out;
+  EXPECT_NE(obj.out.find("Ke taken per scene unit^2"), std::string::npos) << obj.out;
   // A textured scene names its textures and their size.
   const CliResult office = run({"info", std::string(RADIOSITY_SOURCE_DIR) + "/scenes/office.json"});
   ASSERT_EQ(office.status, 0) << office.err;

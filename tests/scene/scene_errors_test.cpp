@@ -168,6 +168,12 @@ TEST_F(JsonErrors, UnknownKeysNameTheirPath) {
   expectMessage(load("{\"solver\": {\"metod\": \"patch\"}}"), {"/solver/metod"});
 }
 
+TEST_F(JsonErrors, UnitIsOneOfTheKnownNames) {
+  expectMessage(load(R"({"unit": "furlong"})"),
+                {"scene.json: /unit", "unknown unit 'furlong'", "mm, cm, m, in, ft"});
+  expectMessage(load(R"({"unit": 0.001})"), {"scene.json: /unit", "expected a string"});
+}
+
 TEST_F(JsonErrors, LightPathsNameTheirKeyframe) {
   const std::string spot = R"({"type": "spot", "position": [0,1,0], "direction": [0,-1,0],
       "intensity": [1,1,1], "inner_angle_deg": 10, "outer_angle_deg": 20, "path": )";

@@ -6,6 +6,7 @@
 // transforms in nodes (matrix in .gltf; TRS with a parent node in .glb), the OBJ has them baked.
 // The .glb uses uint8/uint32 indices and a strided POSITION view; both have a non-indexed mesh.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
@@ -263,6 +264,31 @@ TEST(SampleScenes, NoShippedSceneWarns) {
   for (const std::string& name : names) {
     const Scene scene = loadScene(name);
     EXPECT_TRUE(scene.warnings.empty()) << name << ": " << scene.warnings.front();
+  }
+}
+
+// A scene's length unit: the built-ins know theirs, glTF is in metres by its specification, a
+// scene file names its own ("unit"), an OBJ alone does not say.
+TEST(SceneUnits, BuiltinsGltfAndSceneFilesKnowTheirUnit) {
+  EXPECT_EQ(loadScene("cornell").unit.name, "mm");
+  EXPECT_DOUBLE_EQ(loadScene("cornell-spot").unit.metres, 0.001);
+  EXPECT_DOUBLE_EQ(loadScene("room:1").unit.metres, 1.0);
+  EXPECT_DOUBLE_EQ(loadScene("atrium:1").unit.metres, 1.0);
+  EXPECT_DOUBLE_EQ(loadScene(kData + "small/small.gltf").unit.metres, 1.0);
+  EXPECT_DOUBLE_EQ(loadScene(kData + "small/small.glb").unit.metres, 1.0);
+  const Scene obj = loadScene(kData + "small/small.obj");
+  EXPECT_FALSE(obj.unit.known());
+  EXPECT_EQ(obj.unit.symbol(), "scene unit");
+  const auto dir = test::scratchDir("units");
+  const std::string geometry = R"("geometry": [{"file": ")" + kData + R"(small/small.obj"}])";
+  EXPECT_FALSE(loadScene(test::writeFile(dir / "none.json", "{" + geometry + "}")).unit.known());
+  for (const auto& [name, metres] :
+       {std::pair{"mm", 0.001}, {"cm", 0.01}, {"m", 1.0}, {"in", 0.0254}, {"ft", 0.3048}}) {
+    const std::string file =
+        test::writeFile(dir / "unit.json", fmt::format(R"({{"unit": "{}", {}}})", name, geometry));
+    const Scene s = loadScene(file);
+    EXPECT_EQ(s.unit.name, name);
+    EXPECT_DOUBLE_EQ(s.unit.metres, metres) << name;
   }
 }
 

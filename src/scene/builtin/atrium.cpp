@@ -223,6 +223,7 @@ Scene makeAtrium(int n, bool textured) {
   camera.target = Vec3(0.5f * kWidth, 4.0f, 0.8f * kLength);
   camera.fovDeg = 70.0f;
   s.camera = camera;
+  s.unit = *lengthUnitNamed("m");
   return b.build();
 }
 

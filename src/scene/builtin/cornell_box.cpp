@@ -108,6 +108,7 @@ Scene makeCornellBox(bool spot) {
   camera.width = 512;
   camera.height = 512;
   builder.scene().camera = camera;
+  builder.scene().unit = *lengthUnitNamed("mm");
   return builder.build();
 }
 

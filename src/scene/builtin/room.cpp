@@ -125,6 +125,7 @@ Scene makeRoom(int n) {
   camera.target = Vec3(size.x * 0.5f, 0.8f, size.z * 0.6f);
   camera.fovDeg = 60.0f;
   s.camera = camera;
+  s.unit = *lengthUnitNamed("m");
   return b.build();
 }
 

@@ -481,16 +481,28 @@ Json parseJson(const std::string& text, const std::string& path) {
   }
 }
 
+// "unit": the length unit of the scene's coordinates (after the geometry's transforms).
+LengthUnit readUnit(const JsonReader& r, const Json& j) {
+  const std::string name = r.string(j, "/unit");
+  const std::optional<LengthUnit> unit = lengthUnitNamed(name);
+  if (!unit)
+    r.fail("/unit", fmt::format("unknown unit {} (expected one of: {})", quotedToken(name),
+                                fmt::join(lengthUnitNames(), ", ")));
+  return *unit;
+}
+
 }  // namespace
 
 Scene loadSceneJson(const std::string& path) {
   const Json root = parseJson(readTextFile(path, "scene file"), path);
   const JsonReader r(path);
-  r.checkKeys(root, "", {"geometry", "materials", "lights", "camera", "dynamic_objects", "solver"});
+  r.checkKeys(root, "",
+              {"unit", "geometry", "materials", "lights", "camera", "dynamic_objects", "solver"});
   SceneBuilder builder(path);
   std::vector<MaterialAssignment> assignments;
   if (root.contains("geometry")) assignments = readGeometry(r, root["geometry"], builder);
   Scene& scene = builder.scene();
+  if (root.contains("unit")) scene.unit = readUnit(r, root["unit"]);
   std::set<std::string> assigned;
   for (const MaterialAssignment& a : assignments) assigned.insert(a.material);
   if (root.contains("materials")) readMaterials(r, root["materials"], assigned, scene);
