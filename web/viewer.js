@@ -70,8 +70,8 @@ function rampColor(t) {
 let radiance = null;   // the last colours from the server (linear radiance)
 let falseColour = false;
 
-// Irradiance per vertex as the legend's unit: W/m^2 from W per square scene unit, lux at
-// 683 lm/W of its luminance (photopic peak efficacy: an approximation for RGB light).
+// Irradiance per vertex as the legend's unit: W/m^2 from W per square scene unit, lux at the
+// server's efficacy (179 lm/W, the one candela are read with) of its luminance.
 async function falseColours() {
   const h = new Float32Array(await (await fetchOk('api/irradiance')).arrayBuffer());
   const metres = Number(document.getElementById('unit-metres').value) || 1;
@@ -79,7 +79,7 @@ async function falseColours() {
   const values = new Float32Array(h.length / 3);
   for (let v = 0; v < values.length; ++v) {
     const wm2 = (0.2126 * h[3 * v] + 0.7152 * h[3 * v + 1] + 0.0722 * h[3 * v + 2]) / (metres * metres);
-    values[v] = lux ? 683 * wm2 : wm2;
+    values[v] = lux ? summary.lumens_per_watt * wm2 : wm2;
   }
   const sorted = Float32Array.from(values).sort();
   const top = sorted[Math.floor(0.98 * (sorted.length - 1))] || 1;
@@ -286,10 +286,19 @@ async function waitForSolve() {
   }
 }
 
+// The scene's length unit, when the scene says it (built-in scenes, glTF, a scene file's "unit"):
+// the false colours' square metres; else 1 m until the user gives it.
+function showSceneUnit(unit) {
+  if (unit) document.getElementById('unit-metres').value = unit.metres;
+  document.getElementById('unit-source').textContent = unit ? `(the scene is in ${unit.name})`
+    : '(the scene does not say: give it)';
+}
+
 async function start() {
   await waitForSolve();
   summary = await (await fetchOk('api/scene')).json();
   document.getElementById('title').textContent = summary.scene;
+  showSceneUnit(summary.unit);
   const gltf = await new GLTFLoader().parseAsync(await (await fetchOk('api/mesh.glb')).arrayBuffer(), '');
   gltf.scene.traverse((object) => {
     if (!object.isMesh) return;

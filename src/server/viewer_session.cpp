@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/ies_profile.h>
 #include <radiosity/scene_builder.h>
 #include <tbb/parallel_for.h>
 
@@ -132,7 +133,11 @@ Json ViewerSession::summary() const {
   const Bounds bounds = scene_.bounds();
   Json dynamicObjects = Json::array();
   for (const DynamicObject& o : scene_.dynamicObjects) dynamicObjects.push_back(o.name);
+  const LengthUnit& unit = scene_.unit;
   return {{"scene", scene_.name},
+          {"unit", unit.known() ? Json{{"name", unit.name}, {"metres", unit.metres}} : Json()},
+          // The efficacy lux are taken at, the one IES and glTF candela are read with.
+          {"lumens_per_watt", 1.0 / kWattsPerSrPerCandela},
           {"method", relighter_ ? "patch" : "voxel"},
           {"patches", solution().elementCount()},
           {"relights", relighter_.has_value()},

@@ -77,9 +77,11 @@ try {
   console.log(`largest block change ${largest.toFixed(3)}, ${changed} of ${change.length} blocks changed by > 0.1`);
   if (!(largest > 0.1)) fail('the picture did not change where the beam moved');
   if (!(changed < change.length / 3)) fail('the picture changed nearly everywhere, not where the beam moved');
-  // The false-colour view: irradiance in lux over the Cornell data's millimetres, with its legend.
+  // The false-colour view: irradiance in lux over the Cornell data's millimetres (the unit the
+  // scene gives), with its legend.
+  const unit = await page.evaluate(() => document.getElementById('unit-metres').value);
+  if (unit !== '0.001') fail(`scene unit ${unit} m, expected the Cornell box's millimetres`);
   await page.evaluate(() => {
-    document.getElementById('unit-metres').value = '0.001';
     const toggle = document.getElementById('false-colour');
     toggle.checked = true;
     toggle.dispatchEvent(new Event('change'));
@@ -92,6 +94,18 @@ try {
   const legend = await page.evaluate(() => document.getElementById('legend-max').textContent);
   console.log(`false colour up to ${legend}`);
   if (!(parseFloat(legend) > 0)) fail(`false-colour legend '${legend}'`);
+  // Its top: the 98th percentile of the luminance-weighted irradiance, per square millimetre
+  // made per square metre, at 179 lm/W (the efficacy candela are read with).
+  const expected = await page.evaluate(async () => {
+    const h = new Float32Array(await (await fetch('api/irradiance')).arrayBuffer());
+    const lux = [];
+    for (let v = 0; v < h.length / 3; ++v)
+      lux.push(179 * 1e6 * (0.2126 * h[3 * v] + 0.7152 * h[3 * v + 1] + 0.0722 * h[3 * v + 2]));
+    lux.sort((a, b) => a - b);
+    return lux[Math.floor(0.98 * (lux.length - 1))];
+  });
+  if (!(Math.abs(parseFloat(legend) / expected - 1) < 0.01))
+    fail(`false-colour legend '${legend}', expected ${expected.toPrecision(3)} lx`);
   const { state, problems } = await viewerOutcome(page, errors);
   console.log(`relight ${state.lastRelightMs} ms, ${state.frames} frames, ${state.errors} errors`);
   problems.forEach(fail);

@@ -106,6 +106,10 @@ TEST_F(ViewerServerTest, ServesTheSceneMeshAndColours) {
   ASSERT_EQ(scene->status, 200);
   const nlohmann::json j = nlohmann::json::parse(scene->body);
   EXPECT_EQ(j["scene"], "cornell-spot");
+  // The page's false colours: square millimetres to square metres, lux at 179 lm/W.
+  EXPECT_EQ(j["unit"]["name"], "mm");
+  EXPECT_DOUBLE_EQ(j["unit"]["metres"].get<double>(), 0.001);
+  EXPECT_DOUBLE_EQ(j["lumens_per_watt"].get<double>(), 179.0);
   ASSERT_EQ(j["lights"].size(), 1u);
   EXPECT_EQ(j["lights"][0]["type"], "spot");
   const auto mesh = client_->Get("/api/mesh.glb");
