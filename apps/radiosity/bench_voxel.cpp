@@ -11,6 +11,7 @@
 
 #include "bench_workloads.h"
 #include "core/atomic_file.h"
+#include "log_log_plot.h"
 #include "voxel/direction_set.h"
 #include "voxel/discrete_line_sweep.h"
 #include "voxel/voxel_solver.h"
@@ -124,45 +125,17 @@ SampledSweepMeasurement measureSampledSweep(const Scene& scene, size_t voxels, i
 }
 
 std::string svgPlot(const std::vector<SweepMeasurement>& points, double slope) {
-  // Log-log axes over the measured range, a polyline and a dot per measurement.
-  double x0 = 1e300, x1 = 0, y0 = 1e300, y1 = 0;
-  for (const auto& p : points) {
-    x0 = std::min(x0, std::log10(double(p.voxels))),
-    x1 = std::max(x1, std::log10(double(p.voxels)));
-    y0 = std::min(y0, std::log10(p.secondsPerIteration)),
-    y1 = std::max(y1, std::log10(p.secondsPerIteration));
-  }
-  const double w = 640, h = 420, m = 60;
-  auto px = [&](double v) {
-    return m + (std::log10(v) - x0) / std::max(x1 - x0, 1e-9) * (w - 2 * m);
-  };
-  auto py = [&](double v) {
-    return h - m - (std::log10(v) - y0) / std::max(y1 - y0, 1e-9) * (h - 2 * m);
-  };
-  std::string svg = fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" "
-      "font-family=\"sans-serif\" "
-      "font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      "<text x=\"{}\" y=\"24\">Voxel sweep: seconds per iteration against voxels (log-log), slope "
-      "{:.3f}</text>\n"
-      "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n"
-      "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n",
-      w, h, m, slope, m, h - m, w - m, h - m, m, m, m, h - m);
-  std::string line;
-  for (const auto& p : points) {
-    line += fmt::format("{:.1f},{:.1f} ", px(double(p.voxels)), py(p.secondsPerIteration));
-    svg += fmt::format(
-        "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"#c33\"/>\n"
-        "<text x=\"{:.1f}\" y=\"{:.1f}\">{:.3g} s</text>\n"
-        "<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{:.2g}</text>\n",
-        px(double(p.voxels)), py(p.secondsPerIteration), px(double(p.voxels)) + 6,
-        py(p.secondsPerIteration) - 6, p.secondsPerIteration, px(double(p.voxels)), h - m + 18,
-        double(p.voxels));
-  }
-  svg += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"#c33\"/>\n", line);
-  svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">voxels</text>\n</svg>\n",
-                     w / 2, h - 12);
-  return svg;
+  LogLogPlot plot{fmt::format("Voxel sweep: seconds per iteration against voxels, log-log slope "
+                              "{:.3f}",
+                              slope),
+                  "voxels",
+                  "seconds per iteration",
+                  "",
+                  "s",
+                  {}};
+  for (const SweepMeasurement& p : points)
+    plot.points.emplace_back(double(p.voxels), p.secondsPerIteration);
+  return logLogSvg(plot);
 }
 
 }  // namespace
