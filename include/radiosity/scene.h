@@ -22,8 +22,19 @@
 
 namespace rad {
 
+/// How a material's alpha (its factor, the base colour texture's alpha, the vertices' alpha)
+/// covers its surface, as glTF's alphaMode: Opaque ignores alpha; Mask keeps the points whose
+/// alpha reaches the cutoff and cuts the rest away; Blend covers a share alpha of every point
+/// (the rest lets light through).
+enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
+/// "opaque", "mask" or "blend", as the scene file spells it.
+const char* alphaModeName(AlphaMode mode);
+
 /// A Lambertian material. Faces are one-sided (front = counter-clockwise side) unless twoSided.
 /// A texture multiplies its factor where the scene has texture coordinates (Scene::texcoords).
+/// Where it is not opaque, a point x of its surface has a coverage c(x) in [0, 1]
+/// (Scene::coverageAt): the share of light arriving there that meets the surface (reflected by
+/// rho, absorbed, or emitted from it: c E leaves a unit of area); the rest passes straight on.
 struct Material {
   std::string name;
   Color rho{0.5f};       ///< diffuse reflectance per channel, in [0, 1)
@@ -31,8 +42,18 @@ struct Material {
   bool twoSided = false;
   TextureMap rhoTexture{};       ///< base colour (glTF baseColorTexture, OBJ map_Kd)
   TextureMap emissionTexture{};  ///< emission (glTF emissiveTexture, OBJ map_Ke)
+  /// The texture whose alpha channel multiplies alpha: glTF's base colour texture, OBJ map_d.
+  TextureMap alphaTexture{};
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alpha = 1.0f;        ///< glTF baseColorFactor's alpha, OBJ d; in [0, 1]
+  float alphaCutoff = 0.5f;  ///< Mask: alpha below it is cut away
+  /// Thin transmission (glTF KHR_materials_transmission): the share in [0, 1] of the light that
+  /// passes straight through every point; the rest meets the surface as its alpha says.
+  float transmission = 0.0f;
 
   bool emits() const { return maxComponent(emission) > 0.0f; }
+  /// True when the coverage is 1 everywhere whatever the textures and vertices say.
+  bool opaque() const { return alphaMode == AlphaMode::Opaque && !(transmission > 0.0f); }
 };
 
 /// A named group of faces: an OBJ `o`/`g`, a glTF node, a built-in scene part.
@@ -184,6 +205,8 @@ struct Scene {
   /// Texture coordinates, one per position, or none (a textured material then uses its
   /// texture's mean).
   std::vector<Vec2> texcoords;
+  /// Vertex colours' alpha (glTF COLOR_0), one per position, or none (1 everywhere).
+  std::vector<float> vertexAlpha;
   std::vector<UVec3> triangles;        ///< CCW about the front normal
   std::vector<uint32_t> triangleFace;  ///< face of each triangle
   std::vector<Face> faces;
@@ -215,6 +238,21 @@ struct Scene {
   /// emission Ke likewise.
   Color reflectanceAt(uint32_t triangle, Vec2 barycentric, float footprint = 0.0f) const;
   Color emissionAt(uint32_t triangle, Vec2 barycentric, float footprint = 0.0f) const;
+  /// Coverage c in [0, 1] at a point of a triangle (Material): 1 for an opaque material; Mask
+  /// thresholds the alpha at the point itself (footprint 0, whatever is given: a mean over a
+  /// region is coverageMean's), Blend takes alpha averaged over the footprint; times
+  /// (1 - transmission).
+  float coverageAt(uint32_t triangle, Vec2 barycentric, float footprint = 0.0f) const;
+  /// The coverage's mean over a triangle (its value at 64 points, the centroids of the triangle
+  /// cut into 8 x 8; the one value where it is uniform).
+  float coverageMean(uint32_t triangle) const;
+  /// A face's area times its mean coverage: the area that emits and reflects.
+  double coveredArea(const Face& face) const;
+  /// True if the triangle's coverage is the same at all of its points (its material's alpha
+  /// reads no texture alpha and no vertex alpha, or it is opaque).
+  bool uniformCoverage(uint32_t triangle) const;
+  /// True if some material is not opaque: ray queries and the solvers take coverage into account.
+  bool hasCoverage() const;
   /// The barycentrics (u, v) of a point on a triangle's plane (projected onto it).
   Vec2 barycentricOf(uint32_t triangle, const Vec3& point) const;
   /// The point's barycentrics on the triangle of `face` that holds it (the nearest where none
@@ -225,7 +263,8 @@ struct Scene {
   Vec2 locateOnTriangles(uint32_t first, uint32_t count, const Vec3& point,
                          uint32_t& triangle) const;
   Bounds bounds() const;
-  /// Total emitted power (W): pi * Ke * area over emitting triangles plus every light's power.
+  /// Total emitted power (W): pi * Ke * area * mean coverage over emitting triangles plus every
+  /// light's power.
   Color emittedPower() const;
   bool hasEmitters() const;
   /// The camera of the scene, or one that frames its bounds from the front (+z looking -z).
@@ -238,6 +277,10 @@ struct Scene {
   Scene withDynamicObjectsAt(double seconds) const;
   /// Triangles of the scene's own (the static ones), in a scene withDynamicObjectsAt made.
   uint32_t staticTriangles = UINT32_MAX;
+
+ private:
+  /// A footprint in scene units on a triangle in its texture's units (the scene has coordinates).
+  float textureFootprint(uint32_t triangle, float footprint) const;
 };
 
 }  // namespace rad

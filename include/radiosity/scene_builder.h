@@ -26,7 +26,8 @@ class SceneBuilder {
 
   /// Adds a material; a reflectance of 1 (a factor of 1, a white texture) is taken as
   /// kMaxReflectance, counted in one warning of build(). Throws InputError naming the material if a
-  /// component of rho or emission is not finite, or rho is outside [0, 1].
+  /// component of rho or emission is not finite, or rho, alpha, the alpha cutoff or transmission is
+  /// outside [0, 1].
   uint32_t addMaterial(Material material);
   uint32_t addObject(std::string name);
   /// Adds a vertex; `where` names the source (file:line) for the error if it is NaN, infinite or
@@ -38,6 +39,9 @@ class SceneBuilder {
   /// Gives an added vertex texture coordinates (a generator mapping its faces after making
   /// them). Throws InputError naming `where` when they are not finite.
   void setTexcoord(uint32_t vertex, const Vec2& texcoord, const std::string& where);
+  /// Gives an added vertex its colour's alpha (glTF COLOR_0); the others keep 1. Throws
+  /// InputError naming `where` when it is not in [0, 1].
+  void setVertexAlpha(uint32_t vertex, float alpha, const std::string& where);
   /// Adds a polygon given by vertex indices, counter-clockwise about its front side.
   /// A planar polygon becomes one Face (triangulated by ear clipping, so concave ones work);
   /// a non-planar one becomes a face per triangle. Throws InputError (naming `where`) for fewer

@@ -17,9 +17,9 @@ namespace rad {
 void writePng(const std::filesystem::path& file, const Image& image, float exposureEV,
               const std::string& displayName);
 
-/// 8-bit RGB texels (`width` x `height`, rows from the top) encoded as PNG bytes. Throws
-/// std::runtime_error if encoding fails.
-std::string encodePng(int width, int height, const std::vector<uint8_t>& rgb);
+/// 8-bit texels (`width` x `height`, rows from the top; `channels` 3: RGB, 4: RGBA) encoded as
+/// PNG bytes. Throws std::runtime_error if encoding fails.
+std::string encodePng(int width, int height, const std::vector<uint8_t>& texels, int channels = 3);
 /// `image` tone mapped (toneMapPixel at exposureEV) and encoded as PNG bytes. Throws as
 /// encodePng.
 std::string encodeTonemappedPng(const Image& image, float exposureEV);

@@ -25,9 +25,10 @@ void appendBytes(void* context, void* data, int size) {
 
 }  // namespace
 
-std::string encodePng(int width, int height, const std::vector<uint8_t>& rgb) {
+std::string encodePng(int width, int height, const std::vector<uint8_t>& texels, int channels) {
   std::vector<char> encoded;
-  if (!stbi_write_png_to_func(appendBytes, &encoded, width, height, 3, rgb.data(), width * 3))
+  if (!stbi_write_png_to_func(appendBytes, &encoded, width, height, channels, texels.data(),
+                              width * channels))
     throw std::runtime_error("PNG encoding failed");
   return std::string(encoded.begin(), encoded.end());
 }

@@ -58,6 +58,10 @@ Scene Scene::withDynamicObjectsAt(double seconds) const {
         if (!object.rho) material.rho *= material.rhoTexture.texture->mean();
         material.rhoTexture = {};
       }
+      if (material.alphaTexture && (part.texcoords.empty() || texcoords.empty())) {
+        material.alpha *= material.alphaTexture.texture->meanAlpha();
+        material.alphaTexture = {};
+      }
       material.emission = Color(0.0f);  // a moving object lights the scene by its reflection only
       material.emissionTexture = {};
       material.name = object.name + "/" + material.name;
@@ -71,6 +75,13 @@ Scene Scene::withDynamicObjectsAt(double seconds) const {
         out.texcoords.resize(out.positions.size(), Vec2(0.0f));
       else
         out.texcoords.insert(out.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
+    }
+    // Vertex alpha likewise, 1 where a scene or part has none.
+    if (!out.vertexAlpha.empty() || !part.vertexAlpha.empty()) {
+      out.vertexAlpha.resize(vertexBase, 1.0f);
+      out.vertexAlpha.insert(out.vertexAlpha.end(), part.vertexAlpha.begin(),
+                             part.vertexAlpha.end());
+      out.vertexAlpha.resize(out.positions.size(), 1.0f);
     }
     for (const UVec3& t : part.triangles) out.triangles.push_back(t + UVec3(vertexBase));
     for (uint32_t f : part.triangleFace) out.triangleFace.push_back(f + faceBase);

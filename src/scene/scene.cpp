@@ -47,15 +47,19 @@ Vec2 Scene::texcoordAt(uint32_t t, Vec2 b) const {
 
 // The footprint in scene units becomes one in texture units by the triangle's own scale (the
 // square root of its areas' ratio).
-Color Scene::textureAt(const TextureMap& map, uint32_t t, Vec2 b, float footprint) const {
-  if (!map) return Color(1.0f);
-  if (texcoords.empty()) return map.texture->mean();
+float Scene::textureFootprint(uint32_t t, float footprint) const {
   const UVec3& tri = triangles[t];
   const Vec2 e1 = texcoords[tri.y] - texcoords[tri.x], e2 = texcoords[tri.z] - texcoords[tri.x];
   const float uvArea = 0.5f * std::abs(e1.x * e2.y - e1.y * e2.x);
   const float area = triangleArea(t);
   const float scale = area > 0.0f ? std::sqrt(uvArea / area) : 0.0f;
-  return map.at(texcoordAt(t, b), footprint * scale);
+  return footprint * scale;
+}
+
+Color Scene::textureAt(const TextureMap& map, uint32_t t, Vec2 b, float footprint) const {
+  if (!map) return Color(1.0f);
+  if (texcoords.empty()) return map.texture->mean();
+  return map.at(texcoordAt(t, b), textureFootprint(t, footprint));
 }
 
 Color Scene::reflectanceAt(uint32_t t, Vec2 b, float footprint) const {
@@ -66,6 +70,76 @@ Color Scene::reflectanceAt(uint32_t t, Vec2 b, float footprint) const {
 Color Scene::emissionAt(uint32_t t, Vec2 b, float footprint) const {
   const Material& m = materialOf(t);
   return m.emission * textureAt(m.emissionTexture, t, b, footprint);
+}
+
+float Scene::coverageAt(uint32_t t, Vec2 b, float footprint) const {
+  const Material& m = materialOf(t);
+  if (m.opaque()) return 1.0f;
+  float alpha = 1.0f;
+  if (m.alphaMode != AlphaMode::Opaque) {
+    const float texelFootprint = m.alphaMode == AlphaMode::Mask ? 0.0f : footprint;
+    alpha = m.alpha;
+    if (m.alphaTexture && m.alphaTexture.texture->hasAlpha())
+      alpha *= texcoords.empty()
+                   ? m.alphaTexture.texture->meanAlpha()
+                   : m.alphaTexture.alphaAt(texcoordAt(t, b), textureFootprint(t, texelFootprint));
+    if (!vertexAlpha.empty()) {
+      const UVec3& tri = triangles[t];
+      alpha *= (1.0f - b.x - b.y) * vertexAlpha[tri.x] + b.x * vertexAlpha[tri.y] +
+               b.y * vertexAlpha[tri.z];
+    }
+    alpha = m.alphaMode == AlphaMode::Mask ? (alpha >= m.alphaCutoff ? 1.0f : 0.0f)
+                                           : std::clamp(alpha, 0.0f, 1.0f);
+  }
+  return alpha * (1.0f - m.transmission);
+}
+
+float Scene::coverageMean(uint32_t t) const {
+  if (uniformCoverage(t)) return coverageAt(t, Vec2(1.0f / 3.0f));
+  // The n^2 small triangles of edges cut into n: (i, j) upright and, but on the last row,
+  // upside down, their centroids at (i + 1/3, j + 1/3) / n and (i + 2/3, j + 2/3) / n.
+  constexpr int n = 8;
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; i + j < n; ++j) {
+      sum += coverageAt(t, Vec2(float(i) + 1.0f / 3.0f, float(j) + 1.0f / 3.0f) / float(n));
+      if (i + j < n - 1)
+        sum += coverageAt(t, Vec2(float(i) + 2.0f / 3.0f, float(j) + 2.0f / 3.0f) / float(n));
+    }
+  return float(sum / double(n * n));
+}
+
+double Scene::coveredArea(const Face& f) const {
+  if (materials[f.material].opaque()) return f.area;
+  double area = 0.0;
+  for (uint32_t t = f.firstTriangle; t < f.firstTriangle + f.triangleCount; ++t)
+    area += double(triangleArea(t)) * coverageMean(t);
+  return area;
+}
+
+bool Scene::uniformCoverage(uint32_t t) const {
+  const Material& m = materialOf(t);
+  if (m.alphaMode == AlphaMode::Opaque) return true;
+  const bool texelAlpha =
+      m.alphaTexture && m.alphaTexture.texture->hasAlpha() && !texcoords.empty();
+  return !texelAlpha && vertexAlpha.empty();
+}
+
+bool Scene::hasCoverage() const {
+  return std::any_of(materials.begin(), materials.end(),
+                     [](const Material& m) { return !m.opaque(); });
+}
+
+const char* alphaModeName(AlphaMode mode) {
+  switch (mode) {
+    case AlphaMode::Mask:
+      return "mask";
+    case AlphaMode::Blend:
+      return "blend";
+    case AlphaMode::Opaque:
+      break;
+  }
+  return "opaque";
 }
 
 Vec2 Scene::barycentricOf(uint32_t t, const Vec3& point) const {
@@ -118,7 +192,7 @@ Color Scene::emittedPower() const {
     // A texture's emission taken at the centroid over the triangle's size: its mean there.
     const float size = std::sqrt(triangleArea(t));
     const Color ke = emissionAt(t, Vec2(1.0f / 3.0f), size);
-    power += Vec3d(ke) * (glm::pi<double>() * sides * triangleArea(t));
+    power += Vec3d(ke) * (glm::pi<double>() * sides * triangleArea(t) * coverageMean(t));
   }
   for (const Light& light : lights) power += Vec3d(light.power());
   return Color(power);

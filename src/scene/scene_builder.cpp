@@ -47,6 +47,12 @@ uint32_t SceneBuilder::addMaterial(Material material) {
       throw InputError(scene_.name, fmt::format("material {}: emission {} must be finite and >= 0",
                                                 quotedToken(material.name), material.emission[c]));
   }
+  for (auto [value, what] :
+       {std::pair{material.alpha, "alpha"}, std::pair{material.alphaCutoff, "alpha cutoff"},
+        std::pair{material.transmission, "transmission"}})
+    if (!(value >= 0.0f && value <= 1.0f))
+      throw InputError(scene_.name, fmt::format("material {}: {} {} must be in [0, 1]",
+                                                quotedToken(material.name), what, value));
   scene_.materials.push_back(std::move(material));
   return uint32_t(scene_.materials.size() - 1);
 }
@@ -82,6 +88,14 @@ void SceneBuilder::setTexcoord(uint32_t vertex, const Vec2& texcoord, const std:
   hasTexcoord_[vertex] = 1;
 }
 
+void SceneBuilder::setVertexAlpha(uint32_t vertex, float alpha, const std::string& where) {
+  if (!(alpha >= 0.0f && alpha <= 1.0f))
+    throw InputError(where, fmt::format("vertex colour alpha {} out of range [0, 1]", alpha));
+  if (alpha == 1.0f && scene_.vertexAlpha.empty()) return;
+  scene_.vertexAlpha.resize(scene_.positions.size(), 1.0f);
+  scene_.vertexAlpha.at(vertex) = alpha;
+}
+
 // A textured material on faces without texture coordinates shows its texture's mean (the
 // factor times it), and the scene keeps coordinates only when a texture uses them.
 void SceneBuilder::resolveUnmappedTextures() {
@@ -95,16 +109,18 @@ void SceneBuilder::resolveUnmappedTextures() {
   bool textured = false;
   for (size_t m = 0; m < scene_.materials.size(); ++m) {
     Material& material = scene_.materials[m];
-    if (!material.rhoTexture && !material.emissionTexture) continue;
+    if (!material.rhoTexture && !material.emissionTexture && !material.alphaTexture) continue;
     if (!unmapped[m]) {
       textured = true;
       continue;
     }
     names.push_back(quotedToken(material.name));
     if (material.rhoTexture) material.rho *= material.rhoTexture.texture->mean();
+    if (material.alphaTexture) material.alpha *= material.alphaTexture.texture->meanAlpha();
     if (material.emissionTexture) material.emission *= material.emissionTexture.texture->mean();
     material.rhoTexture = {};
     material.emissionTexture = {};
+    material.alphaTexture = {};
   }
   if (!textured) scene_.texcoords.clear();
   if (names.empty()) return;
@@ -252,6 +268,7 @@ Scene SceneBuilder::build() {
   if (!scene_.camera && !scene_.cameras.empty()) scene_.camera = scene_.cameras.front().second;
   resolveUnmappedTextures();
   if (!scene_.texcoords.empty()) scene_.texcoords.resize(scene_.positions.size(), Vec2(0.0f));
+  if (!scene_.vertexAlpha.empty()) scene_.vertexAlpha.resize(scene_.positions.size(), 1.0f);
   return std::move(scene_);
 }
 

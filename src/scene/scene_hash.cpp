@@ -11,10 +11,26 @@ void hashGeometry(Hasher& h, const Scene& scene) {
   for (const Face& f : scene.faces) {
     h.value(f.firstTriangle);
     h.value(f.triangleCount);
-    h.value(uint8_t(scene.materials[f.material].twoSided));
+    const Material& m = scene.materials[f.material];
+    h.value(uint8_t(m.twoSided));
     h.value(uint64_t(f.corners.size()));
     h.bytes(f.corners.data(), f.corners.size() * sizeof(uint32_t));
+    // Coverage decides which rays pass: it is geometry to the form factors and the voxels.
+    if (m.opaque()) continue;
+    h.value(m.alphaMode);
+    h.value(m.alpha);
+    h.value(m.alphaCutoff);
+    h.value(m.transmission);
+    h.value(m.alphaTexture.texture ? m.alphaTexture.texture->digest() : uint64_t(0));
+    h.bytes(m.alphaTexture.transform, sizeof m.alphaTexture.transform);
+    h.value(m.alphaTexture.wrapU);
+    h.value(m.alphaTexture.wrapV);
   }
+  if (!scene.hasCoverage()) return;
+  h.value(uint64_t(scene.texcoords.size()));
+  h.bytes(scene.texcoords.data(), scene.texcoords.size() * sizeof(Vec2));
+  h.value(uint64_t(scene.vertexAlpha.size()));
+  h.bytes(scene.vertexAlpha.data(), scene.vertexAlpha.size() * sizeof(float));
 }
 
 void hashMaterials(Hasher& h, const Scene& scene) {

@@ -112,6 +112,9 @@ class GltfReader {
                                 const std::string& where) const;
   std::vector<Vec3> positions(int index, const std::string& where) const;
   std::vector<Vec2> texcoords(int index, const std::string& where) const;
+  std::vector<float> colorAlpha(int index, const std::string& where) const;
+  /// alphaMode, alphaCutoff, baseColorFactor's alpha and KHR_materials_transmission into `mat`.
+  void readCoverage(const tinygltf::Material& m, const std::string& where, Material& mat);
   /// The texture a material's textureInfo names, or none (after a warning where it cannot be
   /// used); `texCoord` gets the coordinate set it reads.
   TextureMap textureMap(const tinygltf::TextureInfo& info, const std::string& material,
@@ -180,15 +183,38 @@ std::vector<Vec3> GltfReader::positions(int index, const std::string& where) con
   return out;
 }
 
+// The bytes of one component of a FLOAT, or normalized UNSIGNED_SHORT or UNSIGNED_BYTE,
+// accessor (`size` 4, 2 or 1) as a float.
+float normalizedComponent(const unsigned char* p, size_t size) {
+  if (size == 4) {
+    float v;
+    std::memcpy(&v, p, 4);
+    return v;
+  }
+  if (size == 2) {
+    uint16_t v;
+    std::memcpy(&v, p, 2);
+    return float(v) / 65535.0f;
+  }
+  return float(*p) / 255.0f;
+}
+
+// The component size of a FLOAT, or normalized UNSIGNED_SHORT or UNSIGNED_BYTE, accessor; 0 for
+// any other.
+size_t normalizedComponentSize(const tinygltf::Accessor& a) {
+  const int type = a.componentType;
+  const size_t size = type == TINYGLTF_COMPONENT_TYPE_FLOAT            ? 4
+                      : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                      : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 1
+                                                                       : 0;
+  return size == 4 || a.normalized ? size : 0;
+}
+
 // TEXCOORD_n: FLOAT, or UNSIGNED_BYTE / UNSIGNED_SHORT normalized (glTF 2.0, 3.7.2.1).
 std::vector<Vec2> GltfReader::texcoords(int index, const std::string& where) const {
   const tinygltf::Accessor& a = accessor(index, where);
-  const int type = a.componentType;
-  const size_t component = type == TINYGLTF_COMPONENT_TYPE_FLOAT            ? 4
-                           : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
-                           : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 1
-                                                                            : 0;
-  if (a.type != TINYGLTF_TYPE_VEC2 || component == 0 || (component != 4 && !a.normalized))
+  const size_t component = normalizedComponentSize(a);
+  if (a.type != TINYGLTF_TYPE_VEC2 || component == 0)
     throw InputError(at(where),
                      "TEXCOORD must be a VEC2 of FLOAT, or of normalized unsigned "
                      "byte or short");
@@ -196,18 +222,27 @@ std::vector<Vec2> GltfReader::texcoords(int index, const std::string& where) con
   const unsigned char* data = elements(a, 2 * component, stride, where);
   std::vector<Vec2> out(a.count);
   for (size_t i = 0; i < a.count; ++i)
-    for (size_t c = 0; c < 2; ++c) {
-      const unsigned char* p = data + i * stride + c * component;
-      if (component == 4) {
-        std::memcpy(&out[i][int(c)], p, 4);
-      } else if (component == 2) {
-        uint16_t v;
-        std::memcpy(&v, p, 2);
-        out[i][int(c)] = float(v) / 65535.0f;
-      } else {
-        out[i][int(c)] = float(*p) / 255.0f;
-      }
-    }
+    for (size_t c = 0; c < 2; ++c)
+      out[i][int(c)] = normalizedComponent(data + i * stride + c * component, component);
+  return out;
+}
+
+// COLOR_0's alpha (1 for a VEC3): the colour itself is not read (materials are diffuse by their
+// base colour alone). FLOAT, or UNSIGNED_BYTE / UNSIGNED_SHORT normalized (glTF 2.0, 3.7.2.1).
+std::vector<float> GltfReader::colorAlpha(int index, const std::string& where) const {
+  const tinygltf::Accessor& a = accessor(index, where);
+  const size_t component = normalizedComponentSize(a);
+  const bool rgba = a.type == TINYGLTF_TYPE_VEC4;
+  if ((!rgba && a.type != TINYGLTF_TYPE_VEC3) || component == 0)
+    throw InputError(at(where),
+                     "COLOR_0 must be a VEC3 or VEC4 of FLOAT, or of normalized unsigned "
+                     "byte or short");
+  if (!rgba) return std::vector<float>(a.count, 1.0f);
+  size_t stride = 0;
+  const unsigned char* data = elements(a, 4 * component, stride, where);
+  std::vector<float> out(a.count);
+  for (size_t i = 0; i < a.count; ++i)
+    out[i] = normalizedComponent(data + i * stride + 3 * component, component);
   return out;
 }
 
@@ -312,6 +347,7 @@ uint32_t GltfReader::material(int index) {
   for (int c = 0; c < 3 && m.emissiveFactor.size() == 3; ++c)
     mat.emission[c] = float(m.emissiveFactor[size_t(c)] * strength);
   mat.twoSided = m.doubleSided;
+  readCoverage(m, where, mat);
   int rhoSet = 0, emissionSet = 0;
   mat.rhoTexture = textureMap(m.pbrMetallicRoughness.baseColorTexture, mat.name,
                               where + "/pbrMetallicRoughness/baseColorTexture", rhoSet);
@@ -325,10 +361,44 @@ uint32_t GltfReader::material(int index) {
                                      "read) shows its mean",
                                      quotedToken(mat.name), set));
     *factor *= map->texture->mean();
+    if (map == &mat.rhoTexture) mat.alpha *= map->texture->meanAlpha();
     *map = {};
   }
+  if (mat.alphaMode != AlphaMode::Opaque) mat.alphaTexture = mat.rhoTexture;
   materials_[size_t(index)] = builder_.addMaterial(std::move(mat));
   return uint32_t(materials_[size_t(index)]);
+}
+
+// Coverage (Material): alphaMode and alphaCutoff (glTF 2.0, 3.9.4), the base colour factor's
+// alpha, and thin transmission (KHR_materials_transmission: its factor, times its texture's
+// mean, the red channel's, where it has one: exact for a uniform one, the sRGB-decoded texels'
+// mean encoded again for others; KHR_materials_ior does not change a thin surface).
+void GltfReader::readCoverage(const tinygltf::Material& m, const std::string& where,
+                              Material& mat) {
+  if (m.alphaMode == "MASK")
+    mat.alphaMode = AlphaMode::Mask;
+  else if (m.alphaMode == "BLEND")
+    mat.alphaMode = AlphaMode::Blend;
+  else if (m.alphaMode != "OPAQUE")
+    throw InputError(at(where + "/alphaMode"),
+                     fmt::format("{} is not OPAQUE, MASK or BLEND", quotedToken(m.alphaMode)));
+  mat.alphaCutoff = float(m.alphaCutoff);
+  const std::vector<double>& base = m.pbrMetallicRoughness.baseColorFactor;
+  if (base.size() == 4) mat.alpha = float(base[3]);
+  const auto ext = m.extensions.find("KHR_materials_transmission");
+  if (ext == m.extensions.end()) return;
+  const tinygltf::Value& factor = ext->second.Get("transmissionFactor");
+  if (factor.IsNumber()) mat.transmission = float(factor.GetNumberAsDouble());
+  const tinygltf::Value& texture = ext->second.Get("transmissionTexture");
+  if (!texture.IsObject() || !texture.Get("index").IsInt()) return;
+  tinygltf::TextureInfo info;
+  info.index = texture.Get("index").GetNumberAsInt();
+  int set = 0;
+  if (const TextureMap map = textureMap(info, mat.name,
+                                        where + "/extensions/"
+                                                "KHR_materials_transmission/transmissionTexture",
+                                        set))
+    mat.transmission *= linearToSrgb(map.texture->mean().r);  // the file's values are linear
 }
 
 void GltfReader::addMesh(int meshIndex, const glm::mat4& world, uint32_t object) {
@@ -361,12 +431,18 @@ void GltfReader::addMesh(int meshIndex, const glm::mat4& world, uint32_t object)
         throw InputError(at(where + "/attributes/TEXCOORD_0"),
                          fmt::format("{} coordinates for {} positions", uv.size(), points.size()));
     }
+    std::vector<float> alpha;
+    if (auto c = prim.attributes.find("COLOR_0"); c != prim.attributes.end()) {
+      alpha = colorAlpha(c->second, where + "/attributes/COLOR_0");
+      if (alpha.size() != points.size())
+        throw InputError(at(where + "/attributes/COLOR_0"),
+                         fmt::format("{} colours for {} positions", alpha.size(), points.size()));
+    }
     for (size_t i = 0; i < points.size(); ++i) {
       const Vec3 p(world * glm::vec4(points[i], 1.0f));
-      if (uv.empty())
-        builder_.addVertex(p, at(where));
-      else
-        builder_.addVertex(p, uv[i], at(where));
+      const uint32_t v =
+          uv.empty() ? builder_.addVertex(p, at(where)) : builder_.addVertex(p, uv[i], at(where));
+      if (!alpha.empty()) builder_.setVertexAlpha(v, alpha[i], at(where + "/attributes/COLOR_0"));
     }
     for (size_t i = 0; i < idx.size(); ++i) {
       if (idx[i] >= points.size())

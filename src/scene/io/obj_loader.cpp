@@ -206,6 +206,20 @@ TextureMap objTextureMap(std::shared_ptr<const Texture> texture,
   return map;
 }
 
+// Coverage from the MTL's dissolve (Material): `d` (or `Tr`, 1 - d, as tinyobjloader reads it)
+// below 1 covers that share of the surface (Blend); a `map_d` cuts out where d times its value
+// is below one half (Mask: the cut-out leaves and fences it is made for). The map's alpha
+// channel where the image has one (the base colour's RGBA, as exporters often name), else its
+// grey level.
+void readDissolve(const tinyobj::material_t& m, TextureMap map, Material& mat) {
+  mat.alpha = std::clamp(float(m.dissolve), 0.0f, 1.0f);
+  if (mat.alpha < 1.0f) mat.alphaMode = AlphaMode::Blend;
+  if (!map) return;
+  if (!map.texture->hasAlpha()) map.texture = map.texture->greyAsAlpha();
+  mat.alphaMode = AlphaMode::Mask;
+  mat.alphaTexture = std::move(map);
+}
+
 }  // namespace
 
 void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& transform) {
@@ -298,6 +312,7 @@ void loadObj(SceneBuilder& builder, const std::string& path, const glm::mat4& tr
       mat.emissionTexture = textureMap(m, m.emissive_texname, m.emissive_texopt);
       // A texture whose factor the file leaves out multiplies white (MTL: map_Kd scales Kd).
       if (mat.rhoTexture && !withKd.count(m.name)) mat.rho = Color(1.0f);
+      readDissolve(m, textureMap(m, m.alpha_texname, m.alpha_texopt), mat);
       sceneMaterial[size_t(id)] = builder.addMaterial(std::move(mat));
     }
     return uint32_t(sceneMaterial[size_t(id)]);

@@ -259,6 +259,31 @@ void readDynamicObjects(const JsonReader& r, const Json& list, Scene& scene) {
   }
 }
 
+// A material's coverage keys (Material): "alpha", "alpha_cutoff" and "transmission" in [0, 1],
+// "alpha_mode" "opaque", "mask" or "blend"; a mode that reads alpha takes it from the base colour
+// texture's alpha too where the files gave no alpha texture.
+void readCoverage(const JsonReader& r, const Json& m, const std::string& ptr, Material& mat) {
+  auto unit = [&](const char* key, float& out) {
+    if (!m.contains(key)) return;
+    const double v = r.number(m[key], ptr + "/" + key);
+    if (!(v >= 0.0 && v <= 1.0)) r.fail(ptr + "/" + key, fmt::format("{} out of range [0, 1]", v));
+    out = float(v);
+  };
+  unit("alpha", mat.alpha);
+  unit("alpha_cutoff", mat.alphaCutoff);
+  unit("transmission", mat.transmission);
+  if (!m.contains("alpha_mode")) return;
+  const std::string mode = r.string(m["alpha_mode"], ptr + "/alpha_mode");
+  const AlphaMode modes[] = {AlphaMode::Opaque, AlphaMode::Mask, AlphaMode::Blend};
+  const auto it = std::find_if(std::begin(modes), std::end(modes),
+                               [&](AlphaMode a) { return mode == alphaModeName(a); });
+  if (it == std::end(modes))
+    r.fail(ptr + "/alpha_mode",
+           fmt::format("{} is not \"opaque\", \"mask\" or \"blend\"", quotedToken(mode)));
+  mat.alphaMode = *it;
+  if (mat.alphaMode != AlphaMode::Opaque && !mat.alphaTexture) mat.alphaTexture = mat.rhoTexture;
+}
+
 // Each entry overrides the files' materials of its name, or, when a geometry entry assigns it
 // (`assigned`), is a material of its own (rho 0.5 unless it says).
 void readMaterials(const JsonReader& r, const Json& j, const std::set<std::string>& assigned,
@@ -268,7 +293,9 @@ void readMaterials(const JsonReader& r, const Json& j, const std::set<std::strin
     const std::string& name = item.key();
     const Json& m = item.value();
     const std::string ptr = "/materials/" + name;
-    r.checkKeys(m, ptr, {"rho", "emission", "two_sided"});
+    r.checkKeys(
+        m, ptr,
+        {"rho", "emission", "two_sided", "alpha", "alpha_mode", "alpha_cutoff", "transmission"});
     const bool inFiles = std::any_of(scene.materials.begin(), scene.materials.end(),
                                      [&](const Material& mat) { return mat.name == name; });
     if (!inFiles && assigned.count(name)) scene.materials.push_back({name, Color(0.5f)});
@@ -280,6 +307,7 @@ void readMaterials(const JsonReader& r, const Json& j, const std::set<std::strin
       if (m.contains("emission"))
         mat.emission = r.color(m["emission"], ptr + "/emission", "emission", 0.0, INFINITY);
       if (m.contains("two_sided")) mat.twoSided = r.boolean(m["two_sided"], ptr + "/two_sided");
+      readCoverage(r, m, ptr, mat);
     }
     if (!found) {
       std::set<std::string> names;
