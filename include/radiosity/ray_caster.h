@@ -34,8 +34,10 @@ struct Hit {
 };
 
 /// Built once from a scene (the scene's geometry must not change afterwards; the RayCaster
-/// keeps no reference to it). Every surface blocks rays from both sides. All queries are safe
-/// from many threads at once. Throws std::runtime_error if Embree fails.
+/// keeps no reference to it). Every surface blocks rays from both sides, where it is not opaque
+/// with the probability its coverage gives (Scene::coverageAt; a ray passing where a hash of it
+/// and the triangle says, the same on every run: geometry/coverage_filter.h). All queries are
+/// safe from many threads at once. Throws std::runtime_error if Embree fails.
 class RayCaster {
  public:
   explicit RayCaster(const Scene& scene);

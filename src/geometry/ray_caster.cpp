@@ -1,9 +1,11 @@
 // Ray queries on Embree 3 (Wald et al., "Embree: A Kernel Framework for Efficient CPU Ray
-// Tracing", SIGGRAPH 2014). One triangle geometry, high-quality BVH, robust (watertight) mode.
-#include <radiosity/ray_caster.h>
-
+// Tracing", SIGGRAPH 2014). One triangle geometry, high-quality BVH, robust (watertight) mode;
+// in a scene with materials that are not opaque, their triangles are a second geometry whose
+// filter functions let rays through where the coverage says (CoverageFilter), so that the
+// opaque triangles keep Embree's plain path.
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
+#include <radiosity/ray_caster.h>
 #include <spdlog/spdlog.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
@@ -12,10 +14,12 @@
 #include <array>
 #include <cstring>
 #include <mutex>
-#include <stdexcept>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "geometry/coverage_filter.h"
 
 namespace rad {
 
@@ -64,6 +68,22 @@ RTCRayHit toEmbreeHit(const Ray& r) {
 // Batches go to Embree in chunks that fit on the stack.
 constexpr size_t kChunk = 256;
 
+// Embree's filter for the geometry of triangles that are not opaque (both queries): a hit the
+// coverage lets through is no hit, and the traversal goes on.
+void coverageFilter(const RTCFilterFunctionNArguments* args) {
+  const auto* filter = static_cast<const CoverageFilter*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    RTCRayN* r = args->ray;
+    RTCHitN* h = args->hit;
+    const unsigned n = args->N;
+    const Vec3 origin(RTCRayN_org_x(r, n, i), RTCRayN_org_y(r, n, i), RTCRayN_org_z(r, n, i));
+    const Vec3 direction(RTCRayN_dir_x(r, n, i), RTCRayN_dir_y(r, n, i), RTCRayN_dir_z(r, n, i));
+    const Vec2 b(RTCHitN_u(h, n, i), RTCHitN_v(h, n, i));
+    if (!filter->meets(RTCHitN_primID(h, n, i), b, origin, direction)) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 struct RayCaster::Impl {
@@ -71,6 +91,11 @@ struct RayCaster::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   std::vector<Vec3> normals;
+  /// In a scene with coverage: the scene triangle of each primitive, by geometry (0: the opaque
+  /// ones, 1: the others); empty: one geometry of every triangle in order.
+  std::array<std::vector<uint32_t>, 2> triangleOf;
+  bool mapped = false;
+  std::unique_ptr<CoverageFilter> coverage;
   tbb::enumerable_thread_specific<uint64_t, tbb::cache_aligned_allocator<uint64_t>,
                                   tbb::ets_key_per_instance>
       rays{uint64_t(0)};
@@ -90,8 +115,37 @@ struct RayCaster::Impl {
   }
 
   void build(const Scene& s);
+  void attach(const Scene& s, std::span<const uint32_t> triangles, unsigned id);
   Hit toHit(const RTCRayHit& e, const Vec3& direction) const;
 };
+
+// The triangle geometry `id` of `triangles` of the scene (all of them, in order, where empty),
+// with the coverage filter where it is geometry 1.
+void RayCaster::Impl::attach(const Scene& s, std::span<const uint32_t> triangles, unsigned id) {
+  const size_t count = triangles.empty() ? s.triangles.size() : triangles.size();
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
+  // Embree-owned copies: they carry the padding Embree's vector loads need.
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3), s.positions.size()));
+  auto* indices = static_cast<UVec3*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(UVec3), count));
+  checkDevice("allocating the geometry");
+  std::memcpy(vertices, s.positions.data(), s.positions.size() * sizeof(Vec3));
+  if (triangles.empty())
+    std::memcpy(indices, s.triangles.data(), count * sizeof(UVec3));
+  else
+    for (size_t k = 0; k < count; ++k) indices[k] = s.triangles[triangles[k]];
+  if (id == 1) {
+    coverage = std::make_unique<CoverageFilter>(s, triangles);
+    rtcSetGeometryUserData(geometry, coverage.get());
+    rtcSetGeometryIntersectFilterFunction(geometry, coverageFilter);
+    rtcSetGeometryOccludedFilterFunction(geometry, coverageFilter);
+  }
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometryByID(scene, geometry, id);
+  rtcReleaseGeometry(geometry);
+}
 
 void RayCaster::Impl::build(const Scene& s) {
   // Embree schedules its BVH build on TBB; give it as many threads as TBB would use.
@@ -107,20 +161,14 @@ void RayCaster::Impl::build(const Scene& s) {
   scene = rtcNewScene(device);
   rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-  if (!s.triangles.empty()) {
-    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
-    // Embree-owned copies: they carry the padding Embree's vector loads need.
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3), s.positions.size()));
-    auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(UVec3), s.triangles.size()));
-    checkDevice("allocating the geometry");
-    std::memcpy(vertices, s.positions.data(), s.positions.size() * sizeof(Vec3));
-    std::memcpy(indices, s.triangles.data(), s.triangles.size() * sizeof(UVec3));
-    rtcCommitGeometry(geometry);
-    rtcAttachGeometry(scene, geometry);
-    rtcReleaseGeometry(geometry);
+  if (!s.hasCoverage()) {
+    if (!s.triangles.empty()) attach(s, {}, 0);
+  } else {
+    mapped = true;
+    for (uint32_t t = 0; t < s.triangles.size(); ++t)
+      triangleOf[s.materialOf(t).opaque() ? 0 : 1].push_back(t);
+    for (unsigned g = 0; g < 2; ++g)
+      if (!triangleOf[g].empty()) attach(s, triangleOf[g], g);
   }
   rtcCommitScene(scene);
   checkDevice("building the BVH");
@@ -132,10 +180,10 @@ void RayCaster::Impl::build(const Scene& s) {
 Hit RayCaster::Impl::toHit(const RTCRayHit& e, const Vec3& direction) const {
   Hit hit;
   if (e.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
-  hit.triangle = e.hit.primID;
+  hit.triangle = mapped ? triangleOf[e.hit.geomID][e.hit.primID] : e.hit.primID;
   hit.distance = e.ray.tfar;
   hit.barycentric = Vec2(e.hit.u, e.hit.v);
-  hit.geometricNormal = normals[e.hit.primID];
+  hit.geometricNormal = normals[hit.triangle];
   hit.frontFace = glm::dot(direction, hit.geometricNormal) < 0.0f;
   return hit;
 }

@@ -15,7 +15,8 @@ EmitterSampler::EmitterSampler(const Scene& scene, std::span<const Color> emissi
     // pi is common to every weight; luminance is positive whenever any channel is.
     const Color emission = scaledEmission(scene, scene.faceOf(t).material, emissionScales_);
     const double weight = double(luminance(glm::max(emission, Color(0.0f)))) *
-                          double(scene.triangleArea(t)) * (m.twoSided ? 2.0 : 1.0);
+                          double(scene.triangleArea(t)) * (m.twoSided ? 2.0 : 1.0) *
+                          double(scene.coverageMean(t));
     if (!(weight > 0.0)) continue;
     triangles_.push_back(t);
     weights.push_back(weight);
@@ -39,7 +40,7 @@ EmitterSample EmitterSampler::sample(float choose, Vec2 position) const {
             b.y * scene_->positions[tri.z];
   s.normal = scene_->triangleNormal(t);
   s.emission = scaledEmission(*scene_, scene_->faceOf(t).material, emissionScales_) *
-               scene_->textureAt(m.emissionTexture, t, b);
+               scene_->textureAt(m.emissionTexture, t, b) * scene_->coverageAt(t, b);
   s.twoSided = m.twoSided;
   s.pdfArea = pdfArea_[t];
   return s;

@@ -1,8 +1,10 @@
 #pragma once
 // Chooses a point on the scene's emissive triangles for next-event estimation: a triangle with
-// probability proportional to its emitted power (luminance of pi * Ke * area, both sides of a
-// two-sided one), then a point uniform in its area. A light group's scale on a material's
-// emission (light_groups.h) scales what it is chosen by and what it sends alike.
+// probability proportional to its emitted power (luminance of pi * Ke * area * mean coverage,
+// both sides of a two-sided one), then a point uniform in its area; what the point sends is
+// its coverage there times Ke (Material: a surface that is not opaque emits c E a unit area). A
+// light group's scale on a material's emission (light_groups.h) scales what it is chosen by and
+// what it sends alike.
 
 #include <radiosity/scene.h>
 

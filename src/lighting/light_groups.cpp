@@ -59,7 +59,8 @@ Color groupPower(const Scene& scene, std::span<const Light> lights, const LightG
     const Material& m = scene.materials[f.material];
     if (std::find(group.materials.begin(), group.materials.end(), f.material) !=
         group.materials.end())
-      power += Vec3d(m.emission) * (glm::pi<double>() * (m.twoSided ? 2.0 : 1.0) * f.area);
+      power +=
+          Vec3d(m.emission) * (glm::pi<double>() * (m.twoSided ? 2.0 : 1.0) * scene.coveredArea(f));
   }
   return Color(power);
 }

@@ -20,7 +20,8 @@ Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& obj
   std::vector<Color> emitted(scene.objects.size(), Color(0.0f));
   for (const Face& f : scene.faces) {
     const Color scale = emissionScales.empty() ? Color(1.0f) : emissionScales[f.material];
-    emitted[f.object] += scale * scene.materials[f.material].emission * (glm::pi<float>() * f.area);
+    emitted[f.object] += scale * scene.materials[f.material].emission *
+                         (glm::pi<float>() * float(scene.coveredArea(f)));
   }
   Color absorbed(0.0f);
   for (size_t i = 0; i < objects.size() && i < scene.objects.size(); ++i) {
