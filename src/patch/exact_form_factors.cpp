@@ -43,15 +43,16 @@ class ExactKernel {
   /// a real atrium's lamps, row sums up to 325).
   template <class Columns>
   std::vector<FormFactorEntry> row(uint32_t i, int points, Rng& rng, const Columns& columns) const {
-    const std::vector<QuadraturePoint> own = midpointRule(mesh_, i, points);
+    const std::vector<QuadraturePoint> own = coveredMidpointRule(mesh_, i, points);
     std::vector<QuadraturePoint> other;
     std::vector<FormFactorEntry> entries;
     for (const uint32_t j : columns) {
       if (j == i) continue;
       const bool fromJ = mesh_.patches()[j].area < mesh_.patches()[i].area;
-      if (fromJ) other = midpointRule(mesh_, j, points);
+      if (fromJ) other = coveredMidpointRule(mesh_, j, points);
       const double f = pairFactor(fromJ ? j : i, fromJ ? i : j, fromJ ? other : own, rng);
-      const double fij = fromJ ? f * mesh_.patches()[j].area / mesh_.patches()[i].area : f;
+      const double fij =
+          fromJ ? f * mesh_.patches()[j].coveredArea() / mesh_.patches()[i].coveredArea() : f;
       if (fij > 0.0) entries.push_back({j, float(fij)});
     }
     return entries;
@@ -59,7 +60,8 @@ class ExactKernel {
 
  private:
   // F_ab: the point-to-polygon factor toward b at the points `q` of a, each times the
-  // visibility of b along one ray to a random point of it.
+  // visibility of b along one ray to a random point of it, times b's mean coverage (the kernel
+  // sees b's whole polygon; a cut-out's holes are taken as spread evenly over it).
   double pairFactor(uint32_t a, uint32_t b, const std::vector<QuadraturePoint>& q, Rng& rng) const {
     const Patch& pa = mesh_.patches()[a];
     std::vector<double> f(q.size());
@@ -86,7 +88,7 @@ class ExactKernel {
     caster_.occluded(rays, blocked);
     double sum = 0.0;
     for (size_t k = 0; k < q.size(); ++k) sum += blocked[k] ? 0.0 : q[k].weight * f[k];
-    return sum;
+    return sum * pb.coverage;
   }
 
   const PatchMesh& mesh_;
@@ -166,7 +168,7 @@ std::optional<ExactColumns> exactColumns(const PatchMesh& mesh, const RayCaster&
     for (const FormFactorEntry& e : exact.toExact[i])
       if (!exact.isExact[i] && patches[e.column].area > 0.0f)
         exact.exactRows[e.column].push_back(
-            {i, e.value * patches[i].area / patches[e.column].area});
+            {i, e.value * patches[i].coveredArea() / patches[e.column].coveredArea()});
   return exact;
 }
 

@@ -58,12 +58,16 @@ std::vector<HemisphereHit> hemisphereHits(const PatchMesh& mesh, const RayCaster
 
   const Patch& p = mesh.patches()[patch];
   const float offset = mesh.rayOffset();
+  // Rays leave the covered part only: each origin weighted by its coverage over the mean.
+  const bool weighByCoverage = !mesh.uniformCoverage(patch);
   std::vector<Ray> batch(static_cast<size_t>(n));
   std::vector<float> weight(static_cast<size_t>(n));
   for (int k = 0; k < n; ++k) {
     const Vec2 up = sampleStratum(pointStratum[k], side, rng);
     const Vec2 ud = sampleStratum(k, side, rng);
     const Vec3 origin = mesh.samplePoint(patch, up, weight[k]);
+    if (weighByCoverage)
+      weight[k] *= p.coverage > 0.0f ? mesh.coverageAt(patch, origin) / p.coverage : 0.0f;
     batch[k] = {origin + offset * p.normal, toWorld(sampleCosineHemisphere(ud), p.normal)};
   }
   std::vector<Hit> hits(static_cast<size_t>(n));

@@ -144,8 +144,8 @@ FormFactorRows pairwiseFormFactors(const PatchMesh& mesh, const RayCaster& caste
   const auto& patches = mesh.patches();
   for (uint32_t i = 0; i < n; ++i)
     for (const PairValue& pv : upper[i]) {
-      rows[i].push_back({pv.j, float(pv.mean * patches[pv.j].area)});
-      rows[pv.j].push_back({i, float(pv.mean * patches[i].area)});
+      rows[i].push_back({pv.j, float(pv.mean * patches[pv.j].coveredArea())});
+      rows[pv.j].push_back({i, float(pv.mean * patches[i].coveredArea())});
     }
   return rows;
 }

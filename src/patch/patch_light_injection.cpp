@@ -36,7 +36,7 @@ PatchLight lightOnPatch(const PatchMesh& mesh, uint32_t patch, const DirectLight
   for (int k = 0; k < n; ++k) radius = std::max(radius, glm::length(corners[k] - p.centroid));
   PatchLight out;
   if (!mayReach(light, p.centroid, p.normal, radius * 1.001f)) return out;
-  std::vector<QuadraturePoint> at = midpointRule(mesh, patch, points);
+  std::vector<QuadraturePoint> at = coveredMidpointRule(mesh, patch, points);
   const size_t quadrature = at.size();
   for (int k = 0; k < n; ++k) at.push_back({corners[k] + 0.02f * (p.centroid - corners[k]), 0.0});
   Vec3d sum(0.0);

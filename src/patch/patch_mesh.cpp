@@ -316,28 +316,58 @@ void PatchMesh::finishPatch(uint32_t index) {
   node.patch = uint32_t(patches_.size());
   patches_.push_back(p);
   const Material& m = scene_->materials[p.material];
-  if (m.rhoTexture || m.emissionTexture) applyTextureMeans(node.patch);
+  if (m.rhoTexture || m.emissionTexture || !m.opaque()) applyMaterialMeans(node.patch);
 }
 
 // A textured patch's reflectance and emission are the textures' means over it (area-weighted,
 // linear): the midpoint rule's 4 x 4 points, each the texture averaged over a quarter of the
-// patch's size, so that a patch of any size sees all of its texels.
-void PatchMesh::applyTextureMeans(uint32_t index) {
-  constexpr int kPoints = 16;
+// patch's size, so that a patch of any size sees all of its texels. Where the material is not
+// opaque the means are weighted by the coverage, and its mean is the patch's; a coverage that
+// varies over the patch (a Mask's cut-out, thresholded texel by texel) is taken at 16 x 16 points.
+void PatchMesh::applyMaterialMeans(uint32_t index) {
   Patch& p = patches_[index];
   const Material& m = scene_->materials[p.material];
-  const float footprint = 0.25f * std::sqrt(p.area);
+  const int points = uniformCoverage(index) ? 16 : 256;
+  const float footprint = 0.25f * std::sqrt(p.area) * 4.0f / std::sqrt(float(points));
   const PatchRoot& root = roots_[nodes_[p.node].root];
-  Color rho(0.0f), emission(0.0f);
-  for (const QuadraturePoint& q : midpointRule(*this, index, kPoints)) {
+  Color rho(0.0f), emission(0.0f), plainRho(0.0f), plainEmission(0.0f);
+  double covered = 0.0;
+  for (const QuadraturePoint& q : midpointRule(*this, index, points)) {
     uint32_t triangle = 0;
     const Vec2 b =
         scene_->locateOnTriangles(root.firstTriangle, root.triangleCount, q.position, triangle);
-    rho += float(q.weight) * scene_->textureAt(m.rhoTexture, triangle, b, footprint);
-    emission += float(q.weight) * scene_->textureAt(m.emissionTexture, triangle, b, footprint);
+    const Color r = scene_->textureAt(m.rhoTexture, triangle, b, footprint);
+    const Color e = scene_->textureAt(m.emissionTexture, triangle, b, footprint);
+    const float c = scene_->coverageAt(triangle, b, footprint);
+    rho += float(q.weight) * c * r;
+    emission += float(q.weight) * c * e;
+    plainRho += float(q.weight) * r;
+    plainEmission += float(q.weight) * e;
+    covered += q.weight * c;
   }
-  p.rho = m.rho * rho;
-  p.emissionTint = emission;
+  if (m.opaque()) {
+    p.rho = m.rho * rho;
+    p.emissionTint = emission;
+    return;
+  }
+  // A patch cut away whole shows the plain means (no light ever reaches it).
+  p.coverage = float(covered);
+  p.rho = m.rho * (covered > 0.0 ? rho / float(covered) : plainRho);
+  p.emissionTint = covered > 0.0 ? emission / float(covered) : plainEmission;
+}
+
+float PatchMesh::coverageAt(uint32_t patch, const Vec3& point) const {
+  const PatchRoot& root = roots_[nodes_[patches_[patch].node].root];
+  uint32_t triangle = 0;
+  const Vec2 b = scene_->locateOnTriangles(root.firstTriangle, root.triangleCount, point, triangle);
+  return scene_->coverageAt(triangle, b);
+}
+
+bool PatchMesh::uniformCoverage(uint32_t patch) const {
+  const PatchRoot& root = roots_[nodes_[patches_[patch].node].root];
+  for (uint32_t t = root.firstTriangle; t < root.firstTriangle + root.triangleCount; ++t)
+    if (!scene_->uniformCoverage(t)) return false;
+  return true;
 }
 
 uint64_t PatchMesh::weldKey(const Vec3& p, float cell) {

@@ -10,6 +10,7 @@
 
 #include <radiosity/scene.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -65,6 +66,14 @@ struct Patch {
   Vec3 normal{0.0f};         ///< unit normal of the side the patch emits and receives on
   Color rho{0.0f};           ///< its material's reflectance times the texture's mean over it
   Color emissionTint{1.0f};  ///< the emission texture's mean over it (1: none)
+  /// Its material's mean coverage over it (Scene::coverageAt; 1: opaque). rho and the emission
+  /// tint are means weighted by coverage: what its covered part reflects and emits.
+  float coverage = 1.0f;
+
+  /// The area that reflects and emits, A c: what reciprocity (A_i F_ij = A_j F_ji) and the
+  /// power balance weigh a patch by. Never 0 (a patch cut away whole keeps a millionth of its
+  /// area, which no ray finds), so that ratios of areas stay finite.
+  float coveredArea() const { return area * std::max(coverage, 1e-6f); }
 };
 
 struct PatchMeshSettings {
@@ -134,6 +143,12 @@ class PatchMesh {
   /// ends in this order is right where those ends hang themselves.
   std::vector<HangingVertex> hangingVertices() const;
 
+  /// The coverage at a point of the patch (Scene::coverageAt at the scene triangle under it).
+  float coverageAt(uint32_t patch, const Vec3& point) const;
+  /// True if the coverage is the same over the whole patch (its material's alpha reads no
+  /// texture or vertex alpha): then coverageAt is its mean everywhere.
+  bool uniformCoverage(uint32_t patch) const;
+
   /// Distance by which sample points are lifted off their surface before a ray leaves them.
   float rayOffset() const { return weldCell_ * 20.0f; }
 
@@ -155,7 +170,7 @@ class PatchMesh {
   uint32_t findVertex(const Vec3& p, const Vec3& normal) const;
   static uint64_t weldKey(const Vec3& p, float cell);
   void finishPatch(uint32_t node);
-  void applyTextureMeans(uint32_t patch);
+  void applyMaterialMeans(uint32_t patch);
   void numberPatches();
 
   const Scene* scene_;

@@ -35,4 +35,19 @@ std::vector<QuadraturePoint> midpointRule(const PatchMesh& mesh, uint32_t patch,
   return q;
 }
 
+std::vector<QuadraturePoint> coveredMidpointRule(const PatchMesh& mesh, uint32_t patch,
+                                                 int points) {
+  std::vector<QuadraturePoint> q = midpointRule(mesh, patch, points);
+  if (mesh.uniformCoverage(patch)) return q;
+  std::vector<double> weights;
+  double total = 0.0;
+  for (const QuadraturePoint& p : q) {
+    weights.push_back(p.weight * mesh.coverageAt(patch, p.position));
+    total += weights.back();
+  }
+  if (!(total > 0.0)) return q;
+  for (size_t k = 0; k < q.size(); ++k) q[k].weight = weights[k] / total;
+  return q;
+}
+
 }  // namespace rad

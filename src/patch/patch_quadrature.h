@@ -21,4 +21,9 @@ struct QuadraturePoint {
 /// accurate for smooth integrands.
 std::vector<QuadraturePoint> midpointRule(const PatchMesh& mesh, uint32_t patch, int points);
 
+/// The same with each weight times the coverage at its point, and the weights scaled to sum to
+/// 1 again: the mean over the patch's covered part (Patch::coverage). The plain rule where the
+/// coverage is uniform or the points find none.
+std::vector<QuadraturePoint> coveredMidpointRule(const PatchMesh& mesh, uint32_t patch, int points);
+
 }  // namespace rad

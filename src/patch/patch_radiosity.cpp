@@ -63,7 +63,7 @@ PatchSystem PatchRadiosity::Impl::system() const {
     const Material& m = scene->materials[p.material];
     s.emitted.push_back(glm::pi<float>() * m.emission * p.emissionTint);
     s.rho.push_back(p.rho);
-    s.area.push_back(p.area);
+    s.area.push_back(p.coveredArea());
   }
   s.direct = lightDirect.empty() ? std::vector<Color>(mesh->size(), Color(0.0f)) : lightDirect;
   return s;
@@ -91,6 +91,21 @@ void PatchRadiosity::Impl::chooseFormFactorSettings() {
   stats.exactColumns = ff.exactColumns.size();
 }
 
+// The estimators that integrate toward a patch's polygon (exact, pairwise, the emitters' exact
+// columns) take its mean coverage, as if a cut-out's holes were spread evenly over it.
+void PatchRadiosity::Impl::warnOfCutOutTargets() {
+  bool cutOut = false;
+  for (uint32_t t = 0; t < scene->triangles.size() && !cutOut; ++t)
+    cutOut = !scene->uniformCoverage(t);
+  if (!cutOut ||
+      (settings.estimator == PatchFormFactorEstimator::Hemisphere && ff.exactColumns.empty()))
+    return;
+  stats.warnings.push_back(
+      "cut-out materials (alpha from a texture or vertex colours): form factors toward a patch "
+      "by its polygon (the exact and pairwise estimators, the emitters' exact columns) take its "
+      "mean coverage, its holes as if spread evenly over it; smaller patches resolve them");
+}
+
 // Rows to table: pairwise estimates are reciprocal by construction; the others average both
 // directions. Rows past 1 are scaled back: estimates of a patch far larger than the emitter
 // beside it (the exact columns' reciprocity multiplies a 16-point estimate by A_i / A_j) made
@@ -98,7 +113,7 @@ void PatchRadiosity::Impl::chooseFormFactorSettings() {
 FormFactorTable PatchRadiosity::Impl::assembleTable(FormFactorRows rows) {
   FormFactorTable table = FormFactorTable::fromRows(std::move(rows));
   std::vector<float> area;
-  for (const Patch& p : mesh->patches()) area.push_back(p.area);
+  for (const Patch& p : mesh->patches()) area.push_back(p.coveredArea());
   if (settings.estimator != PatchFormFactorEstimator::Pairwise) table.symmetrize(area);
   closeTable(table);
   table.applyThreshold(area, settings.formFactorThreshold, emitterRows);
@@ -298,6 +313,7 @@ void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSyste
 void PatchRadiosity::Impl::solve(const RayCaster& caster, const ProgressCallback& progress) {
   const PatchSystem system = this->system();
   chooseFormFactorSettings();
+  warnOfCutOutTargets();
   const bool lazy = settings.solver == PatchSolverKind::Progressive &&
                     settings.estimator == PatchFormFactorEstimator::Hemisphere &&
                     settings.cacheDir.empty() && !keepTable && !mix.apart();
@@ -393,7 +409,7 @@ std::vector<Color> PatchRadiosity::Impl::averageAtVertices(
   std::vector<float> weight(mesh->vertices().size(), 0.0f);
   for (uint32_t p = 0; p < mesh->size(); ++p) {
     const PatchNode& node = mesh->nodeOf(p);
-    const float a = mesh->patches()[p].area;
+    const float a = mesh->patches()[p].coveredArea();
     for (int k = 0; k < node.cornerCount(); ++k) {
       atVertex[node.corners[k]] += a * perPatch[p];
       weight[node.corners[k]] += a;
@@ -556,7 +572,7 @@ SurfaceElement PatchRadiosity::element(size_t p) const {
   const Impl& m = *impl_;
   const Patch& patch = m.mesh->patches()[p];
   return {patch.object,
-          patch.area,
+          patch.coveredArea(),
           patch.centroid,
           patch.normal,
           m.solution.emitted[p],

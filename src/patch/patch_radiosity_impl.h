@@ -66,6 +66,7 @@ struct PatchRadiosity::Impl {
   FormFactorSettings ff;             ///< the estimator's settings, fixed once per solve
   std::vector<uint8_t> emitterRows;  ///< per patch: it emits (the threshold keeps its row whole)
   void chooseFormFactorSettings();
+  void warnOfCutOutTargets();
   /// The form factors of the patches, with their numbers (entries, bytes, threshold loss, row
   /// sums) put in the stats.
   FormFactorTable formFactors(const RayCaster& caster, const ProgressCallback& progress);

@@ -103,7 +103,7 @@ class TableUpdate {
   std::pair<uint64_t, uint64_t> oldRange(uint32_t p) const {
     return before_.mesh.nodeKeys(before_.mesh.patches()[p].node, levels_);
   }
-  float area(uint32_t q) const { return mesh_.patches()[q].area; }
+  float area(uint32_t q) const { return mesh_.patches()[q].coveredArea(); }
   bool isExact(uint32_t q) const { return exact_ && exact_->isExact[q]; }
   std::vector<uint32_t> newPatchesOver(std::span<const uint32_t> removedSeen) const;
   void pairRow(uint32_t q, std::span<const uint32_t> removedSeen,
