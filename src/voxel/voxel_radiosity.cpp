@@ -194,6 +194,12 @@ VoxelRadiosity::VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model,
         fmt::format("{} point/spot/IES light(s) ignored: only the first shot "
                     "(--first-shot) lights voxels from lights",
                     impl_->lights.size()));
+  if (scene.hasCoverage())
+    s.warnings.push_back(
+        "materials that are not opaque (alpha, transmission): the voxel sweeps take a voxel's "
+        "surface as opaque where at least half of it is covered and leave it out elsewhere; the "
+        "light bounced through partly covered surfaces (Blend, glass) is not carried (the "
+        "direct light is: its shadow rays pass them); use --method patch or pathtrace for it");
   s.voxels = impl_->grid.cellCount();
   s.sides = impl_->grid.entryCount();
   s.directions = solution.directions;

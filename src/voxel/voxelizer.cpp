@@ -152,9 +152,30 @@ struct Side {
   uint32_t orientation = 0, object = 0;
   Vec3d normalSum{0.0}, centroidSum{0.0}, rhoArea{0.0}, keArea{0.0};
   double weight = 0.0, area = 0.0, backArea = 0.0;
-  uint32_t emitter = VoxelSurface::kNoEmitter;  ///< the material of the most emission so far
+  double coveredArea = 0.0, coveredWeight = 0.0;  ///< area times coverage (Material)
+  uint32_t emitter = VoxelSurface::kNoEmitter;    ///< the material of the most emission so far
   double emitterWeight = 0.0;
 };
+
+// A piece's mean coverage: its value where it is uniform, else the mean of 3 x 3 points around
+// the centroid in the triangle's plane, over the piece's size (a voxel's piece of a cut-out
+// leaf spans several texels).
+float pieceCoverage(const Scene& scene, const Fragment& f) {
+  const uint32_t t = f.triangle;
+  if (scene.uniformCoverage(t)) return scene.coverageAt(t, Vec2(1.0f / 3.0f));
+  const Vec3 n = scene.triangleNormal(t);
+  const Vec3 u =
+      glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? Vec3(1, 0, 0) : Vec3(0, 1, 0)));
+  const Vec3 v = glm::cross(n, u);
+  const float step = std::sqrt(std::max(f.area, 0.0f)) / 3.0f;
+  float sum = 0.0f;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j) {
+      const Vec3 p = f.centroid + step * (float(i) * u + float(j) * v);
+      sum += scene.coverageAt(t, scene.barycentricOf(t, p));
+    }
+  return sum / 9.0f;
+}
 
 void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orientations,
                 std::vector<Side>& sides) {
@@ -185,8 +206,12 @@ void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orien
     rho = scene.reflectanceAt(f.triangle, b, size);
     ke = scene.emissionAt(f.triangle, b, size);
   }
-  side->rhoArea += w * Vec3d(rho);
-  side->keArea += w * Vec3d(ke);
+  // Reflectance and emission are means over the covered part.
+  const double c = pieceCoverage(scene, f);
+  side->coveredArea += double(f.area) * c;
+  side->coveredWeight += w * c;
+  side->rhoArea += w * c * Vec3d(rho);
+  side->keArea += w * c * Vec3d(ke);
   const double emitted = w * luminance(ke);
   if (emitted > side->emitterWeight) {
     side->emitterWeight = emitted;
@@ -214,9 +239,10 @@ void appendSide(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& surfaceIndex, c
   grid.orientation.push_back(
       {PackedNormal::pack(Vec3(glm::normalize(side.normalSum))), sharesPrevious});
   grid.centroid.push_back(grid.pack(side.centroidSum / side.weight));
-  const float faces = float(side.area / (double(grid.voxelSize) * grid.voxelSize));
+  const float faces = float(side.coveredArea / (double(grid.voxelSize) * grid.voxelSize));
   grid.faceArea.push_back(toHalf(faces));
-  const VoxelMaterial m{Color(side.rhoArea / side.weight), Color(side.keArea / side.weight)};
+  const VoxelMaterial m{Color(side.rhoArea / side.coveredWeight),
+                        Color(side.keArea / side.coveredWeight)};
   grid.surface.push_back(internSurface(
       grid, surfaceIndex, {m, side.object, side.backArea > 0.5 * side.area, side.emitter}));
 }
@@ -233,6 +259,11 @@ void forEachCellsSides(const Scene& scene, const std::vector<Fragment>& fragment
     orientations.clear();
     for (; i < fragments.size() && fragments[i].cellKey == key; ++i)
       addToSides(scene, fragments[i], orientations, sides);
+    // The sweeps take a side as opaque: one less than half covered is left out (empty).
+    std::erase_if(sides, [](const Side& s) {
+      return !(s.coveredWeight > 0.0) || !(s.coveredArea >= 0.5 * s.area);
+    });
+    if (sides.empty()) continue;
     std::stable_sort(sides.begin(), sides.end(),
                      [](const Side& a, const Side& b) { return a.orientation < b.orientation; });
     f(key, sides);
