@@ -297,10 +297,13 @@ PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
         {"mean", p.rowSumMean},
         {"max", p.rowSumMax},
         {"estimated_max", p.rowSumEstimatedMax},
-        {"rows_scaled", p.rowsScaledToClosure}}},
+        {"rows_scaled", p.rowsScaledToClosure},
+        {"reflected_share_max", p.reflectedShareMax},
+        {"scaled_for_reflection", p.scaledForReflection}}},
       {"cache_loaded", p.cacheLoaded},
       {"cache_file", p.cacheFile},
       {"solver", p.solver},
+      {"diverging", p.diverging},
       {"shots", p.shots},
       {"rays_per_s", double(p.rays - p.lightRays) / std::max(p.formFactorSeconds, 1e-9)},
       {"light_rays", p.lightRays},
@@ -324,6 +327,7 @@ PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
   stats.timingsSeconds.solve = p.lightSeconds + p.solveSeconds;
   stats.iterations = p.iterations;
   stats.residual = p.residuals.empty() ? 0.0 : p.residuals.back();
+  stats.converged = p.converged;
   stats.residuals = p.residuals;
   reportObjects(scene, caster, solution, source.seconds, report);
   return solution;

@@ -62,9 +62,13 @@ std::string formFactorsOf(const PatchRadiosityStats& p) {
 std::string describeRun(const PatchRadiosityStats& p, double seconds) {
   return fmt::format(
       "{} patches, form factors {} ({} entries, {:.1f} MB, rows sum to {:.3f} on average), {} {} "
-      "sweeps, residual {:.2g}, {:.2f} s",
+      "sweeps, residual {:.2g}{}, {:.2f} s",
       p.patches, formFactorsOf(p), p.nonZeros, double(p.tableBytes) / 1e6, p.rowSumMean,
-      p.iterations, p.solver, p.residuals.empty() ? 0.0 : p.residuals.back(), seconds);
+      p.iterations, p.solver, p.residuals.empty() ? 0.0 : p.residuals.back(),
+      p.converged   ? ""
+      : p.diverging ? " (diverging)"
+                    : " (not converged)",
+      seconds);
 }
 
 std::string describeRun(const VoxelRadiosityStats& v, double seconds) {

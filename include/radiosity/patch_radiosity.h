@@ -120,6 +120,12 @@ struct PatchRadiosityStats {
   /// back to 1 (no patch sends on more light than reaches it), and the largest estimated sum.
   uint64_t rowsScaledToClosure = 0;
   double rowSumEstimatedMax = 0.0;
+  /// Patches whose reflected share (of the light they send, what comes back reflected; for a
+  /// reciprocal row, its sum weighted by the reflectances) exceeded kMaxReflectance, scaled
+  /// back to it so that no sweep can make the light grow (FormFactorTable::boundReflection),
+  /// and the largest share before.
+  uint64_t scaledForReflection = 0;
+  double reflectedShareMax = 0.0;
   bool cacheLoaded = false;
   std::string cacheFile;   ///< empty without a cache
   uint64_t lightRays = 0;  ///< shadow rays toward point, spot and IES lights
@@ -132,7 +138,12 @@ struct PatchRadiosityStats {
   std::string solver;
   int iterations = 0;
   uint64_t shots = 0;
-  std::vector<double> residuals;      ///< relative residual per sweep
+  std::vector<double> residuals;  ///< relative residual per sweep
+  /// The residual fell below the tolerance (with light groups: in every group's solve); when
+  /// not, a warning says by how much and what to change.
+  bool converged = false;
+  /// Stopped early: the residual rose sweep after sweep (patch_solvers.h).
+  bool diverging = false;
   size_t memoryBytes = 0;             ///< mesh, table and solution arrays
   std::vector<std::string> warnings;  ///< e.g. a cache file that could not be used
 };

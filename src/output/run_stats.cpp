@@ -66,6 +66,7 @@ nlohmann::json toJson(const RunStats& s) {
       {"memory_peak_bytes", s.memoryPeakBytes},
       {"warnings", {{"count", s.warnings.size()}, {"messages", s.warnings}}},
   };
+  if (s.converged) j["converged"] = *s.converged;
   if (!s.dynamicObjects.empty()) {
     nlohmann::json& objects = j["dynamic_objects"] = nlohmann::json::array();
     for (const RunStats::DynamicObjectEntry& d : s.dynamicObjects) {

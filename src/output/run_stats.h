@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,6 +27,9 @@ struct RunStats {
   } timingsSeconds;
   int iterations = 0;
   double residual = 0.0;
+  /// The radiosity methods': whether the residual fell below the tolerance (written as
+  /// "converged"); unset for the path tracer, which does not iterate.
+  std::optional<bool> converged;
   std::vector<double> residuals;  ///< per iteration, for methods that iterate
   Color emittedPower{0.0f};       ///< W, every emitter and light
   Color absorbedPower{0.0f};      ///< W, sum of (1 - rho) H A over the objects

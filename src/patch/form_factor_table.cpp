@@ -204,6 +204,35 @@ FormFactorTable::ClosureRepair FormFactorTable::closeRows(double noise) {
   return repair;
 }
 
+FormFactorTable::ReflectionBound FormFactorTable::boundReflection(std::span<const float> rho,
+                                                                  std::span<const float> area,
+                                                                  double limit) {
+  // Column sums, in row order (one pass, the same sums whatever the threads).
+  const size_t n = rows();
+  std::vector<double> share(n, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    const double weight = double(rho[i]) * area[i];
+    for (uint64_t e = offsets_[i]; e < offsets_[i + 1]; ++e)
+      share[columns_[e]] += weight * values_[e];
+  }
+  ReflectionBound bound;
+  std::vector<float> scale(n, 1.0f);
+  for (size_t j = 0; j < n; ++j) {
+    share[j] /= area[j];
+    bound.worstShare = std::max(bound.worstShare, share[j]);
+    if (share[j] > limit) {
+      scale[j] = float(limit / share[j]);
+      ++bound.patches;
+    }
+  }
+  if (bound.patches == 0) return bound;
+  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    for (uint64_t e = offsets_[i]; e < offsets_[i + 1]; ++e)
+      values_[e] *= std::min(scale[i], scale[columns_[e]]);
+  });
+  return bound;
+}
+
 size_t FormFactorTable::memoryBytes() const {
   return offsets_.size() * sizeof(uint64_t) + columns_.size() * sizeof(uint32_t) +
          values_.size() * sizeof(float);

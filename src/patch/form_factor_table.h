@@ -107,6 +107,24 @@ class FormFactorTable {
   /// (both entries of a pair take one factor).
   ClosureRepair closeRows(double noise);
 
+  /// What boundReflection() found and did.
+  struct ReflectionBound {
+    size_t patches = 0;       ///< patches whose column was scaled back
+    double worstShare = 0.0;  ///< the largest reflected share q_j before
+  };
+  /// Makes the radiosity iteration unable to grow. Patch j's reflected share is
+  /// q_j = sum_i rho_i A_i F_ij / A_j (`rho`: each patch's largest channel): of the light j sends
+  /// (to i, A_i F_ij / A_j of it, as shooting reads the table), the share that comes back
+  /// reflected; for a reciprocal table, its row's sum weighted by the reflectances,
+  /// sum_i rho_i F_ji. Patches with q_j above `limit` (below 1) are scaled back, entry (i, j)
+  /// times min(s_i, s_j), s_j = limit / q_j, which keeps reciprocity. Afterwards every q is at
+  /// most `limit` (to float rounding): a Gauss-Seidel step, a shot or a Jacobi sweep passes a
+  /// patch's residual power (A |r|) on times its q, so the residual's power, sum_i A_i |r_i|,
+  /// never grows. A reciprocal row summing to at most 1 is never touched when every rho is at
+  /// most `limit`.
+  ReflectionBound boundReflection(std::span<const float> rho, std::span<const float> area,
+                                  double limit);
+
   /// What applyThreshold dropped.
   const ThresholdLoss& thresholdLoss() const { return loss_; }
   size_t memoryBytes() const;

@@ -27,6 +27,7 @@ PatchSolution solveGaussSeidel(const FormFactorTable& table, const PatchSystem& 
     }
     if (endSweep(out, change, norm, control, progress)) break;
   }
+  markNoLight(norm, out);
   finishSolution(s, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -1,6 +1,7 @@
 // Jacobi iteration for the radiosity equation (Cohen and Wallace, "Radiosity and Realistic Image
-// Synthesis" (1993), section 5.3.1): B^(k+1) = E + rho F B^(k). Converges because rho F has
-// spectral radius below 1 (rho < 1, rows of F sum to at most 1).
+// Synthesis" (1993), section 5.3.1): B^(k+1) = E + rho F B^(k). Converges because no patch's
+// light comes back from a bounce stronger than 0.999 of it (FormFactorTable::boundReflection),
+// so each sweep shrinks the residual's power.
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -55,6 +56,7 @@ PatchSolution solveJacobi(const FormFactorTable& table, const PatchSystem& s,
     out.radiosity.swap(next);
     if (endSweep(out, change, norm, control, progress)) break;
   }
+  markNoLight(norm, out);
   finishSolution(s, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -4,6 +4,7 @@
 #include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/ray_caster.h>
+#include <radiosity/scene_builder.h>
 #include <tbb/parallel_for.h>
 
 #include <array>
@@ -128,10 +129,28 @@ void PatchRadiosity::Impl::closeTable(FormFactorTable& table) {
   tableSymmetrizedOnly = closure.rows == 0;
 }
 
+// The noise's allowance past closure (rowSumNoise) stops where a patch's light would come back
+// from one bounce stronger than it left: with rho 0.999 (a glTF interior whose textures went
+// missing) rows of 1.06 made the Gauss-Seidel residual rise from sweep 193 on, to 0.35 after
+// 1,000 sweeps. A thresholded table's rows may sum far past 1 (a small patch gathering what
+// large ones send it) and keep the power each patch sends: its shares are what count.
+void PatchRadiosity::Impl::boundReflection(FormFactorTable& table) {
+  std::vector<float> rho(mesh->size()), area(mesh->size());
+  for (uint32_t p = 0; p < mesh->size(); ++p) {
+    rho[p] = maxComponent(mesh->patches()[p].rho);
+    area[p] = mesh->patches()[p].area;
+  }
+  const FormFactorTable::ReflectionBound bound = table.boundReflection(rho, area, kMaxReflectance);
+  stats.scaledForReflection = bound.patches;
+  stats.reflectedShareMax = bound.worstShare;
+  tableSymmetrizedOnly = tableSymmetrizedOnly && bound.patches == 0;
+}
+
 // The table for this mesh, and its numbers in the stats.
 FormFactorTable PatchRadiosity::Impl::formFactors(const RayCaster& caster,
                                                   const ProgressCallback& progress) {
   FormFactorTable table = loadOrComputeFormFactors(caster, progress);
+  boundReflection(table);
   recordTable(table);
   return table;
 }
@@ -166,6 +185,7 @@ FormFactorTable PatchRadiosity::Impl::formFactorsAfter(const PatchMesh& before,
   constexpr size_t kSpareTableBytes = size_t(256) << 20;
   if (table->memoryBytes() <= kSpareTableBytes) spareTable = std::move(*table);
   closeTable(*updated);
+  boundReflection(*updated);
   stats.rowsComputed = rows.computed;
   stats.rowsReused = mesh->size() - rows.computed;
   stats.masterRows = model->master->rows();
@@ -257,14 +277,82 @@ void PatchRadiosity::Impl::warnOfThresholdLoss() {
       100.0 * stats.droppedWorstRowFraction, 100.0 * stats.droppedSumFraction));
 }
 
-// A row computed alone (not made reciprocal) past 1 + noise, scaled back to 1, as closeRows does.
+// The bound keeps the solve from growing, but the light the noise put past closure is lost:
+// with rho near 1 the answer hangs on closure to 1 / (1 - rho) times the rays' noise (a closed
+// box of rho 0.999 at 256 rays: rows of 0.88-1.10, mean 1.0001 diverged; bound, mean 0.981).
+void PatchRadiosity::Impl::warnOfReflectionBound() {
+  if (stats.scaledForReflection == 0) return;
+  float rhoMax = 0.0f;
+  for (const Patch& p : mesh->patches()) rhoMax = std::max(rhoMax, maxComponent(p.rho));
+  stats.warnings.push_back(fmt::format(
+      "{} of {} patches sent on more light than reached them (reflected share up to {:.3f}: "
+      "reflectance up to {:.3f} and form-factor rows past 1 by the rays' noise), scaled back to "
+      "{} so that the solve cannot grow; the light past closure is lost there: expect the scene "
+      "darker than its reflectances say (more --ff-rays close the rows better; a texture lost on "
+      "import leaves a material at its factor, often 1)",
+      stats.scaledForReflection, mesh->size(), stats.reflectedShareMax, rhoMax, kMaxReflectance));
+}
+
+// Ended above the tolerance: the answer is short of light still bouncing, or, diverging, holds
+// light the table made. The warning gives the numbers and what to change; at the last sweeps'
+// rate of fall, how many more sweeps the tolerance wants.
+void PatchRadiosity::Impl::reportConvergence() {
+  stats.converged = solution.converged;
+  stats.diverging = solution.diverging;
+  if (solution.converged || solution.residuals.empty()) return;
+  const std::vector<double>& r = solution.residuals;
+  const std::string solver(choiceName(kPatchSolverNames, settings.solver));
+  const std::string sweeps = settings.solver == PatchSolverKind::Progressive
+                                 ? "rounds of shots (one shot a patch)"
+                                 : solver + " sweeps";
+  if (solution.diverging) {
+    stats.warnings.push_back(fmt::format(
+        "patch solve diverging: its residual rose {} sweeps in a row, to {:.3g} after {} {} "
+        "(lowest {:.3g}; --tolerance {:g}), so it stopped: the form factors send on more light "
+        "than they gather somewhere; more --ff-rays or another --ff-estimator may hold it",
+        kRisingSweeps, r.back(), solution.iterations, sweeps, *std::min_element(r.begin(), r.end()),
+        settings.tolerance));
+    return;
+  }
+  float rhoMax = 0.0f;
+  for (const Patch& p : mesh->patches()) rhoMax = std::max(rhoMax, maxComponent(p.rho));
+  std::string more;
+  const double rate = r.size() >= 2 && r[r.size() - 2] > 0.0 ? r.back() / r[r.size() - 2] : 0.0;
+  if (rate > 0.0 && rate < 1.0 && settings.tolerance > 0.0)
+    more = fmt::format(" (at its last rate, {:.4f} a sweep, about {:.0f} more)", rate,
+                       std::ceil(std::log(settings.tolerance / r.back()) / std::log(rate)));
+  std::string slow;
+  if (rhoMax >= 0.95f)
+    slow = fmt::format(
+        "; reflectances near 1 converge slowly: here up to {:.3f}, whose light bounces about "
+        "1 / (1 - rho) = {:.0f} times (a texture lost on import leaves a material at its factor, "
+        "often 1)",
+        rhoMax, 1.0 / (1.0 - double(rhoMax)));
+  stats.warnings.push_back(fmt::format(
+      "patch solve not converged: residual {:.3g} after {} {} (--max-iterations {}), above "
+      "--tolerance {:g}; raise --max-iterations{} or --tolerance{}",
+      r.back(), solution.iterations, sweeps, settings.maxIterations, settings.tolerance, more,
+      slow));
+}
+
+// A row computed alone (not made reciprocal) past 1 + noise, scaled back to 1, as closeRows does,
+// then past its reflected share, scaled back to kMaxReflectance, as boundReflection does.
 void PatchRadiosity::Impl::closeRow(std::vector<FormFactorEntry>& row) {
   double sum = 0.0;
   for (const FormFactorEntry& e : row) sum += e.value;
   stats.rowSumEstimatedMax = std::max(stats.rowSumEstimatedMax, sum);
-  if (!(sum > 1.0 + rowSumNoise(ff.rays))) return;
-  for (FormFactorEntry& e : row) e.value = float(e.value / sum);
-  ++stats.rowsScaledToClosure;
+  if (sum > 1.0 + rowSumNoise(ff.rays)) {
+    for (FormFactorEntry& e : row) e.value = float(e.value / sum);
+    ++stats.rowsScaledToClosure;
+  }
+  // Shooting reads row i as where i's light goes: the share of it reflected is sum_j rho_j F_ij.
+  double share = 0.0;
+  for (const FormFactorEntry& e : row)
+    share += double(maxComponent(mesh->patches()[e.column].rho)) * e.value;
+  stats.reflectedShareMax = std::max(stats.reflectedShareMax, share);
+  if (!(share > kMaxReflectance)) return;
+  for (FormFactorEntry& e : row) e.value = float(e.value * (kMaxReflectance / share));
+  ++stats.scaledForReflection;
 }
 
 void PatchRadiosity::Impl::solveLazily(const RayCaster& caster, const PatchSystem& system,
@@ -351,6 +439,7 @@ void PatchRadiosity::Impl::solveGroups(const FormFactorTable& table,
   groupIrradiance.clear();
   groupIndirect.clear();
   solution = {};
+  solution.converged = true;
   for (size_t g = 0; g < mix.groups().size(); ++g) {
     PatchSystem s = all;
     for (uint32_t p = 0; p < mesh->size(); ++p)
@@ -364,6 +453,8 @@ void PatchRadiosity::Impl::solveGroups(const FormFactorTable& table,
     solution.seconds += solved.seconds;
     solution.residuals.insert(solution.residuals.end(), solved.residuals.begin(),
                               solved.residuals.end());
+    solution.converged = solution.converged && solved.converged;
+    solution.diverging = solution.diverging || solved.diverging;
   }
   groupDirect.clear();
   combineGroups();
@@ -446,6 +537,8 @@ void PatchRadiosity::Impl::build(PatchLightCache& cache, const ProgressCallback&
   shadowCaster = nullptr;  // only for this solve
   solve(caster, progress);
   warnOfThresholdLoss();
+  warnOfReflectionBound();
+  reportConvergence();
   shadeVertices();
   recordMesh();
   stats.solveSeconds = solution.seconds;

@@ -80,6 +80,11 @@ struct PatchRadiosity::Impl {
   /// Scales back the rows past closure (FormFactorTable::closeRows), with its numbers in the
   /// stats and tableSymmetrizedOnly.
   void closeTable(FormFactorTable& table);
+  /// Scales back the rows whose reflected share passes kMaxReflectance
+  /// (FormFactorTable::boundReflection: every sweep then contracts), with its numbers in the
+  /// stats and tableSymmetrizedOnly. The materials' part of the closure: done on every table
+  /// the solvers get, after the disk cache, which is keyed without the materials.
+  void boundReflection(FormFactorTable& table);
   /// Puts a table's numbers (entries, bytes, threshold loss, row sums) in the stats.
   void recordTable(const FormFactorTable& table);
   /// The table of rows as the estimators give them: made reciprocal, closed (closeRows), then
@@ -99,6 +104,11 @@ struct PatchRadiosity::Impl {
                     const ProgressCallback& progress);
   void recordThresholdLoss(const ThresholdLoss& loss);
   void warnOfThresholdLoss();
+  /// Warns that boundReflection scaled patches back (light lost where rho is near 1).
+  void warnOfReflectionBound();
+  /// Records whether the solve converged and, when not, warns with its residual, the
+  /// tolerance and what to change.
+  void reportConvergence();
   /// What bounced at least once: H less D and less what the emitters send directly.
   std::vector<Color> indirectOf(const PatchSolution& solved, const FormFactorRowSource& rows,
                                 const PatchSystem& system) const;

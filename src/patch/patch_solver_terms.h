@@ -4,6 +4,7 @@
 #include <radiosity/error.h>
 
 #include <cmath>
+#include <span>
 
 #include "patch/patch_solvers.h"
 
@@ -45,14 +46,36 @@ inline Color gather(const FormFactorTable& table, size_t i, std::span<const Colo
   return h;
 }
 
+/// True when the last kRisingSweeps residuals each rose above the one before.
+inline bool risingResiduals(std::span<const double> residuals) {
+  if (residuals.size() <= size_t(kRisingSweeps)) return false;
+  for (size_t k = residuals.size() - kRisingSweeps; k < residuals.size(); ++k)
+    if (!(residuals[k] > residuals[k - 1])) return false;
+  return true;
+}
+
+/// Records a relative residual; sets `converged` below the tolerance and `diverging` after
+/// kRisingSweeps rises in a row. True when the solve should stop for either.
+inline bool recordResidual(PatchSolution& out, double residual, double tolerance) {
+  out.residuals.push_back(residual);
+  out.converged = residual < tolerance;
+  out.diverging = !out.converged && risingResiduals(out.residuals);
+  return out.converged || out.diverging;
+}
+
 /// Ends a sweep: records its relative residual and reports progress (throws Cancelled when the
-/// callback asks to stop). True when the tolerance is reached.
+/// callback asks to stop). True when the solve stops: converged or diverging.
 inline bool endSweep(PatchSolution& out, double change, double norm,
                      const PatchSolverControl& control, const ProgressCallback& progress) {
   ++out.iterations;
-  out.residuals.push_back(change / norm);
+  const bool stop = recordResidual(out, change / norm, control.tolerance);
   if (progress && !progress(double(out.iterations) / control.maxIterations)) throw Cancelled();
-  return out.residuals.back() < control.tolerance;
+  return stop;
+}
+
+/// A solve with no light put in has nothing to converge: it is solved as it starts.
+inline void markNoLight(double norm, PatchSolution& out) {
+  if (!(norm > 0.0)) out.converged = true;
 }
 
 /// Copies E into the solution.

@@ -4,7 +4,8 @@
 // no form factors): their light enters as a first shot, rho_i D_i. Each stops once the relative
 // residual, sum_i A_i |r_i| / sum_i A_i S_i (summed over the channels; S_i = E_i + rho_i D_i the
 // light put in, r_i = E_i + rho_i H_i - B_i: the power not yet accounted for, relative to what is
-// put in) is below the tolerance, or after maxIterations sweeps, and records it per sweep.
+// put in) is below the tolerance, or after maxIterations sweeps, or once the residual has risen
+// kRisingSweeps sweeps in a row (diverging), and records it per sweep.
 
 #include <radiosity/process_share.h>
 #include <radiosity/progress.h>
@@ -32,6 +33,12 @@ struct PatchSystem {
   Color source(size_t i) const { return emitted[i] + rho[i] * directAt(i); }
 };
 
+/// Sweeps in a row whose residual rose above the one before, after which a solve stops as
+/// diverging. On a table bounded by FormFactorTable::boundReflection the residual's power never
+/// grows, so a run of rises is a table that creates light (or a residual at float precision);
+/// ten, so that a few rises of rounding never stop a solve.
+constexpr int kRisingSweeps = 10;
+
 struct PatchSolverControl {
   double tolerance = 1e-3;
   int maxIterations = 1000;  ///< sweeps; progressive refinement: shots / patches
@@ -46,7 +53,9 @@ struct PatchSolution {
   std::vector<Color> radiosity;   ///< B = E + rho H, excident power per area
   std::vector<double> residuals;  ///< relative residual after each sweep
   int iterations = 0;
-  uint64_t shots = 0;  ///< progressive refinement: patches shot
+  bool converged = false;  ///< the residual fell below the tolerance (or there was no light)
+  bool diverging = false;  ///< stopped early: the residual rose kRisingSweeps sweeps in a row
+  uint64_t shots = 0;      ///< progressive refinement: patches shot
   double seconds = 0.0;
 };
 
@@ -80,8 +89,9 @@ struct ShootingState {
   std::vector<Color> radiosity, irradiance, unshot;
 };
 /// Shoots the patch with the most unshot power until the unshot power, sum_i A_i |U_i|, is below
-/// control.tolerance times `norm` (or after control.maxIterations x patches shots); records the
-/// shots and the relative unshot power per patches-many shots in `record`. Progressive refinement
+/// control.tolerance times `norm` (or after control.maxIterations x patches shots, or once it
+/// rose kRisingSweeps records in a row); records the shots and the relative unshot power per
+/// patches-many shots in `record`, and whether it converged or diverged. Progressive refinement
 /// warm-started from any state that keeps the equations above, which is what relighting shoots
 /// a change of the light from.
 void shootUnshot(const FormFactorRowSource& rows, const PatchSystem& system, ShootingState& state,
@@ -89,7 +99,8 @@ void shootUnshot(const FormFactorRowSource& rows, const PatchSystem& system, Sho
                  const ProgressCallback& progress = {});
 /// The same bounced sweep by sweep: every patch shoots its unshot radiosity at once (a Jacobi
 /// iteration of what is left; parallel, and no ordering to keep), until the unshot power is
-/// below control.tolerance times `norm` or after control.maxIterations sweeps.
+/// below control.tolerance times `norm`, after control.maxIterations sweeps, or once it rose
+/// kRisingSweeps sweeps in a row; records as shootUnshot does.
 void shootUnshotInSweeps(const FormFactorTable& table, const PatchSystem& system,
                          ShootingState& state, double norm, const PatchSolverControl& control,
                          PatchSolution& record);

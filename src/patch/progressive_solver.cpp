@@ -79,7 +79,9 @@ void shootUnshot(const FormFactorRowSource& rows, const PatchSystem& s, Shooting
   rebuild();
   const uint64_t maxShots = uint64_t(std::max(control.maxIterations, 1)) * std::max<uint64_t>(n, 1);
   uint64_t shots = 0;
-  while (norm > 0.0 && shots < maxShots && total / norm >= control.tolerance && !queue.empty()) {
+  record.diverging = false;
+  while (norm > 0.0 && shots < maxShots && total / norm >= control.tolerance && !queue.empty() &&
+         !record.diverging) {
     const Shooter top = queue.top();
     queue.pop();
     if (top.power != power[top.patch]) continue;  // stale: the patch received since
@@ -103,16 +105,17 @@ void shootUnshot(const FormFactorRowSource& rows, const PatchSystem& s, Shooting
     }
     if (++shots % std::max<uint64_t>(n, 1) == 0) {
       rebuild();
-      record.residuals.push_back(total / norm);
       ++record.iterations;
+      recordResidual(record, total / norm, control.tolerance);
       if (progress && !progress(double(shots) / double(maxShots))) throw Cancelled();
     }
     if (queue.size() > 8 * n + 1024) rebuild();
   }
   if (record.residuals.empty() || shots % std::max<uint64_t>(n, 1) != 0) {
-    record.residuals.push_back(norm > 0.0 ? total / norm : 0.0);
     ++record.iterations;
+    recordResidual(record, norm > 0.0 ? total / norm : 0.0, control.tolerance);
   }
+  markNoLight(norm, record);
   record.shots += shots;
 }
 
@@ -131,8 +134,10 @@ void shootUnshotInSweeps(const FormFactorTable& table, const PatchSystem& s, Sho
         std::plus<>());
   };
   double power = unshotPower();
-  for (int sweep = 0;
-       norm > 0.0 && sweep < control.maxIterations && power >= control.tolerance * norm; ++sweep) {
+  record.diverging = false;
+  for (int sweep = 0; norm > 0.0 && sweep < control.maxIterations &&
+                      power >= control.tolerance * norm && !record.diverging;
+       ++sweep) {
     tbb::parallel_for(size_t(0), n,
                       [&](size_t i) { received[i] = gather(table, i, state.unshot); });
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
@@ -143,10 +148,12 @@ void shootUnshotInSweeps(const FormFactorTable& table, const PatchSystem& s, Sho
     });
     record.shots += n;
     power = unshotPower();
-    record.residuals.push_back(power / norm);
     ++record.iterations;
+    recordResidual(record, power / norm, control.tolerance);
   }
-  if (record.residuals.empty()) record.residuals.push_back(norm > 0.0 ? power / norm : 0.0);
+  if (record.residuals.empty())
+    recordResidual(record, norm > 0.0 ? power / norm : 0.0, control.tolerance);
+  markNoLight(norm, record);
 }
 
 PatchSolution solveProgressive(const FormFactorRowSource& rows, const PatchSystem& s,

@@ -387,6 +387,8 @@ TEST(Cli, SolvesWithPatchesExportsAndCaches) {
   EXPECT_LE(rays, 64.0 * patches + 16.0 * patches * exactColumns);
   EXPECT_GE(j["iterations"].get<int>(), 1);
   EXPECT_LT(j["residual"].get<double>(), 1e-3);  // the default tolerance
+  EXPECT_TRUE(j["converged"].get<bool>());
+  EXPECT_EQ(j["patch"]["row_sum"]["scaled_for_reflection"].get<int>(), 0);
   ASSERT_EQ(j["objects"].size(), 8u);
   EXPECT_EQ(csvRowCount(csv), j["counts"]["patches"].get<size_t>());
   // The second run loads the form factors from the cache.
