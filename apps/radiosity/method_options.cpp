@@ -236,8 +236,14 @@ void MethodOptions::resolve(const Scene& scene) {
 VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
                            const VoxelRadiositySettings& settings, const SolutionSource& source,
                            Console& console, const SolveReport& report) {
+  // The label says what ends the solve, so that the time left reads against it.
+  const std::string label =
+      settings.tolerance > 0.0
+          ? fmt::format("voxel solve (to {:g} of the light still bouncing, {} iterations at most)",
+                        settings.tolerance, settings.iterations)
+          : fmt::format("voxel solve ({} iterations)", settings.iterations);
   VoxelRadiosity solution =
-      solveShowingProgress<VoxelModel>(scene, caster, settings, source, "voxel solve", console);
+      solveShowingProgress<VoxelModel>(scene, caster, settings, source, label, console);
   RunStats& stats = report.stats;
   const VoxelRadiosityStats& v = solution.stats();
   if (v.resumedIterations > 0)
@@ -269,6 +275,7 @@ VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
   stats.timingsSeconds.solve = v.directSeconds + v.sweepSeconds;
   stats.iterations = int(v.residuals.size());
   stats.residual = v.residuals.empty() ? 0.0 : v.residuals.back();
+  stats.converged = v.converged;
   stats.residuals = v.residuals;
   reportObjects(scene, caster, solution, source.seconds, report);
   return solution;

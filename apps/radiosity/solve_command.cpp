@@ -73,11 +73,11 @@ std::string describeRun(const PatchRadiosityStats& p, double seconds) {
 
 std::string describeRun(const VoxelRadiosityStats& v, double seconds) {
   return fmt::format(
-      "{} voxels ({} sides), {} directions, {} iterations, residual {:.2g}, {:.2f} s "
+      "{} voxels ({} sides), {} directions, {} iterations, residual {:.2g}{}, {:.2f} s "
       "({:.1f} M visits/s)",
       v.voxels, v.sides, v.directions, v.residuals.size(),
-      v.residuals.empty() ? 0.0 : v.residuals.back(), seconds,
-      double(v.visits) / std::max(v.sweepSeconds, 1e-9) * 1e-6);
+      v.residuals.empty() ? 0.0 : v.residuals.back(), v.converged ? "" : " (not converged)",
+      seconds, double(v.visits) / std::max(v.sweepSeconds, 1e-9) * 1e-6);
 }
 
 // The lit mesh as glTF; with dynamic objects, theirs too (placed at --time, a node each). With

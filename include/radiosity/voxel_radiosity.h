@@ -27,10 +27,14 @@ struct VoxelRadiositySettings {
   /// R for the sweeps after the first, whose light (the second bounce on) is smoother: a coarser
   /// sphere costs less, as R^2. 0: sphereRadius, as in the paper.
   int laterSphereRadius = 0;
-  int iterations = 6;      ///< sweeps over all directions, as in the paper
-  double tolerance = 0.0;  ///< stop earlier once the relative residual is below it
+  /// Sweeps over all directions at most: the cap of a solve to the tolerance, or with
+  /// tolerance 0 the count (the paper's six).
+  int iterations = 100;
+  /// Stop once the light still bouncing (the power the last iteration added to B) is below
+  /// this share of the light put in, as the patch method's residual; 0: every iteration.
+  double tolerance = 1e-3;
   /// Add the light of the bounces after the last iteration, extrapolated from the last two
-  /// (their power falls geometrically): six iterations then miss little even in bright rooms.
+  /// (their power falls geometrically).
   bool estimateTail = true;
   bool tangentCorrection = true;  ///< look through voxels a line only grazes
   bool directFirstShot = true;    ///< direct light by shadow rays; the sweeps carry the rest
@@ -62,8 +66,12 @@ struct VoxelRadiosityStats {
   uint64_t visits = 0;  ///< voxel-direction visits of all sweeps
   uint64_t shadowRays = 0;
   /// Each iteration's relative residual: the power (area-weighted luminance) of the light it
-  /// added over that of B so far.
+  /// added, still bouncing, over that of the light put in (B's before the sweeps).
   std::vector<double> residuals;
+  /// The residual fell below the tolerance (with light groups: in every group's solve); not
+  /// with tolerance 0 (a count of iterations). When not, with a tolerance, a warning says by
+  /// how much and what to change.
+  bool converged = false;
   double tailShare = 0.0;  ///< share of B's power the tail estimate added
   double voxelizeSeconds = 0.0, directSeconds = 0.0, sweepSeconds = 0.0;
   /// The sweeps' time in each iteration: their spread shows how steady the machine was.

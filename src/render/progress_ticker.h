@@ -22,13 +22,18 @@ class ProgressTicker {
   void tick() {
     const size_t done = done_.fetch_add(1, std::memory_order_relaxed) + 1;
     if (!callback_) return;
-    const int percent = int(done * 100 / total_);
+    const size_t total = total_.load(std::memory_order_relaxed);
+    const int percent = int(done * 100 / total);
     if (percent <= reported_.load(std::memory_order_relaxed)) return;
     std::lock_guard lock(mutex_);
     if (percent <= reported_.load(std::memory_order_relaxed)) return;
     reported_.store(percent, std::memory_order_relaxed);
-    if (!callback_(double(done) / double(total_))) cancelled_.store(true);
+    if (!callback_(std::min(double(done) / double(total), 1.0))) cancelled_.store(true);
   }
+
+  /// Changes the count of work items, for work whose end is estimated as it goes (a solve
+  /// until a tolerance); called between items, not while others tick.
+  void setTotal(size_t total) { total_.store(std::max<size_t>(total, 1)); }
 
   bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
 
@@ -42,7 +47,8 @@ class ProgressTicker {
     int64_t last = lastPollMs_.load(std::memory_order_relaxed);
     if (now - last < 100 || !lastPollMs_.compare_exchange_strong(last, now)) return false;
     std::lock_guard lock(mutex_);
-    const double fraction = double(done_.load(std::memory_order_relaxed)) / double(total_);
+    const double fraction = double(done_.load(std::memory_order_relaxed)) /
+                            double(total_.load(std::memory_order_relaxed));
     if (!callback_(std::min(fraction, 1.0))) cancelled_.store(true);
     return cancelled();
   }
@@ -53,7 +59,7 @@ class ProgressTicker {
 
  private:
   const ProgressCallback& callback_;
-  size_t total_;
+  std::atomic<size_t> total_;
   std::atomic<size_t> done_{0};
   std::atomic<int> reported_{-1};
   std::atomic<bool> cancelled_{false};

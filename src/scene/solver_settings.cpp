@@ -140,10 +140,10 @@ std::vector<SettingDeclaration> declare() {
                     "Path tracer bounce limit (Russian roulette ends paths long before)", 1,
                     100000));
   d.push_back(field("tolerance", kGeneral, &M::voxel, &VoxelRadiositySettings::tolerance,
-                    "Stop once the relative residual is below this (voxel: the power an "
-                    "iteration adds over B's; patch: the unsolved power over the light put in)",
+                    "Stop once the relative residual is below this: the light not yet solved "
+                    "over the light put in (patch: the unsolved power; voxel: the power still "
+                    "bouncing, 0: every --iterations); a solve that ends above it warns",
                     0, kInfinity));
-  d.back().defaultText = "0 (every iteration) for voxel, 1e-3 for patch";
   d.back().methods = {"patch", "voxel"};
   d.back().apply = [](M& m, const SettingValue& v) {
     m.voxel.tolerance = m.patch.tolerance = std::get<double>(v);
@@ -165,7 +165,9 @@ std::vector<SettingDeclaration> declare() {
                     "Sphere radius for the sweeps after the first, whose light is smoother", 1,
                     200));
   d.back().defaultText = "--sphere-radius";
-  d.push_back(field("iterations", kVoxel, &M::voxel, &V::iterations, "Sweeps over all directions",
+  d.push_back(field("iterations", kVoxel, &M::voxel, &V::iterations,
+                    "Sweeps over all directions at most, before --tolerance is reached (all of "
+                    "them with --tolerance 0)",
                     1, 100000));
   d.push_back(field("tangent_correction", kVoxel, &M::voxel, &V::tangentCorrection,
                     "Look through voxels a line only grazes"));

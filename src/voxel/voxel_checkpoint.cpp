@@ -10,7 +10,7 @@ namespace rad {
 namespace {
 
 constexpr char kMagic[8] = {'R', 'A', 'D', 'V', 'C', 'K', 'P', 'T'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;
 
 }  // namespace
 
@@ -52,6 +52,7 @@ std::string saveVoxelCheckpoint(const std::filesystem::path& file, const VoxelCh
   putArray<double>(out, c.residuals);
   putArray<double>(out, c.iterationSeconds);
   put(out, c.totalPower);
+  put(out, c.sourcePower);
   put(out, c.cellVisits);
   put(out, c.shadowRays);
   put(out, c.directSeconds);
@@ -73,6 +74,7 @@ std::optional<VoxelCheckpoint> loadVoxelCheckpoint(const std::filesystem::path& 
         c.residuals = in.array<double>(iterations);
         c.iterationSeconds = in.array<double>(iterations);
         c.totalPower = in.get<Vec3d>();
+        c.sourcePower = in.get<Vec3d>();
         c.cellVisits = in.get<uint64_t>();
         c.shadowRays = in.get<uint64_t>();
         c.directSeconds = in.get<double>();

@@ -28,6 +28,7 @@ struct VoxelCheckpoint {
   std::vector<Color> direct;      ///< the first shot's H (kept with keepDirect; else empty)
   std::vector<Vec3d> bouncePower;
   Vec3d totalPower{0.0};
+  Vec3d sourcePower{0.0};  ///< the light put in: B's power before the sweeps (the residuals' unit)
   std::vector<double> residuals, iterationSeconds;
   uint64_t cellVisits = 0, shadowRays = 0;
   double directSeconds = 0.0;

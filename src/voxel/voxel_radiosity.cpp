@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <glm/gtc/constants.hpp>
 
 #include "core/memory_usage.h"
@@ -67,6 +68,34 @@ VoxelSolverSettings solverSettings(const VoxelRadiositySettings& settings) {
   return solver;
 }
 
+// At the cap above the tolerance: the light still bouncing is left to the tail estimate. The
+// numbers, what to change, and, at the last iterations' rate of fall, how many more it wants.
+std::string notConvergedWarning(const VoxelRadiosityStats& s,
+                                const VoxelRadiositySettings& settings, const VoxelGrid& grid) {
+  const std::vector<double>& r = s.residuals;
+  const double last = r.empty() ? 0.0 : r.back();
+  std::string more;
+  const double rate = r.size() >= 2 && r[r.size() - 2] > 0.0 ? last / r[r.size() - 2] : 0.0;
+  if (rate > 0.0 && rate < 1.0)
+    more = fmt::format(" (at its last rate, {:.3f} an iteration, about {:.0f} more)", rate,
+                       std::ceil(std::log(settings.tolerance / last) / std::log(rate)));
+  float rhoMax = 0.0f;
+  for (const VoxelSurface& surface : grid.surfaces)
+    rhoMax = std::max(rhoMax, maxComponent(surface.material.rho));
+  std::string slow;
+  if (rhoMax >= 0.95f)
+    slow = fmt::format(
+        "; reflectances near 1 converge slowly: here up to {:.3f}, whose light bounces about "
+        "1 / (1 - rho) = {:.0f} times (a texture lost on import leaves a material at its factor, "
+        "often 1)",
+        rhoMax, 1.0 / (1.0 - double(rhoMax)));
+  return fmt::format(
+      "voxel solve not converged: {:.3g} of the light put in still bouncing after {} iterations "
+      "(--iterations {}), above --tolerance {:g}; the tail estimate added {:.1f}% of B for it; "
+      "raise --iterations{} or --tolerance{}",
+      last, r.size(), settings.iterations, settings.tolerance, 100.0 * s.tailShare, more, slow);
+}
+
 }  // namespace
 
 std::pair<VoxelSolution, std::vector<Color>> VoxelRadiosity::Impl::solve(
@@ -102,6 +131,7 @@ void VoxelRadiosity::Impl::solveGroups(VoxelSolverSettings solver,
     if (g == 0)
       all = std::move(solved);
     else {
+      all.converged = all.converged && solved.converged;
       all.cellVisits += solved.cellVisits;
       all.shadowRays += solved.shadowRays;
       all.directSeconds += solved.directSeconds;
@@ -209,6 +239,7 @@ VoxelRadiosity::VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model,
   s.visits = solution.cellVisits;
   s.shadowRays = solution.shadowRays;
   s.residuals = solution.residuals;
+  s.converged = solution.converged;
   s.tailShare = solution.tailShare;
   s.directSeconds = solution.directSeconds;
   s.sweepSeconds = solution.sweepSeconds;
@@ -216,6 +247,8 @@ VoxelRadiosity::VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model,
   s.memoryBytes = impl_->grid.memoryBytes() + solution.workingBytes;
   s.resumedIterations = solution.resumedIterations;
   s.warnings.insert(s.warnings.end(), solution.warnings.begin(), solution.warnings.end());
+  if (!s.converged && settings.tolerance > 0.0)
+    s.warnings.push_back(notConvergedWarning(s, settings, impl_->grid));
 }
 
 VoxelRadiosity::VoxelRadiosity(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

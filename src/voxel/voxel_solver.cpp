@@ -152,6 +152,34 @@ double luminance(const Vec3d& power) {
   return double(rad::luminance(Color(power)));
 }
 
+// The sides' reflectance, area- and luminance-weighted: the share of light a closed room's
+// bounces send on, which the residuals fall by until they show their own ratio.
+double meanReflectance(const VoxelGrid& grid) {
+  double reflected = 0.0, area = 0.0;
+  for (size_t e = 0; e < grid.entryCount(); ++e) {
+    reflected += double(grid.areaOf(e)) * rad::luminance(grid.materialOf(e).rho);
+    area += grid.areaOf(e);
+  }
+  return area > 0.0 ? reflected / area : 0.0;
+}
+
+// The iterations a solve is expected to take in all, for its progress: every one without a
+// tolerance; else until the residual, falling by the ratio of the last two (before there are
+// two, by `meanRho`; the first residual is about that share of the light put in), passes the
+// tolerance; at most the cap.
+int expectedIterations(const VoxelSolverSettings& s, std::span<const double> residuals,
+                       double meanRho) {
+  if (!(s.tolerance > 0.0)) return s.iterations;
+  const size_t done = residuals.size();
+  const double last = done > 0 ? residuals.back() : 1.0;
+  if (last < s.tolerance) return int(done);
+  const double ratio =
+      done >= 2 && residuals[done - 2] > 0.0 ? last / residuals[done - 2] : meanRho;
+  if (!(ratio > 0.0 && ratio < 1.0)) return s.iterations;
+  const double more = std::max(1.0, std::ceil(std::log(s.tolerance / last) / std::log(ratio)));
+  return int(std::min(double(done) + more, double(s.iterations)));
+}
+
 // The directions of the first sweep (R) and of the later ones: the same set, or a coarser one
 // when asked (their light, the second bounce on, is smoother).
 struct SweepDirections {
@@ -335,6 +363,12 @@ class SideLight {
     }
     return {added, total};
   }
+  /// B's power now (area-weighted, per channel).
+  Vec3d totalPower() const {
+    Vec3d total(0.0);
+    for (size_t e = 0; e < irradiance_.size(); ++e) total += power(e, radiosity(e));
+    return total;
+  }
   /// Adds the last bounce again, times `factor` per channel: the bounces after it (tailFactor).
   void addLastBounceTimes(const Color& factor) {
     for (size_t e = 0; e < irradiance_.size(); ++e)
@@ -469,6 +503,8 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     if (settings.keepDirect) solution.direct = h;
   }
   SideLight light(grid, settings, directions, std::move(h));
+  kept.sourcePower = resumed ? resumed->sourcePower : light.totalPower();
+  const double putIn = luminance(kept.sourcePower);
   if (resumed) light.gathered() = std::move(resumed->bounce);
   if (firstIteration >= 2 && sweepDirections.coarser) light.normalizeFor(laterDirections);
   bool canResume = resumed.has_value();
@@ -477,15 +513,19 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   auto sweep = std::make_unique<DiscreteLineSweep>(grid, settings.sweep);
   sweep->reserveLines(lines);
   std::vector<DiscreteLineSweep::SentLight> packed(grid.entryCount());
-  const size_t laterIterations =
-      size_t(std::max(settings.iterations - std::max(firstIteration, 1), 0));
   const auto pairsOf = [&](const DirectionSet& d) {
     const size_t pairs = d.pairCount(), blocks = pairBlocks(pairs);
     const auto [first, last] = settings.processes.block(blocks);
     return blockPairs(pairs, blocks, last).first - blockPairs(pairs, blocks, first).first;
   };
-  ProgressTicker ticker(progress, (firstIteration == 0 ? pairsOf(directions) : 0) +
-                                      pairsOf(laterDirections) * laterIterations);
+  // The sweeps this run expects, re-estimated after every iteration as the residuals fall.
+  const double meanRho = meanReflectance(grid);
+  const auto expectedPairs = [&] {
+    const int iterations = expectedIterations(settings, solution.residuals, meanRho);
+    const size_t later = size_t(std::max(iterations - std::max(firstIteration, 1), 0));
+    return (firstIteration == 0 ? pairsOf(directions) : 0) + pairsOf(laterDirections) * later;
+  };
+  ProgressTicker ticker(progress, expectedPairs());
   bool converged = !solution.residuals.empty() && settings.tolerance > 0.0 &&
                    solution.residuals.back() < settings.tolerance;
   const auto start = std::chrono::steady_clock::now();
@@ -510,14 +550,16 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     const auto [added, total] = light.addBounce();
     kept.bouncePower.push_back(added);
     kept.totalPower = total;
-    solution.residuals.push_back(luminance(total) > 0.0 ? luminance(added) / luminance(total)
-                                                        : 0.0);
+    solution.residuals.push_back(putIn > 0.0 ? luminance(added) / putIn : 0.0);
     solution.iterationSeconds.push_back(secondsSince(iterationStart));
     solution.cellVisits += uint64_t(grid.cellCount()) * swept.size();
     converged = settings.tolerance > 0.0 && solution.residuals.back() < settings.tolerance;
-    if (iteration + 1 < settings.iterations && !converged)
+    if (iteration + 1 < settings.iterations && !converged) {
       canResume = keepCheckpoint(checkpoint, iteration + 1, light, kept, solution) || canResume;
+      ticker.setTotal(expectedPairs());
+    }
   }
+  solution.converged = converged || !(putIn > 0.0);
   solution.sweepSeconds = secondsSince(start);
   const std::vector<Vec3d>& bouncePower = kept.bouncePower;
   const Color tail = settings.estimateTail ? tailFactor(bouncePower) : Color(0.0f);

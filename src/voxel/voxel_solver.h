@@ -1,7 +1,8 @@
 #pragma once
 // The voxel (discrete) radiosity solver: iterations of full sweeps over the discrete sphere's
 // directions, each a Jacobi step B = E + rho H(B) taken one bounce at a time, with per-voxel
-// normalization, an optional first shot of direct light by shadow rays, an estimate of the
+// normalization, an optional first shot of direct light by shadow rays, until the light still
+// bouncing is a small share of the light put in (or a cap of iterations), an estimate of the
 // bounces after the last iteration, and optionally a coarser sphere for the bounces after the
 // first sweep.
 //
@@ -29,8 +30,11 @@ struct VoxelSolverSettings {
   int sphereRadius = 38;  ///< radius R of the digital sphere of directions
   /// R for the sweeps after the first (the second bounce on, smoother); 0: sphereRadius.
   int laterSphereRadius = 0;
-  int iterations = 6;           ///< sweeps over all directions (light bounces)
-  double tolerance = 0.0;       ///< stop early below this relative residual (0: never)
+  int iterations = 100;  ///< sweeps over all directions (light bounces) at most
+  /// Stop once the light still bouncing, the power the last iteration added to B (which the
+  /// next would carry on), is below this share of the light put in (B's power before the
+  /// sweeps: E, plus the first shot reflected); 0: run every iteration.
+  double tolerance = 1e-3;
   bool estimateTail = true;     ///< add the bounces after the last iteration, extrapolated
   bool directFirstShot = true;  ///< direct light by shadow rays, then sweep the indirect bounces
   int directSamples = 64;       ///< shadow-ray samples per voxel side for the first shot
@@ -53,9 +57,11 @@ struct VoxelSolution {
   std::vector<Color> radiosity;   ///< B per entry
   std::vector<Color> irradiance;  ///< H per entry
   std::vector<Color> direct;      ///< the first shot's H per entry (with keepDirect; else empty)
-  /// Per iteration: the power of the light it added to B (its bounce, reflected) over B's
-  /// (area- and luminance-weighted): B's relative change.
+  /// Per iteration: the power of the light it added to B (its bounce, reflected: the light
+  /// still bouncing) over the light put in (area- and luminance-weighted).
   std::vector<double> residuals;
+  /// The last residual fell below a tolerance above 0 (or no light was put in).
+  bool converged = false;
   double tailShare = 0.0;  ///< share of B's power the tail estimate added
   size_t directions = 0;
   size_t laterDirections = 0;  ///< directions of the sweeps after the first

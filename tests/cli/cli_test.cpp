@@ -266,11 +266,17 @@ TEST(Cli, SolvesWithVoxelsAndExports) {
   EXPECT_GT(j["counts"]["voxels"].get<int>(), 2000);
   // The digital sphere of radius 4 has 134 directions (python3 brute-force count).
   EXPECT_EQ(j["counts"]["directions"].get<int>(), 134);
-  EXPECT_EQ(j["iterations"].get<int>(), 6);
-  EXPECT_EQ(j["residuals"].size(), 6u);
+  // By default the iterations go on until the light still bouncing is below 1e-3 of the light
+  // put in, well within the cap of 100.
+  EXPECT_TRUE(j["converged"].get<bool>());
+  EXPECT_LT(j["residual"].get<double>(), 1e-3);
+  const size_t iterations = j["iterations"].get<size_t>();
+  EXPECT_GT(iterations, 6u);
+  EXPECT_LT(iterations, 100u);
+  EXPECT_EQ(j["residuals"].size(), iterations);
   // Each iteration's sweep time, adding up to no more than the sweeps' total.
   const nlohmann::json& seconds = j["voxel"]["seconds"];
-  ASSERT_EQ(seconds["iterations"].size(), 6u);
+  ASSERT_EQ(seconds["iterations"].size(), iterations);
   double sum = 0.0;
   for (const auto& t : seconds["iterations"]) {
     EXPECT_GT(t.get<double>(), 0.0);
@@ -354,6 +360,34 @@ TEST(Cli, BenchVoxelSamplesTheSphereAndCountsMemoryAsASolveDoes) {
   EXPECT_EQ(solve["cells"].get<size_t>(), b["voxels"].get<size_t>());
   EXPECT_NEAR(b["bytes_per_voxel"].get<double>(), solve["bytes_per_voxel"].get<double>(),
               0.001 * solve["bytes_per_voxel"].get<double>());
+}
+
+// A solve stopped by its cap above its tolerance says so: a warning with the residual, the
+// tolerance and what to change, and "converged": false in the stats.
+TEST(Cli, SolveEndedAboveItsToleranceWarnsAndSaysSoInTheStats) {
+  const fs::path dir = freshDir("not_converged");
+  const std::string stats = (dir / "s.json").string();
+  const std::vector<std::vector<std::string>> runs = {
+      {"--method", "patch", "--patches", "300", "--ff-rays", "64", "--max-iterations", "3",
+       "--cache-dir", "none"},
+      {"--method", "voxel", "--voxels", "3000", "--sphere-radius", "4", "--direct-samples", "4",
+       "--iterations", "2"}};
+  for (const std::vector<std::string>& options : runs) {
+    SCOPED_TRACE(options[1]);
+    std::vector<std::string> args = {"solve", "cornell", "--stats", stats};
+    args.insert(args.end(), options.begin(), options.end());
+    const CliResult r = run(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string limit = options[1] == "patch" ? "--max-iterations 3" : "--iterations 2";
+    EXPECT_NE(r.err.find("warning: " + options[1] + " solve not converged: "), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find(limit), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("above --tolerance 0.001"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(not converged)"), std::string::npos) << r.err;  // the summary line
+    const nlohmann::json j = readJson(stats);
+    EXPECT_FALSE(j["converged"].get<bool>());
+    EXPECT_GT(j["residual"].get<double>(), 1e-3);
+  }
 }
 
 TEST(Cli, RendersWithVoxels) {

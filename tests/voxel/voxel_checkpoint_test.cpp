@@ -21,6 +21,7 @@ VoxelRadiositySettings checkpointed(const fs::path& dir, bool lightGroups = fals
   s.sphereRadius = 8;
   s.laterSphereRadius = 5;  // a coarser sphere after the first: the weights change on resume too
   s.iterations = 5;
+  s.tolerance = 0.0;  // all five: the stops below fall in given iterations
   s.directSamples = 8;
   s.lightGroups = lightGroups;
   s.checkpointDir = dir.string();

@@ -54,6 +54,36 @@ TEST(VoxelCornell, SurfaceMeansMatchThePathTracerAndThePatchMethod) {
 namespace rad {
 namespace {
 
+TEST(VoxelCornell, ConvergesByToleranceCloseToManyMoreIterations) {
+  // The default stops once the light still bouncing is below 1e-3 of the light put in, the rest
+  // left to the tail estimate; a solve to 1e-6 takes more than twice the iterations (Cornell's
+  // residuals fall by about 0.46 each). Coarse (8k voxels, R = 8) to keep the test fast.
+  const Scene scene = loadScene("cornell");
+  VoxelRadiositySettings settings;
+  settings.targetVoxels = 8000;
+  settings.sphereRadius = 8;
+  settings.directSamples = 16;
+  const VoxelRadiosity solution(scene, settings);
+  const VoxelRadiosityStats& stats = solution.stats();
+  EXPECT_TRUE(stats.converged);
+  EXPECT_LT(stats.residuals.back(), 1e-3);
+  EXPECT_LT(stats.residuals.size(), 20u);
+  EXPECT_TRUE(stats.warnings.empty());
+  settings.tolerance = 1e-6;
+  const VoxelRadiosity reference(scene, settings);
+  EXPECT_TRUE(reference.stats().converged);
+  EXPECT_GT(reference.stats().residuals.size(), stats.residuals.size() + 5);
+  std::map<std::string, ObjectRadiometry> converged;
+  for (const ObjectRadiometry& o : reference.objectRadiometry()) converged[o.name] = o;
+  // Measured: 9 iterations against 21, every object and channel within 0.009% (the tail
+  // estimate covers the rest); 0.1% allowed.
+  for (const ObjectRadiometry& o : solution.objectRadiometry())
+    for (int c = 0; c < 3; ++c) {
+      const float b = converged.at(o.name).meanRadiosity[c];
+      EXPECT_NEAR(o.meanRadiosity[c], b, 1e-3 * b) << o.name << " channel " << c;
+    }
+}
+
 TEST(VoxelCornell, SpotLightReachesVoxelsThroughTheFirstShot) {
   const Scene scene = loadScene("cornell-spot");
   const std::map<std::string, ObjectRadiometry> expected =

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 #include <radiosity/error.h>
+#include <radiosity/voxel_radiosity.h>
 #include <tbb/task_arena.h>
 
 #include <array>
@@ -42,14 +43,15 @@ glm::mat3 oddTurn() {
          glm::mat3(glm::rotate(glm::mat4(1.0f), 0.35f, Vec3(1, 0, 0)));
 }
 
-// A furnace's solve: every surface emits, so no first shot; R = 8, and `later` for the sweeps
-// after the first (0: the same).
+// A furnace's solve of `iterations` iterations: every surface emits, so no first shot; R = 8,
+// and `later` for the sweeps after the first (0: the same).
 VoxelSolution solveFurnace(const Scene& scene, const VoxelGrid& grid, int iterations,
                            int later = 0) {
   VoxelSolverSettings settings;
   settings.sphereRadius = 8;
   settings.laterSphereRadius = later;
   settings.iterations = iterations;
+  settings.tolerance = 0.0;  // that many
   settings.directFirstShot = false;
   return solveVoxelRadiosity(scene, grid, settings);
 }
@@ -65,7 +67,7 @@ TEST(VoxelSolver, UniformFurnaceConvergesToEOverOneMinusRho) {
   for (size_t e = 0; e < grid.entryCount(); ++e)
     for (int c = 0; c < 3; ++c)
       ASSERT_NEAR(s.radiosity[e][c], expected[c], 1e-3f * expected[c]) << e;
-  // Each bounce carries half the one before: the 24th adds 0.5^24 of B.
+  // Each bounce carries half the one before: the 24th adds 0.5^24 of the light put in.
   EXPECT_LT(s.residuals.back(), 1e-6);
 }
 
@@ -252,6 +254,54 @@ TEST(VoxelSolver, ResidualFallsPastTheNoiseOfTheJitteredLines) {
   // (5 x 0.6 + 0.5) / 6 = 0.583.
   for (size_t k = 3; k < s.residuals.size(); ++k)
     EXPECT_NEAR(s.residuals[k] / s.residuals[k - 1], 0.58, 0.05) << k;
+}
+
+TEST(VoxelSolver, StopsOnceTheLightStillBouncingIsBelowTheTolerance) {
+  // The defaults: until the light the last iteration added is below 1e-3 of the light put in,
+  // at most 100 iterations. It falls by 0.58 an iteration here (above): about 13 of them.
+  CoarseLampRoom room = coarseLampRoom(1.0f, 16.0f);
+  const VoxelSolution s = solveVoxelRadiosity(room.scene, room.grid, room.settings);
+  EXPECT_TRUE(s.converged);
+  ASSERT_GE(s.residuals.size(), 2u);
+  EXPECT_LT(s.residuals.back(), 1e-3);
+  EXPECT_GE(s.residuals[s.residuals.size() - 2], 1e-3);  // the first iteration below it
+  EXPECT_LT(s.residuals.size(), 20u);
+  // With tolerance 0, the count of iterations: all of them, and no tolerance met.
+  room.settings.tolerance = 0.0;
+  room.settings.iterations = 3;
+  const VoxelSolution counted = solveVoxelRadiosity(room.scene, room.grid, room.settings);
+  EXPECT_EQ(counted.residuals.size(), 3u);
+  EXPECT_FALSE(counted.converged);
+}
+
+TEST(VoxelSolver, CapAboveTheToleranceIsNotConvergedAndWarns) {
+  // A closed cube of reflectance 0.999 (a glTF's 1) lit by one face: its light bounces about
+  // 1 / (1 - rho) = 1000 times, so five iterations leave nearly all of it bouncing (each
+  // residual about rho times the one before).
+  SceneBuilder b("room");
+  const uint32_t wall = b.addMaterial({"wall", Color(1.0f), Color(0.0f), false});
+  const uint32_t lamp = b.addMaterial({"lamp", Color(1.0f), Color(1.0f), false});
+  test::addInwardCube(b, [&](int face) { return face == 3 ? lamp : wall; });
+  const Scene scene = b.build();
+  VoxelRadiositySettings settings;
+  settings.voxelSize = 1.0f / 16.0f;
+  settings.sphereRadius = 6;
+  settings.directSamples = 4;
+  settings.iterations = 5;
+  const VoxelRadiosity solution(scene, settings);
+  const VoxelRadiosityStats& stats = solution.stats();
+  EXPECT_FALSE(stats.converged);
+  ASSERT_EQ(stats.residuals.size(), 5u);
+  // Measured 0.483 after the first, 0.481 after the fifth.
+  EXPECT_GT(stats.residuals.back(), 0.4);
+  EXPECT_GT(stats.residuals.back(), 0.99 * stats.residuals.front());
+  ASSERT_FALSE(stats.warnings.empty());
+  const std::string& w = stats.warnings.back();
+  EXPECT_NE(w.find("voxel solve not converged"), std::string::npos) << w;
+  EXPECT_NE(w.find("after 5 iterations (--iterations 5), above --tolerance 0.001"),
+            std::string::npos)
+      << w;
+  EXPECT_NE(w.find("up to 0.999"), std::string::npos) << w;
 }
 
 // A two-sided box (walls with an inside and an outside) around a lamp, above a floor, the box
