@@ -138,7 +138,7 @@ void PatchRadiosity::Impl::boundReflection(FormFactorTable& table) {
   std::vector<float> rho(mesh->size()), area(mesh->size());
   for (uint32_t p = 0; p < mesh->size(); ++p) {
     rho[p] = maxComponent(mesh->patches()[p].rho);
-    area[p] = mesh->patches()[p].area;
+    area[p] = mesh->patches()[p].coveredArea();  // the areas reciprocity holds in
   }
   const FormFactorTable::ReflectionBound bound = table.boundReflection(rho, area, kMaxReflectance);
   stats.scaledForReflection = bound.patches;
