@@ -89,7 +89,7 @@ SampledSweepMeasurement measureSampledSweep(const Scene& scene, size_t voxels, i
       grid, [](size_t) { return Color(1.0f); }, sent);
   std::vector<Color> gathered(grid.entryCount(), Color(0.0f));
   DiscreteLineSweep sweep(grid, {});
-  sweep.reserveLines(DiscreteLineSweep::maxLineCount(grid, steps));
+  sweep.reserveLines(maxLineCount(grid, steps));
   const ProgressCallback progress =
       console.progress(fmt::format("sweep {} voxels", grid.cellCount()));
   std::vector<double> seconds;

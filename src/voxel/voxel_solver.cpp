@@ -303,7 +303,7 @@ size_t widestLineTable(const VoxelGrid& grid, const SweepDirections& directions)
   };
   add(directions.first);
   if (directions.coarser) add(*directions.coarser);
-  return DiscreteLineSweep::maxLineCount(grid, steps);
+  return maxLineCount(grid, steps);
 }
 
 uint64_t solveBytes(const VoxelGrid& grid, size_t lines, const VoxelSolverSettings& settings) {
@@ -483,7 +483,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   solution.laterDirections = laterDirections.size();
   // Checked first: a solve that cannot fit fails before its first shot, not an hour later.
   const size_t lines = widestLineTable(grid, sweepDirections);
-  DiscreteLineSweep::checkLineCount(grid, lines);
+  checkLineCount(grid, lines);
   checkMemory(grid, lines, settings);
   solution.sweepThreads = DiscreteLineSweep::threadCount();
   const std::filesystem::path checkpoint = voxelCheckpointFile(scene, grid, lights, settings);

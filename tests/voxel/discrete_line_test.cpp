@@ -117,7 +117,7 @@ TEST(DiscreteLines, LineTableFitsTheBoundGivenBeforehand) {
     const int64_t a = std::max({std::abs(step.x), std::abs(step.y), std::abs(step.z)});
     DiscreteLineSweep sweep(grid, {});
     sweep.lineOfEachCell(step, LineOffset{int64_t(rng() % a), int64_t(rng() % a)});
-    const size_t bound = DiscreteLineSweep::maxLineCount(grid, std::span(&step, 1));
+    const size_t bound = maxLineCount(grid, std::span(&step, 1));
     EXPECT_LE(sweep.lineCount(), bound);
     EXPECT_GE(double(sweep.lineCount()), 0.8 * double(bound));  // and not far above it
   }
@@ -259,8 +259,7 @@ TEST(DiscreteLineSweep, MemoryGrowsWithTheSidesNotWithTheEmptyBox) {
     for (size_t k = 0; k < directions.pairCount(); ++k)
       steps.push_back(directions.pairFirst(k).step);
     auto bytes = [&](const VoxelGrid& grid) {
-      return double(DiscreteLineSweep::workingBytesFor(
-          grid, DiscreteLineSweep::maxLineCount(grid, steps)));
+      return double(DiscreteLineSweep::workingBytesFor(grid, maxLineCount(grid, steps)));
     };
     const VoxelGrid near = spheresApart(8.0f), far = spheresApart(16.0f);
     ASSERT_NEAR(double(far.entryCount()) / double(near.entryCount()), 1.0, 0.01);
