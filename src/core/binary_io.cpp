@@ -6,17 +6,9 @@
 #include <fstream>
 #include <iterator>
 
+#include "core/rng.h"
+
 namespace rad {
-
-namespace {
-
-uint64_t mix(uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-}  // namespace
 
 std::string Key128::hex() const {
   return fmt::format("{:016x}{:016x}", high, low);
@@ -28,14 +20,14 @@ void Hasher::bytes(const void* data, size_t size) {
     fnv_ = (fnv_ ^ p[k]) * 0x100000001b3ULL;
     word_ |= uint64_t(p[k]) << (8 * (count_++ % 8));
     if (count_ % 8 == 0) {
-      mixed_ = mix(mixed_ ^ word_);
+      mixed_ = splitMix64(mixed_ ^ word_);
       word_ = 0;
     }
   }
 }
 
 Key128 Hasher::key() const {
-  return {fnv_, mix(mixed_ ^ word_ ^ count_)};
+  return {fnv_, splitMix64(mixed_ ^ word_ ^ count_)};
 }
 
 uint64_t checksum(const char* data, size_t size) {
@@ -44,11 +36,11 @@ uint64_t checksum(const char* data, size_t size) {
   for (; k + 8 <= size; k += 8) {
     uint64_t w;
     std::memcpy(&w, data + k, 8);
-    h = mix(h ^ w) + k;
+    h = splitMix64(h ^ w) + k;
   }
   uint64_t tail = 0;
   std::memcpy(&tail, data + k, size - k);
-  return mix(h ^ tail);
+  return splitMix64(h ^ tail);
 }
 
 bool checksumMatches(const std::string& bytes) {

@@ -7,6 +7,14 @@
 
 namespace rad {
 
+/// SplitMix64's finalizer (Steele, Lea and Flood, "Fast splittable pseudorandom number
+/// generators", OOPSLA 2014): every bit of x moves every bit of the result; for hashes.
+inline uint64_t splitMix64(uint64_t x) {
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
 class Rng {
  public:
   Rng(uint64_t seed, uint64_t stream) : inc_((stream << 1u) | 1u) {

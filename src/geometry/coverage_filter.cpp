@@ -2,17 +2,11 @@
 
 #include <bit>
 
+#include "core/rng.h"
+
 namespace rad {
 
 namespace {
-
-// SplitMix64's finalizer (Steele, Lea and Flood, "Fast splittable pseudorandom number
-// generators", OOPSLA 2014).
-uint64_t mix(uint64_t x) {
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
 
 uint64_t pair(float a, float b) {
   return uint64_t(std::bit_cast<uint32_t>(a)) | uint64_t(std::bit_cast<uint32_t>(b)) << 32;
@@ -21,10 +15,10 @@ uint64_t pair(float a, float b) {
 }  // namespace
 
 float rayTriangleHash(const Vec3& origin, const Vec3& direction, uint32_t triangle) {
-  uint64_t h = mix(pair(origin.x, origin.y) + 0x9e3779b97f4a7c15ull);
-  h = mix(h ^ pair(origin.z, direction.x));
-  h = mix(h ^ pair(direction.y, direction.z));
-  h = mix(h ^ triangle);
+  uint64_t h = splitMix64(pair(origin.x, origin.y) + 0x9e3779b97f4a7c15ull);
+  h = splitMix64(h ^ pair(origin.z, direction.x));
+  h = splitMix64(h ^ pair(direction.y, direction.z));
+  h = splitMix64(h ^ triangle);
   return float(h >> 40) * 0x1p-24f;
 }
 

@@ -15,6 +15,7 @@
 #include <optional>
 #include <unordered_map>
 
+#include "core/convergence_advice.h"
 #include "lighting/direct_lighting.h"
 #include "output/lit_mesh_texturing.h"
 #include "patch/form_factor_cache.h"
@@ -316,23 +317,11 @@ void PatchRadiosity::Impl::reportConvergence() {
   }
   float rhoMax = 0.0f;
   for (const Patch& p : mesh->patches()) rhoMax = std::max(rhoMax, maxComponent(p.rho));
-  std::string more;
-  const double rate = r.size() >= 2 && r[r.size() - 2] > 0.0 ? r.back() / r[r.size() - 2] : 0.0;
-  if (rate > 0.0 && rate < 1.0 && settings.tolerance > 0.0)
-    more = fmt::format(" (at its last rate, {:.4f} a sweep, about {:.0f} more)", rate,
-                       std::ceil(std::log(settings.tolerance / r.back()) / std::log(rate)));
-  std::string slow;
-  if (rhoMax >= 0.95f)
-    slow = fmt::format(
-        "; reflectances near 1 converge slowly: here up to {:.3f}, whose light bounces about "
-        "1 / (1 - rho) = {:.0f} times (a texture lost on import leaves a material at its factor, "
-        "often 1)",
-        rhoMax, 1.0 / (1.0 - double(rhoMax)));
   stats.warnings.push_back(fmt::format(
       "patch solve not converged: residual {:.3g} after {} {} (--max-iterations {}), above "
       "--tolerance {:g}; raise --max-iterations{} or --tolerance{}",
-      r.back(), solution.iterations, sweeps, settings.maxIterations, settings.tolerance, more,
-      slow));
+      r.back(), solution.iterations, sweeps, settings.maxIterations, settings.tolerance,
+      remainingStepsAdvice(r, settings.tolerance, "sweep"), nearWhiteAdvice(rhoMax)));
 }
 
 // A row computed alone (not made reciprocal) past 1 + noise, scaled back to 1, as closeRows does,

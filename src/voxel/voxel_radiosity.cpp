@@ -8,6 +8,7 @@
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 
+#include "core/convergence_advice.h"
 #include "core/memory_usage.h"
 #include "output/baked_mesh.h"
 #include "voxel/voxel_radiosity_impl.h"
@@ -74,26 +75,15 @@ std::string notConvergedWarning(const VoxelRadiosityStats& s,
                                 const VoxelRadiositySettings& settings, const VoxelGrid& grid) {
   const std::vector<double>& r = s.residuals;
   const double last = r.empty() ? 0.0 : r.back();
-  std::string more;
-  const double rate = r.size() >= 2 && r[r.size() - 2] > 0.0 ? last / r[r.size() - 2] : 0.0;
-  if (rate > 0.0 && rate < 1.0)
-    more = fmt::format(" (at its last rate, {:.3f} an iteration, about {:.0f} more)", rate,
-                       std::ceil(std::log(settings.tolerance / last) / std::log(rate)));
   float rhoMax = 0.0f;
   for (const VoxelSurface& surface : grid.surfaces)
     rhoMax = std::max(rhoMax, maxComponent(surface.material.rho));
-  std::string slow;
-  if (rhoMax >= 0.95f)
-    slow = fmt::format(
-        "; reflectances near 1 converge slowly: here up to {:.3f}, whose light bounces about "
-        "1 / (1 - rho) = {:.0f} times (a texture lost on import leaves a material at its factor, "
-        "often 1)",
-        rhoMax, 1.0 / (1.0 - double(rhoMax)));
   return fmt::format(
       "voxel solve not converged: {:.3g} of the light put in still bouncing after {} iterations "
       "(--iterations {}), above --tolerance {:g}; the tail estimate added {:.1f}% of B for it; "
       "raise --iterations{} or --tolerance{}",
-      last, r.size(), settings.iterations, settings.tolerance, 100.0 * s.tailShare, more, slow);
+      last, r.size(), settings.iterations, settings.tolerance, 100.0 * s.tailShare,
+      remainingStepsAdvice(r, settings.tolerance, "iteration"), nearWhiteAdvice(rhoMax));
 }
 
 }  // namespace

@@ -22,13 +22,6 @@ PatchRadiositySettings floorSettings(size_t patches) {
   return s;
 }
 
-ObjectRadiometry objectNamed(const PatchRadiosity& solution, const std::string& name) {
-  for (const ObjectRadiometry& o : solution.objectRadiometry())
-    if (o.name == name) return o;
-  ADD_FAILURE() << "no object " << name;
-  return {};
-}
-
 // Mean irradiance I Omega / A of a point light over a floor that nothing else lights: Omega by
 // the corner formula (light_test_scenes.h), independent of the mesh and the shadow rays.
 TEST(PatchLights, PointLightOverAFloorGivesIOmegaOverA) {
@@ -38,7 +31,7 @@ TEST(PatchLights, PointLightOverAFloorGivesIOmegaOverA) {
   const PatchRadiosity solution(scene, floorSettings(400));
   const double omega = test::rectangleSolidAngle(0, 0, -half, half, -half, half, height);
   const double area = 4.0 * half * half;
-  const ObjectRadiometry floor = objectNamed(solution, "floor");
+  const ObjectRadiometry floor = test::objectNamed(solution, "floor");
   for (int c = 0; c < 3; ++c) {
     const double expected = intensity[c] * omega / area;
     EXPECT_NEAR(floor.meanIrradiance[c], expected, 0.01 * expected) << "channel " << c;
@@ -58,7 +51,7 @@ TEST(PatchLights, PointLightAtATiltBeyondTheFloorsEdge) {
   const double omega =
       test::rectangleSolidAngle(position.x, position.z, -half, half, -half, half, position.y);
   const double expected = 3.0 * omega / (4.0 * half * half);
-  EXPECT_NEAR(objectNamed(solution, "floor").meanIrradiance.g, expected, 0.01 * expected);
+  EXPECT_NEAR(test::objectNamed(solution, "floor").meanIrradiance.g, expected, 0.01 * expected);
 }
 
 // A square occluder between the light and the floor casts the square shadow of the central
@@ -74,7 +67,7 @@ TEST(PatchLights, OccluderCastsItsShadowWhereGeometrySays) {
       test::rectangleSolidAngle(0, 0, -half, half, -half, half, height) -
       test::rectangleSolidAngle(0, 0, -shadowHalf, shadowHalf, -shadowHalf, shadowHalf, height);
   const double expected = 4.0 * omega / (4.0 * half * half);
-  EXPECT_NEAR(objectNamed(solution, "floor").meanIrradiance.g, expected, 0.01 * expected);
+  EXPECT_NEAR(test::objectNamed(solution, "floor").meanIrradiance.g, expected, 0.01 * expected);
 
   // Radiance at points well inside and well outside the shadow (smooth shading interpolates
   // between patch corners, so stay a patch away from its edge). The floor is a quad face, one
@@ -106,7 +99,7 @@ TEST(PatchLights, SpotFloorMeanMatchesTheIntegralOfItsFalloff) {
       test::meanFloorIrradiance(half, Vec3d(spot.position), 2000, [&](const Vec3d& toward) {
         return 6.0 * test::spotFalloff(glm::dot(toward, axis), 20.0, 35.0);
       });
-  EXPECT_NEAR(objectNamed(solution, "floor").meanIrradiance.g, expected, 0.01 * expected);
+  EXPECT_NEAR(test::objectNamed(solution, "floor").meanIrradiance.g, expected, 0.01 * expected);
 }
 
 // An IES light (the photompy LM-63-2019 file: quadrant symmetric, falling from 10,000 cd at
@@ -124,7 +117,7 @@ TEST(PatchLights, IesFloorMeanMatchesTheIntegralOfItsCandelaTable) {
   const double expected = test::meanFloorIrradiance(
       half, Vec3d(ies.position), 2000,
       [&](const Vec3d& toward) { return double(ies.intensityToward(Vec3(toward)).g); });
-  EXPECT_NEAR(objectNamed(solution, "floor").meanIrradiance.g, expected, 0.02 * expected);
+  EXPECT_NEAR(test::objectNamed(solution, "floor").meanIrradiance.g, expected, 0.02 * expected);
 }
 
 // Whole scenes: per-surface mean radiosity within a tolerance of the path tracer's (20,000

@@ -23,40 +23,13 @@ PatchRadiositySettings settings(size_t patches) {
   return s;
 }
 
-ObjectRadiometry objectNamed(const PatchRadiosity& solution, const std::string& name) {
-  for (const ObjectRadiometry& o : solution.objectRadiometry())
-    if (o.name == name) return o;
-  ADD_FAILURE() << "no object " << name;
-  return {};
-}
-
-// An emitting square [-1, 1]^2 at z = 2 facing down over a floor [-1, 1]^2 at z = 0, both
-// black; with `sheet`, a black Blend sheet of that alpha at z = 1, wider than both (every line
-// between them crosses it).
-Scene lampOverFloor(std::optional<float> sheet) {
-  SceneBuilder b("lamp over floor");
-  Material lamp{"lamp", Color(0.0f), Color(1.0f)};
-  Material black{"black", Color(0.0f)};
-  const uint32_t lampId = b.addMaterial(lamp), blackId = b.addMaterial(black);
-  test::addQuadFacing(b, test::axisSquare(Vec3(0, 0, 2), 2, 2.0f), Vec3(0, 0, -1), lampId,
-                      b.addObject("lamp"));
-  test::addQuadFacing(b, test::axisSquare(Vec3(0, 0, 0), 2, 2.0f), Vec3(0, 0, 1), blackId,
-                      b.addObject("floor"));
-  if (sheet) {
-    Material blend{"sheet", Color(0.0f)};
-    blend.alphaMode = AlphaMode::Blend;
-    blend.alpha = *sheet;
-    test::addQuadFacing(b, test::axisSquare(Vec3(0, 0, 1), 2, 3.0f), Vec3(0, 0, -1),
-                        b.addMaterial(blend), b.addObject("sheet"));
-  }
-  return b.build();
-}
-
 TEST(AlphaPatch, BlendSheetPassesOneMinusAlphaOfTheLight) {
   const double open =
-      objectNamed(PatchRadiosity(lampOverFloor({}), settings(300)), "floor").meanIrradiance.g;
+      test::objectNamed(PatchRadiosity(test::lampOverFloor({}), settings(300)), "floor")
+          .meanIrradiance.g;
   const double through =
-      objectNamed(PatchRadiosity(lampOverFloor(0.3f), settings(300)), "floor").meanIrradiance.g;
+      test::objectNamed(PatchRadiosity(test::lampOverFloor(0.3f), settings(300)), "floor")
+          .meanIrradiance.g;
   ASSERT_GT(open, 0.0);
   // The emitter's exact columns, one visibility ray for each of 16 points a patch pair (tens of
   // thousands of rays over the floor): the share within 1%.

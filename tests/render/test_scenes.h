@@ -1,14 +1,16 @@
 #pragma once
 // Hand-built scenes for the path tracer tests (independent of the scene loaders).
 
+#include <gtest/gtest.h>
 #include <radiosity/path_tracer.h>
 #include <radiosity/scene_builder.h>
-
-#include <glm/gtc/constants.hpp>
+#include <radiosity/surface_solution.h>
 
 #include <array>
 #include <cmath>
+#include <glm/gtc/constants.hpp>
 #include <map>
+#include <optional>
 #include <string>
 
 namespace rad::test {
@@ -87,6 +89,33 @@ inline Scene litCubeRoom(const Color& lampRho, const Color& lampEmission) {
   return b.build();
 }
 
+/// An emitting square [-1, 1]^2 at z = 2 facing down (Ke 1) over a floor [-1, 1]^2 at z = 0, both
+/// black; with `sheetAlpha`, a black Blend sheet of that alpha at z = 1, wider than both (every
+/// line between them crosses it).
+inline Scene lampOverFloor(std::optional<float> sheetAlpha) {
+  SceneBuilder b("lamp over floor");
+  const uint32_t lamp = b.addMaterial({"lamp", Color(0.0f), Color(1.0f)});
+  const uint32_t black = b.addMaterial({"black", Color(0.0f)});
+  addQuadFacing(b, axisSquare(Vec3(0, 0, 2), 2, 2.0f), Vec3(0, 0, -1), lamp, b.addObject("lamp"));
+  addQuadFacing(b, axisSquare(Vec3(0, 0, 0), 2, 2.0f), Vec3(0, 0, 1), black, b.addObject("floor"));
+  if (sheetAlpha) {
+    Material sheet{"sheet", Color(0.0f)};
+    sheet.alphaMode = AlphaMode::Blend;
+    sheet.alpha = *sheetAlpha;
+    addQuadFacing(b, axisSquare(Vec3(0, 0, 1), 2, 3.0f), Vec3(0, 0, -1), b.addMaterial(sheet),
+                  b.addObject("sheet"));
+  }
+  return b.build();
+}
+
+/// The per-object means of the object called `name` in `solution` (a test failure if none).
+inline ObjectRadiometry objectNamed(const SurfaceSolution& solution, const std::string& name) {
+  for (const ObjectRadiometry& o : solution.objectRadiometry())
+    if (o.name == name) return o;
+  ADD_FAILURE() << "no object " << name;
+  return {};
+}
+
 /// The path tracer's per-object means, by object name: the reference the radiosity methods are
 /// compared with. Where its points fall matters more than how many paths each gets (shadows make
 /// irradiance discontinuous), so callers ask for many points and few paths.
@@ -96,7 +125,8 @@ inline std::map<std::string, ObjectRadiometry> tracedObjectMeans(const Scene& sc
   settings.samplesPerPixel = pathsPerPoint;
   settings.seed = seed;
   std::map<std::string, ObjectRadiometry> means;
-  for (const ObjectRadiometry& o : estimateObjectRadiometry(scene, points, settings)) means[o.name] = o;
+  for (const ObjectRadiometry& o : estimateObjectRadiometry(scene, points, settings))
+    means[o.name] = o;
   return means;
 }
 
