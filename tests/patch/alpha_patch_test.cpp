@@ -1,7 +1,7 @@
 // The patch method with surfaces that are not opaque (Material, Patch::coverage): a black Blend
 // sheet of alpha 0.3 between an emitting square and a floor passes 0.7 of the floor's light, and
 // a furnace holding a partly covered sheet keeps B = E / (1 - rho) everywhere (reciprocity and
-// closure weigh patches by their covered areas; VALIDATION.md 3.2 for the furnace).
+// closure weigh patches by their covered areas; docs/references.md 3.2 for the furnace).
 #include <gtest/gtest.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/scene_builder.h>
