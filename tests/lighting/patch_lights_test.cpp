@@ -15,20 +15,13 @@ namespace {
 
 const std::string kIesDir = std::string(RADIOSITY_TEST_DATA_DIR) + "/scene/ies/";
 
-PatchRadiositySettings floorSettings(size_t patches) {
-  PatchRadiositySettings s;
-  s.targetPatches = patches;
-  s.cacheDir.clear();
-  return s;
-}
-
 // Mean irradiance I Omega / A of a point light over a floor that nothing else lights: Omega by
 // the corner formula (light_test_scenes.h), independent of the mesh and the shadow rays.
 TEST(PatchLights, PointLightOverAFloorGivesIOmegaOverA) {
   const float half = 2.0f, height = 1.5f;
   const Color intensity(10.0f, 5.0f, 2.0f);
   const Scene scene = test::floorUnderLight(half, test::pointLight(Vec3(0, height, 0), intensity));
-  const PatchRadiosity solution(scene, floorSettings(400));
+  const PatchRadiosity solution(scene, test::uncachedPatchSettings(400));
   const double omega = test::rectangleSolidAngle(0, 0, -half, half, -half, half, height);
   const double area = 4.0 * half * half;
   const ObjectRadiometry floor = test::objectNamed(solution, "floor");
@@ -47,7 +40,7 @@ TEST(PatchLights, PointLightAtATiltBeyondTheFloorsEdge) {
   const float half = 1.0f;
   const Vec3 position(2.5f, 0.8f, 0.4f);
   const Scene scene = test::floorUnderLight(half, test::pointLight(position, Color(3.0f)));
-  const PatchRadiosity solution(scene, floorSettings(400));
+  const PatchRadiosity solution(scene, test::uncachedPatchSettings(400));
   const double omega =
       test::rectangleSolidAngle(position.x, position.z, -half, half, -half, half, position.y);
   const double expected = 3.0 * omega / (4.0 * half * half);
@@ -61,7 +54,7 @@ TEST(PatchLights, OccluderCastsItsShadowWhereGeometrySays) {
   const float half = 2.0f, height = 2.0f, occluderHalf = 0.3f, occluderHeight = 1.0f;
   const Scene scene = test::floorUnderLight(half, test::pointLight(Vec3(0, height, 0), Color(4.0f)),
                                             occluderHalf, occluderHeight);
-  const PatchRadiosity solution(scene, floorSettings(1600));
+  const PatchRadiosity solution(scene, test::uncachedPatchSettings(1600));
   const double shadowHalf = occluderHalf * height / (height - occluderHeight);  // 0.6
   const double omega =
       test::rectangleSolidAngle(0, 0, -half, half, -half, half, height) -
@@ -93,7 +86,7 @@ TEST(PatchLights, SpotFloorMeanMatchesTheIntegralOfItsFalloff) {
   spot.innerAngleDeg = 20.0f;
   spot.outerAngleDeg = 35.0f;
   const Scene scene = test::floorUnderLight(half, spot);
-  const PatchRadiosity solution(scene, floorSettings(1600));
+  const PatchRadiosity solution(scene, test::uncachedPatchSettings(1600));
   const Vec3d axis(spot.direction);
   const double expected =
       test::meanFloorIrradiance(half, Vec3d(spot.position), 2000, [&](const Vec3d& toward) {
@@ -111,7 +104,7 @@ TEST(PatchLights, IesFloorMeanMatchesTheIntegralOfItsCandelaTable) {
   ies.type = LightType::Ies;
   ies.ies = std::make_shared<IesProfile>(loadIesProfile(kIesDir + "photompy_tilt_include_v19.ies"));
   const Scene scene = test::floorUnderLight(half, ies);
-  const PatchRadiosity solution(scene, floorSettings(1600));
+  const PatchRadiosity solution(scene, test::uncachedPatchSettings(1600));
   // Down the axis is the table's nadir (V = 0); H is measured in the luminaire frame, which for
   // this quadrant-symmetric table matters only through |x| and |y| of the direction.
   const double expected = test::meanFloorIrradiance(

@@ -16,19 +16,14 @@
 namespace rad {
 namespace {
 
-PatchRadiositySettings settings(size_t patches) {
-  PatchRadiositySettings s;
-  s.targetPatches = patches;
-  s.cacheDir.clear();
-  return s;
-}
-
 TEST(AlphaPatch, BlendSheetPassesOneMinusAlphaOfTheLight) {
   const double open =
-      test::objectNamed(PatchRadiosity(test::lampOverFloor({}), settings(300)), "floor")
+      test::objectNamed(PatchRadiosity(test::lampOverFloor({}), test::uncachedPatchSettings(300)),
+                        "floor")
           .meanIrradiance.g;
   const double through =
-      test::objectNamed(PatchRadiosity(test::lampOverFloor(0.3f), settings(300)), "floor")
+      test::objectNamed(PatchRadiosity(test::lampOverFloor(0.3f), test::uncachedPatchSettings(300)),
+                        "floor")
           .meanIrradiance.g;
   ASSERT_GT(open, 0.0);
   // The emitter's exact columns, one visibility ray for each of 16 points a patch pair (tens of
@@ -56,7 +51,7 @@ Scene furnaceWithSheet() {
 
 TEST(AlphaPatch, FurnaceWithAPartlyCoveredSheetKeepsEOverOneMinusRho) {
   const Scene scene = furnaceWithSheet();
-  const PatchRadiosity solution(scene, settings(1500));
+  const PatchRadiosity solution(scene, test::uncachedPatchSettings(1500));
   const double expected = glm::pi<double>() * 1.0 / (1.0 - 0.5);
   for (const ObjectRadiometry& o : solution.objectRadiometry()) {
     SCOPED_TRACE(o.name);

@@ -166,12 +166,7 @@ TEST(PatchConvergence, ClosedBoxOfRho0999ConvergesOrWarnsAndNeverDiverges) {
     });
   };
   for (float rho : {kRho, 0.5f}) {
-    SceneBuilder b("cube");
-    const uint32_t wall = b.addMaterial({"wall", Color(rho), Color(0.0f), false});
-    const uint32_t lamp =
-        b.addMaterial({"lamp", Color(rho), Color(1.0f / glm::pi<float>()), false});
-    test::addInwardCube(b, [&](int face) { return face == 0 ? lamp : wall; });
-    const Scene scene = b.build();
+    const Scene scene = test::closedCube(rho);
     for (int sweeps : {20, 1000})
       for (PatchSolverKind solver :
            {PatchSolverKind::GaussSeidel, PatchSolverKind::Jacobi, PatchSolverKind::Progressive}) {

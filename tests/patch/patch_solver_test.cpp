@@ -2,10 +2,10 @@
 // docs/references.md section 3.
 #include <gtest/gtest.h>
 #include <radiosity/patch_radiosity.h>
+#include <radiosity/ray_caster.h>
 
 #include <Eigen/Dense>
 
-#include <radiosity/ray_caster.h>
 #include "patch/form_factor_estimators.h"
 #include "patch/patch_solvers.h"
 #include "patch_test_scenes.h"
@@ -87,8 +87,7 @@ void expectSolversAgreeWithDenseSolve(const FormFactorTable& table, const PatchS
 
 FormFactorTable cubeTable(const Scene& scene, const PatchMesh& mesh, const PatchSystem& system) {
   const RayCaster caster(scene);
-  FormFactorTable table =
-      FormFactorTable::fromRows(estimateFormFactors(mesh, caster, {}, {}));
+  FormFactorTable table = FormFactorTable::fromRows(estimateFormFactors(mesh, caster, {}, {}));
   table.symmetrize(system.area);
   return table;
 }
@@ -140,12 +139,7 @@ TEST(FormFactorClosure, ClosedBoxRowsSumToOne) {
 // sum A B = sum A E / (1 - rho): 2 for rho = 0.5 and 5 for rho = 0.8, within 1%.
 TEST(PatchRadiosityEnergy, ClosedRoomBalancesEmission) {
   for (float rho : {0.5f, 0.8f}) {
-    SceneBuilder b("cube");
-    const uint32_t wall = b.addMaterial({"wall", Color(rho), Color(0.0f), false});
-    const uint32_t lamp =
-        b.addMaterial({"lamp", Color(rho), Color(1.0f / glm::pi<float>()), false});
-    test::addInwardCube(b, [&](int face) { return face == 0 ? lamp : wall; });
-    const Scene scene = b.build();
+    const Scene scene = test::closedCube(rho);
     PatchRadiositySettings settings;
     settings.patchSize = 0.125f;
     settings.tolerance = 1e-6;

@@ -2,6 +2,7 @@
 // Hand-built scenes for the path tracer tests (independent of the scene loaders).
 
 #include <gtest/gtest.h>
+#include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/surface_solution.h>
@@ -87,6 +88,25 @@ inline Scene litCubeRoom(const Color& lampRho, const Color& lampEmission) {
   const uint32_t lamp = b.addMaterial({"lamp", lampRho, lampEmission, false});
   addInwardCube(b, [&](int face) { return face == 3 ? lamp : face == 0 ? red : wall; });
   return b.build();
+}
+
+/// The unit cube seen from inside, every face of reflectance `rho`, face 0 emitting radiosity
+/// E = 1 (Ke = 1 / pi): a closed room whose sum of A B is sum A E / (1 - rho)
+/// (docs/references.md 3.1).
+inline Scene closedCube(float rho) {
+  SceneBuilder b("cube");
+  const uint32_t wall = b.addMaterial({"wall", Color(rho), Color(0.0f), false});
+  const uint32_t lamp = b.addMaterial({"lamp", Color(rho), Color(1.0f / glm::pi<float>()), false});
+  addInwardCube(b, [&](int face) { return face == 0 ? lamp : wall; });
+  return b.build();
+}
+
+/// Patch settings for about `patches` patches, with no form-factor cache on disk.
+inline PatchRadiositySettings uncachedPatchSettings(size_t patches) {
+  PatchRadiositySettings s;
+  s.targetPatches = patches;
+  s.cacheDir.clear();
+  return s;
 }
 
 /// An emitting square [-1, 1]^2 at z = 2 facing down (Ke 1) over a floor [-1, 1]^2 at z = 0, both
