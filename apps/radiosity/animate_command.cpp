@@ -1,10 +1,10 @@
-// `radiosity animate SCENE`: the scene's light animation as numbered frames, the patch solution
-// relit between frames (Relighter: only the change of the lights is shot) instead of solved
-// again; with --video, the frames encoded by ffmpeg.
+// `radiosity animate SCENE`: the scene's light animation as numbered frames, the solution relit
+// between frames by its method's relighting (the patch method's Relighter: only the change of the
+// lights is shot) instead of solved again; with --video, the frames encoded by ffmpeg.
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/image.h>
-#include <radiosity/relighter.h>
+#include <radiosity/radiosity_method.h>
 #include <radiosity/surface_radiance.h>
 
 #include <CLI/CLI.hpp>
@@ -28,7 +28,7 @@ namespace {
 struct AnimateOptions {
   // The relighter keeps one light state: the groups are scaled in the lights, not solved apart.
   explicit AnimateOptions(CLI::App& command)
-      : method(command, {{"patch"}, {"light_groups"}, true}) {}
+      : method(command, {&MethodCapabilities::relight, "patch", {"light_groups"}, true}) {}
   MethodOptions method;
   PictureOptions picture;
   std::string scene, output = "frames/frame_%04d.png", video, stats, solution;
@@ -94,12 +94,13 @@ int runAnimate(AnimateOptions& o, Console& console) {
   const RayCaster caster(scene);  // the run's one BVH
   auto timeOf = [&](int frame) { return o.start + double(frame) / o.fps; };
   Stopwatch solveTime;
-  const PatchModel model(scene, caster, o.method.patch());
   const std::vector<Light> first = lightsAt(scene, timeOf(0), groups, scales);
-  Relighter relighter = startRelighter(model, first, o.solution, o.relight, console);
+  const std::unique_ptr<Relighting> relighting =
+      startRelighting(scene, caster, o.method.settings(), first, o.solution, o.relight, console);
+  Relighting& relighter = *relighting;
   stats.timingsSeconds.solve = solveTime.seconds();
 
-  PictureOptions::warnOfDynamicObjects(scene, "patch", console);
+  PictureOptions::warnOfDynamicObjects(scene, o.method.method(), console);
   ProbeCache probes;  // the render's probes, kept while the lights stay and objects barely move
   std::vector<Light> lastLights = scene.lights;
   std::vector<FrameRecord> records;
@@ -128,8 +129,9 @@ int runAnimate(AnimateOptions& o, Console& console) {
         record.relightMs = record.relight.milliseconds;
       }
       Stopwatch renderTime;
-      const Image image = o.picture.render(scene, caster, camera, relighter.solution(), o.method,
-                                           record.t, progressPart(progress, f, o.frames), &probes);
+      const Image image =
+          o.picture.render(scene, caster, camera, relighter.solution(), o.method.settings(),
+                           record.t, progressPart(progress, f, o.frames), &probes);
       writeImage(frameFiles.name(f), image, o.picture.writeOptions());
       record.renderMs = 1e3 * renderTime.seconds();
       records.push_back(record);
@@ -142,14 +144,14 @@ int runAnimate(AnimateOptions& o, Console& console) {
     return 130;
   }
   console.finishProgress();
-  if (const std::string w = relighter.saveFormFactors(); !w.empty()) console.warn(w);
+  if (const std::string w = relighter.saveCaches(); !w.empty()) console.warn(w);
   if (!o.video.empty()) encodeVideo(frameFiles, o.frames, o.fps, o.video);
 
   std::vector<double> relightMs, renderMs;
   for (size_t f = 1; f < records.size(); ++f) relightMs.push_back(records[f].relightMs);
   for (const FrameRecord& r : records) renderMs.push_back(r.renderMs);
   if (!o.stats.empty()) {
-    stats.counts.patches = relighter.solution().stats().patches;
+    stats.counts.patches = relighter.solution().report().patches;
     stats.timingsSeconds.render = std::accumulate(renderMs.begin(), renderMs.end(), 0.0) / 1e3;
     stats.methodDetails = {{"frames", framesJson(records)},
                            {"probe_captures", probes.captures()},
@@ -157,7 +159,7 @@ int runAnimate(AnimateOptions& o, Console& console) {
                            {"ms_per_relight", median(relightMs)},
                            {"ms_per_render", median(renderMs)}};
     stats.settings = settingsOf(o.method.settings());
-    writeStatsFile(o.stats, scene, o.scene, "patch", total.seconds(), console, stats);
+    writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), console, stats);
   }
   console.info(fmt::format(
       "animated {} frames of {} ({}x{}, {:g} fps) in {:.2f} s: {:.1f} ms per relight, {:.1f} ms "

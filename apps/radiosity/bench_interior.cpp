@@ -3,6 +3,7 @@
 // that its peak memory is its own: the time of each stage and the peak resident memory, from the
 // child's stats file.
 #include <fmt/format.h>
+#include <radiosity/radiosity_method.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -20,7 +21,8 @@ nlohmann::json benchInterior(Console& console, int detail) {
   std::filesystem::create_directories(dir);
   nlohmann::json result = {{"scene", scene}};
   std::string summary = scene + ":";
-  for (const std::string method : {"patch", "voxel", "pathtrace"}) {
+  for (const RadiosityMethod* m : radiosityMethods()) {
+    const std::string method = m->name();
     console.info(fmt::format("bench interior: {} with {}", scene, method));
     const std::string stats = (dir / (method + ".json")).string();
     runToCompletion({selfExecutable(), "render", scene, "--method", method, "--cache-dir", "none",

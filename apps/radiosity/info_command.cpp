@@ -1,6 +1,7 @@
 // `radiosity info SCENE`: what a scene holds, and what is wrong with it.
 #include <fmt/format.h>
 #include <radiosity/scene_loader.h>
+#include <radiosity/solver_settings.h>
 
 #include <CLI/CLI.hpp>
 #include <memory>
@@ -33,6 +34,8 @@ void printUnitAndPower(const Scene& scene, std::ostream& out) {
 
 int runInfo(const std::string& sceneName, Console& console) {
   const Scene scene = loadScene(sceneName);
+  // Its "solver" values judged against the methods' settings table, as a run would judge them.
+  resolveMethodSettings(scene.solver, {}, scene.name);
   std::ostream& out = console.out();
   size_t emissive = 0, textured = 0;
   for (const Material& m : scene.materials) {

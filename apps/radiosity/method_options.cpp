@@ -21,45 +21,9 @@ namespace rad::cli {
 
 namespace {
 
-// Solves with a progress bar, then prints the method's warnings (settings that lose light, a
-// cache file that could not be used).
-template <class Model, class Settings>
-auto solveShowingProgress(const Scene& scene, const RayCaster& caster, const Settings& settings,
-                          const SolutionSource& source, const std::string& label,
-                          Console& console) {
-  const Model model(scene, caster, settings);
-  auto solution = source.file.empty() ? model.solve(scene.lights, console.progress(label))
-                                      : model.load(source.file, scene.lights);
-  console.finishProgress();
-  if (!scene.dynamicObjects.empty() && source.file.empty()) {
-    // Once more with the objects in place: their reflected light as lights, and their shadows
-    // in the lights' direct light.
-    const Scene placed = scene.withDynamicObjectsAt(source.seconds);
-    const RayCaster placedCaster(placed);
-    std::vector<Light> lights = scene.lights;
-    for (const Light& l :
-         DynamicObjectLighting(placed, solution, caster, placedCaster).objectLights())
-      lights.push_back(l);
-    const ProgressCallback progress = console.progress(label + ", objects' bounce");
-    solution = model.solve(lights, placedCaster, progress);
-    console.finishProgress();
-  }
-  for (const std::string& w : solution.stats().warnings) console.warn(w);
-  if (source.groups.empty()) return solution;
-  if (solution.lightGroups().empty())
-    throw InputError("--group", source.file +
-                                    ": its light groups were solved together (solve "
-                                    "it with --light-groups to scale them)");
-  const std::vector<Color> scales = groupScalesFor(solution.lightGroups(), source.groups);
-  solution.setGroupScales(scales);
-  if (std::all_of(scales.begin(), scales.end(), [](const Color& s) { return s == Color(0.0f); }))
-    console.warn("--group switched every light group off: there is no light");
-  return solution;
-}
-
 // The light groups, their scales and power, and the per-object means.
 void reportObjects(const Scene& scene, const RayCaster& caster, const SurfaceSolution& solution,
-                   double seconds, const SolveReport& report) {
+                   double seconds, const StatsReport& report) {
   if (!report.objectMeans) return;
   report.stats.objects = solution.objectRadiometry();
   if (!scene.dynamicObjects.empty()) {
@@ -91,14 +55,25 @@ CLI::Validator checkOf(const SettingDeclaration& d) {
 
 }  // namespace
 
-MethodOptions::MethodOptions(CLI::App& c, MethodUse use) : methods_(std::move(use.methods)) {
+std::vector<std::string> offeredMethods(const MethodUse& use) {
+  std::vector<std::string> names = {use.defaultMethod};
+  for (const RadiosityMethod* m : radiosityMethods())
+    if ((!use.needs || m->capabilities().*use.needs) && m->name() != use.defaultMethod)
+      names.push_back(m->name());
+  return names;
+}
+
+MethodOptions::MethodOptions(CLI::App& c, MethodUse use)
+    : use_(std::move(use)), methods_(offeredMethods(use_)) {
   for (const SettingDeclaration& d : solverSettingDeclarations()) {
-    const bool read = std::any_of(methods_.begin(), methods_.end(),
-                                  [&](const std::string& m) { return d.readBy(m); });
-    const bool unread = std::find(use.unread.begin(), use.unread.end(), d.name) != use.unread.end();
+    const bool read = std::any_of(methods_.begin(), methods_.end(), [&](const std::string& m) {
+      return d.readBy(radiosityMethod(m));
+    });
+    const bool unread =
+        std::find(use_.unread.begin(), use_.unread.end(), d.name) != use_.unread.end();
     if (read && !unread && (d.name != "method" || methods_.size() > 1)) addSetting(c, d);
   }
-  if (!use.groupScales) return;
+  if (!use_.groupScales) return;
   c.add_option("--group", groupText_,
                "Scale a light group's light, NAME=SCALE or NAME=r,g,b (0: off; repeatable); "
                "solves the groups apart (--light-groups). A light's group is its \"group\", "
@@ -170,25 +145,6 @@ void MethodOptions::resolveFromSolution(const Scene& scene, const std::string& p
                                        fmt::join(methods_, ", ")));
 }
 
-Relighter startRelighter(const PatchModel& model, std::span<const Light> lights,
-                         const std::string& solutionFile, const RelightSettings& settings,
-                         Console& console, const std::function<void(double)>& alsoReport) {
-  auto reported = [&](const std::string& label) -> ProgressCallback {
-    ProgressCallback bar = console.progress(label);
-    return [bar, alsoReport](double fraction) {
-      if (alsoReport) alsoReport(fraction);
-      return !bar || bar(fraction);
-    };
-  };
-  Relighter relighter =
-      solutionFile.empty()
-          ? Relighter(model, lights, settings, reported("patch solve"))
-          : Relighter(model, model.load(solutionFile, lights), settings, reported("form factors"));
-  console.finishProgress();
-  for (const std::string& w : relighter.solution().stats().warnings) console.warn(w);
-  return relighter;
-}
-
 void MethodOptions::resolve(const Scene& scene, const std::string& solutionFile, Console& console) {
   if (solutionFile.empty())
     resolve(scene);
@@ -198,14 +154,14 @@ void MethodOptions::resolve(const Scene& scene, const std::string& solutionFile,
 }
 
 void MethodOptions::trimCache(Console& console) const {
-  if (settings_.patch.cacheDir.empty()) return;
+  if (settings_.cacheDir.empty()) return;
   const uint64_t removed =
-      trimCacheDirectory(settings_.patch.cacheDir, uint64_t(settings_.cacheMaxMegabytes) << 20);
+      trimCacheDirectory(settings_.cacheDir, uint64_t(settings_.cacheMaxMegabytes) << 20);
   if (removed > 0)
-    console.detail(fmt::format(
-        "cache {}: removed {:.1f} MB of its least recently used files "
-        "(--cache-max-mb {})",
-        settings_.patch.cacheDir, double(removed) / (1 << 20), settings_.cacheMaxMegabytes));
+    console.detail(
+        fmt::format("cache {}: removed {:.1f} MB of its least recently used files "
+                    "(--cache-max-mb {})",
+                    settings_.cacheDir, double(removed) / (1 << 20), settings_.cacheMaxMegabytes));
 }
 
 SolverSettings solvedWith(const MethodSettings& settings) {
@@ -228,116 +184,85 @@ void MethodOptions::resolve(const Scene& scene) {
     throw InputError(scene.name + ": /solver/method",
                      fmt::format("method '{}' is not available here (available: {})",
                                  settings_.method, fmt::join(methods_, ", ")));
-  settings_.pathTracer.processes = MpiProcesses::share();
-  settings_.voxel.processes = MpiProcesses::share();
-  settings_.patch.processes = MpiProcesses::share();
+  settings_.processes = MpiProcesses::share();
 }
 
-VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
-                           const VoxelRadiositySettings& settings, const SolutionSource& source,
-                           Console& console, const SolveReport& report) {
-  // The label says what ends the solve, so that the time left reads against it.
-  const std::string label =
-      settings.tolerance > 0.0
-          ? fmt::format("voxel solve (to {:g} of the light still bouncing, {} iterations at most)",
-                        settings.tolerance, settings.iterations)
-          : fmt::format("voxel solve ({} iterations)", settings.iterations);
-  VoxelRadiosity solution =
-      solveShowingProgress<VoxelModel>(scene, caster, settings, source, label, console);
+std::unique_ptr<SurfaceSolution> solveSurfaces(const Scene& scene, const RayCaster& caster,
+                                               const MethodSettings& settings,
+                                               const SolutionSource& source, Console& console,
+                                               const StatsReport& report) {
+  const std::unique_ptr<MethodModel> model =
+      radiosityMethod(settings.method).prepare(scene, caster, settings);
+  const std::string label = model->solveLabel();
+  std::unique_ptr<SurfaceSolution> solution =
+      source.file.empty() ? model->solve(scene.lights, nullptr, console.progress(label))
+                          : model->load(source.file, scene.lights);
+  console.finishProgress();
+  if (!scene.dynamicObjects.empty() && source.file.empty()) {
+    // Once more with the objects in place: their reflected light as lights, and their shadows
+    // in the lights' direct light.
+    const Scene placed = scene.withDynamicObjectsAt(source.seconds);
+    const RayCaster placedCaster(placed);
+    std::vector<Light> lights = scene.lights;
+    for (const Light& l :
+         DynamicObjectLighting(placed, *solution, caster, placedCaster).objectLights())
+      lights.push_back(l);
+    solution = model->solve(lights, &placedCaster, console.progress(label + ", objects' bounce"));
+    console.finishProgress();
+  }
+  const SolveReport r = solution->report();
+  for (const std::string& w : r.warnings) console.warn(w);
+  if (!r.resumed.empty()) console.info(r.resumed);
+  if (!source.groups.empty()) {
+    if (solution->lightGroups().empty())
+      throw InputError("--group", source.file +
+                                      ": its light groups were solved together (solve "
+                                      "it with --light-groups to scale them)");
+    const std::vector<Color> scales = groupScalesFor(solution->lightGroups(), source.groups);
+    solution->setGroupScales(scales);
+    if (std::all_of(scales.begin(), scales.end(), [](const Color& s) { return s == Color(0.0f); }))
+      console.warn("--group switched every light group off: there is no light");
+  }
   RunStats& stats = report.stats;
-  const VoxelRadiosityStats& v = solution.stats();
-  if (v.resumedIterations > 0)
-    console.info(fmt::format("went on from a checkpoint: {} iteration{} were done before",
-                             v.resumedIterations, v.resumedIterations == 1 ? "" : "s"));
-  stats.methodDetails = {
-      {"resumed_iterations", v.resumedIterations},
-      {"voxel_size", v.voxelSize},
-      {"cells", v.voxels},
-      {"sides", v.sides},
-      {"visits", v.visits},
-      {"visits_per_s", double(v.visits) / std::max(v.sweepSeconds, 1e-9)},
-      {"shadow_rays", v.shadowRays},
-      {"sweep_threads", v.sweepThreads},
-      {"tail_share", v.tailShare},
-      {"later_directions", v.laterDirections},
-      {"memory_bytes", v.memoryBytes},
-      {"bytes_per_side", double(v.memoryBytes) / double(std::max<size_t>(v.sides, 1))},
-      {"bytes_per_voxel", double(v.memoryBytes) / double(std::max<size_t>(v.voxels, 1))},
-      {"seconds",
-       {{"voxelize", v.voxelizeSeconds},
-        {"first_shot", v.directSeconds},
-        {"sweeps", v.sweepSeconds},
-        {"iterations", v.iterationSeconds}}}};
-  stats.counts.voxels = v.sides;
-  stats.counts.directions = v.directions;
-  stats.counts.rays += v.shadowRays;
-  stats.timingsSeconds.prepare = v.voxelizeSeconds;
-  stats.timingsSeconds.solve = v.directSeconds + v.sweepSeconds;
-  stats.iterations = int(v.residuals.size());
-  stats.residual = v.residuals.empty() ? 0.0 : v.residuals.back();
-  stats.converged = v.converged;
-  stats.residuals = v.residuals;
-  reportObjects(scene, caster, solution, source.seconds, report);
+  stats.methodDetails = nlohmann::json::parse(r.detailsJson);
+  stats.counts.patches = r.patches;
+  stats.counts.voxels = r.voxels;
+  stats.counts.directions = r.directions;
+  stats.counts.rays += r.rays;
+  stats.timingsSeconds.prepare = r.prepareSeconds;
+  stats.timingsSeconds.solve = r.solveSeconds;
+  stats.iterations = r.iterations;
+  stats.residual = r.residuals.empty() ? 0.0 : r.residuals.back();
+  stats.converged = r.converged;
+  stats.residuals = r.residuals;
+  reportObjects(scene, caster, *solution, source.seconds, report);
   return solution;
 }
 
-PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
-                            const PatchRadiositySettings& settings, const SolutionSource& source,
-                            Console& console, const SolveReport& report) {
-  PatchRadiosity solution =
-      solveShowingProgress<PatchModel>(scene, caster, settings, source, "patch solve", console);
-  RunStats& stats = report.stats;
-  const PatchRadiosityStats& p = solution.stats();
-  stats.methodDetails = {
-      {"patch_size", p.patchSize},
-      {"nodes", p.nodes},
-      {"vertices", p.vertices},
-      {"table_entries", p.nonZeros},
-      {"exact_columns", p.exactColumns},
-      {"table_bytes", p.tableBytes},
-      {"dropped_entry_fraction", p.droppedEntryFraction},
-      {"dropped_sum_fraction", p.droppedSumFraction},
-      {"dropped_worst_row_fraction", p.droppedWorstRowFraction},
-      {"rows_dropping_over_1_percent", p.rowsDroppingOverOnePercent},
-      {"row_sum",
-       {{"min", p.rowSumMin},
-        {"mean", p.rowSumMean},
-        {"max", p.rowSumMax},
-        {"estimated_max", p.rowSumEstimatedMax},
-        {"rows_scaled", p.rowsScaledToClosure},
-        {"reflected_share_max", p.reflectedShareMax},
-        {"scaled_for_reflection", p.scaledForReflection}}},
-      {"cache_loaded", p.cacheLoaded},
-      {"cache_file", p.cacheFile},
-      {"solver", p.solver},
-      {"diverging", p.diverging},
-      {"shots", p.shots},
-      {"rays_per_s", double(p.rays - p.lightRays) / std::max(p.formFactorSeconds, 1e-9)},
-      {"light_rays", p.lightRays},
-      {"rows_computed", p.rowsComputed},
-      {"rows_reused", p.rowsReused},
-      {"master_rows", p.masterRows},
-      {"base_patches", p.basePatches},
-      {"refined_splits", p.refinedSplits},
-      {"refine_rounds", p.refineRounds},
-      {"light_rays_per_s", double(p.lightRays) / std::max(p.lightSeconds, 1e-9)},
-      {"memory_bytes", p.memoryBytes},
-      {"seconds",
-       {{"mesh", p.meshSeconds},
-        {"form_factors", p.formFactorSeconds},
-        {"cache_load", p.cacheLoadSeconds},
-        {"light", p.lightSeconds},
-        {"solve", p.solveSeconds}}}};
-  stats.counts.patches = p.patches;
-  stats.counts.rays += p.rays;
-  stats.timingsSeconds.prepare = p.meshSeconds + p.formFactorSeconds + p.cacheLoadSeconds;
-  stats.timingsSeconds.solve = p.lightSeconds + p.solveSeconds;
-  stats.iterations = p.iterations;
-  stats.residual = p.residuals.empty() ? 0.0 : p.residuals.back();
-  stats.converged = p.converged;
-  stats.residuals = p.residuals;
-  reportObjects(scene, caster, solution, source.seconds, report);
-  return solution;
+std::unique_ptr<Relighting> startRelighting(const Scene& scene, const RayCaster& caster,
+                                            const MethodSettings& settings,
+                                            std::span<const Light> lights,
+                                            const std::string& solutionFile,
+                                            const RelightSettings& relight, Console& console,
+                                            const std::function<void(double)>& alsoReport) {
+  const RadiosityMethod& method = radiosityMethod(settings.method);
+  if (!method.capabilities().relight)
+    throw InputError("--method " + method.name(),
+                     fmt::format("does not relight (the methods that do: {})",
+                                 fmt::join(methodsWith(&MethodCapabilities::relight), ", ")));
+  // The relighting keeps what it needs of the model.
+  const std::unique_ptr<MethodModel> model = method.prepare(scene, caster, settings);
+  ProgressCallback bar =
+      console.progress(solutionFile.empty() ? model->solveLabel() : "reading " + solutionFile);
+  const ProgressCallback progress = [bar, alsoReport](double fraction) {
+    if (alsoReport) alsoReport(fraction);
+    return !bar || bar(fraction);
+  };
+  std::unique_ptr<Relighting> relighting =
+      model->startRelighting(lights, solutionFile, relight, progress);
+  console.finishProgress();
+  for (const std::string& w : relighting->solution().report().warnings) console.warn(w);
+  return relighting;
 }
 
 }  // namespace rad::cli

@@ -4,12 +4,9 @@
 // method's default. Also the solve both commands run: progress, warnings and stats.
 
 #include <radiosity/light_groups.h>
-#include <radiosity/patch_radiosity.h>
-#include <radiosity/path_tracer.h>
-#include <radiosity/relighter.h>
+#include <radiosity/radiosity_method.h>
 #include <radiosity/scene.h>
 #include <radiosity/solver_settings.h>
-#include <radiosity/voxel_radiosity.h>
 
 #include <functional>
 #include <map>
@@ -26,11 +23,14 @@ class Option;
 
 namespace rad::cli {
 
-/// What a command reads of the methods' settings, so that its --help lists only those.
+/// Which methods a command offers and what it reads of their settings, so that its --help
+/// lists only those.
 struct MethodUse {
-  std::vector<std::string> methods;  ///< the methods it offers, the first the default
-  std::vector<std::string> unread;   ///< settings of those methods it does not read, by name
-  bool groupScales = true;           ///< takes --group
+  /// The methods it offers: those with this capability (null: every one).
+  bool MethodCapabilities::*needs = nullptr;
+  std::string defaultMethod;        ///< the method it runs when neither flag nor scene says
+  std::vector<std::string> unread;  ///< settings of those methods it does not read, by name
+  bool groupScales = true;          ///< takes --group
 };
 
 class MethodOptions {
@@ -54,11 +54,10 @@ class MethodOptions {
   /// Removes the cache directory's least recently used files beyond --cache-max-mb.
   void trimCache(Console& console) const;
 
+  /// The method the settings chose, and its name.
+  const RadiosityMethod& chosen() const { return radiosityMethod(settings_.method); }
   const std::string& method() const { return settings_.method; }
   const MethodSettings& settings() const { return settings_; }
-  const PathTracerSettings& pathTracer() const { return settings_.pathTracer; }
-  const VoxelRadiositySettings& voxel() const { return settings_.voxel; }
-  const PatchRadiositySettings& patch() const { return settings_.patch; }
   /// What the --group flags ask.
   const std::vector<GroupScale>& groupScales() const { return groupScales_; }
 
@@ -67,7 +66,8 @@ class MethodOptions {
   void parseGroups(const Scene& scene);
   void addSetting(CLI::App& command, const SettingDeclaration& d);
 
-  std::vector<std::string> methods_;
+  MethodUse use_;
+  std::vector<std::string> methods_;  ///< offeredMethods(use_)
   std::vector<std::string> groupText_;
   std::vector<GroupScale> groupScales_;
   MethodSettings settings_;
@@ -80,7 +80,7 @@ class MethodOptions {
 /// What a solve of the commands reports besides the solution: its numbers, and the per-object
 /// means (stats.objects, a pass over every element) only if `objectMeans`, since only the stats
 /// file reports them.
-struct SolveReport {
+struct StatsReport {
   RunStats& stats;
   bool objectMeans = false;
 };
@@ -92,22 +92,26 @@ struct SolutionSource {
   double seconds = 0.0;  ///< where the dynamic objects are (their light is one more bounce)
 };
 
-/// Solves `scene` (through `caster`, the run's one ray caster) by the voxel method with a
-/// progress bar, or loads it from the source's file, scales its light groups as the source
-/// asks, prints the method's warnings and reports its numbers. With dynamic objects, solves again
-/// with the light they reflect (dynamicObjectLights) as lights. Throws what the solver throws.
-VoxelRadiosity solveVoxels(const Scene& scene, const RayCaster& caster,
-                           const VoxelRadiositySettings& settings, const SolutionSource& source,
-                           Console& console, const SolveReport& report);
-/// The same for the patch method.
-PatchRadiosity solvePatches(const Scene& scene, const RayCaster& caster,
-                            const PatchRadiositySettings& settings, const SolutionSource& source,
-                            Console& console, const SolveReport& report);
-/// A relighter of `model` for `lights`: solved with a progress bar, or started from the solution
-/// file `solutionFile` when it is set; prints the solution's warnings.
-Relighter startRelighter(const PatchModel& model, std::span<const Light> lights,
-                         const std::string& solutionFile, const RelightSettings& settings,
-                         Console& console, const std::function<void(double)>& alsoReport = {});
+/// Solves `scene` (through `caster`, the run's one ray caster) by the settings' method with a
+/// progress bar, or loads it from the source's file, scales its light groups as the source asks,
+/// prints the method's warnings and reports its numbers. With dynamic objects, solves again with
+/// the light they reflect (DynamicObjectLighting::objectLights) as lights. Throws what the
+/// method throws.
+std::unique_ptr<SurfaceSolution> solveSurfaces(const Scene& scene, const RayCaster& caster,
+                                               const MethodSettings& settings,
+                                               const SolutionSource& source, Console& console,
+                                               const StatsReport& report);
+/// A relighting by the settings' method for `lights`: solved with a progress bar, or started
+/// from the solution file `solutionFile` when it is set; prints the solution's warnings.
+/// Throws InputError for a method that does not relight.
+std::unique_ptr<Relighting> startRelighting(const Scene& scene, const RayCaster& caster,
+                                            const MethodSettings& settings,
+                                            std::span<const Light> lights,
+                                            const std::string& solutionFile,
+                                            const RelightSettings& relight, Console& console,
+                                            const std::function<void(double)>& alsoReport = {});
+/// The methods a command offers, its default first.
+std::vector<std::string> offeredMethods(const MethodUse& use);
 /// The settings as a solution file records them: every one the method read, by name.
 SolverSettings solvedWith(const MethodSettings& settings);
 

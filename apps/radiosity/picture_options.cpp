@@ -114,10 +114,10 @@ Camera PictureOptions::camera(const Scene& scene) const {
   return camera;
 }
 
-SurfaceRenderSettings PictureOptions::surfaceSettings(const MethodOptions& method) const {
+SurfaceRenderSettings PictureOptions::surfaceSettings(const MethodSettings& run) const {
   SurfaceRenderSettings settings;
-  settings.samplesPerPixel = method.pathTracer().samplesPerPixel;
-  settings.seed = method.pathTracer().seed;
+  settings.samplesPerPixel = run.samplesPerPixel;
+  settings.seed = run.seed;
   settings.direct = direct == "solution" ? DirectLightMode::Solution : DirectLightMode::PerPixel;
   settings.emitterSamples = emitterSamples;
   return settings;
@@ -131,10 +131,10 @@ ImageWriteOptions PictureOptions::writeOptions() const {
 }
 
 Image PictureOptions::render(const Scene& scene, const RayCaster& caster, const Camera& camera,
-                             const SurfaceSolution& solution, const MethodOptions& method,
+                             const SurfaceSolution& solution, const MethodSettings& run,
                              double seconds, const ProgressCallback& progress,
                              ProbeCache* probes) const {
-  const SurfaceRenderSettings settings = surfaceSettings(method);
+  const SurfaceRenderSettings settings = surfaceSettings(run);
   if (scene.dynamicObjects.empty())
     return renderSurfaceRadiance(scene, caster, camera, solution, settings, progress);
   const Scene placed = scene.withDynamicObjectsAt(seconds);

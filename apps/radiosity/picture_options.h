@@ -4,6 +4,7 @@
 
 #include <radiosity/image.h>
 #include <radiosity/scene.h>
+#include <radiosity/solver_settings.h>
 #include <radiosity/surface_radiance.h>
 #include <radiosity/surface_solution.h>
 
@@ -21,7 +22,6 @@ class ProbeCache;
 namespace rad::cli {
 
 class Console;
-class MethodOptions;
 
 struct PictureOptions {
   int width = 0, height = 0;  ///< 0: the scene camera's (a side given alone keeps its aspect)
@@ -39,15 +39,15 @@ struct PictureOptions {
   /// The scene's camera (or the one --camera names) with what the flags set, at the size asked.
   /// Throws InputError for a camera the scene does not have or a view that is no view.
   Camera camera(const Scene& scene) const;
-  /// How a radiosity solution is drawn: camera rays and seed from the method's settings.
-  SurfaceRenderSettings surfaceSettings(const MethodOptions& method) const;
+  /// How a radiosity solution is drawn: camera rays and seed from the run's settings.
+  SurfaceRenderSettings surfaceSettings(const MethodSettings& settings) const;
   ImageWriteOptions writeOptions() const;
-  /// The picture of `solution` (made by `method`) through `camera`; with the scene's dynamic
+  /// The picture of `solution` (made under `settings`) through `camera`; with the scene's dynamic
   /// objects placed as at `seconds`, each lit by probes of the solution (DynamicObjectLighting).
   /// `probes`: the probes of earlier frames to keep where their objects barely moved (null:
   /// none).
   Image render(const Scene& scene, const RayCaster& caster, const Camera& camera,
-               const SurfaceSolution& solution, const MethodOptions& method, double seconds,
+               const SurfaceSolution& solution, const MethodSettings& settings, double seconds,
                const ProgressCallback& progress, ProbeCache* probes = nullptr) const;
   float probeMoveThreshold = 0.0f;  ///< --probe-move-threshold (animate)
   int probeResolution = 16;         ///< --probe-res: texels a cube face of a dynamic object's probe

@@ -3,10 +3,8 @@
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/image.h>
-#include <radiosity/patch_radiosity.h>
-#include <radiosity/path_tracer.h>
+#include <radiosity/radiosity_method.h>
 #include <radiosity/surface_radiance.h>
-#include <radiosity/voxel_radiosity.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -24,8 +22,7 @@ namespace rad::cli {
 namespace {
 
 struct RenderOptions {
-  explicit RenderOptions(CLI::App& command)
-      : method(command, {{"pathtrace", "voxel", "patch"}, {}, true}) {}
+  explicit RenderOptions(CLI::App& command) : method(command, {nullptr, "pathtrace", {}, true}) {}
   MethodOptions method;
   double time = 0.0;
   PictureOptions picture;
@@ -40,28 +37,28 @@ std::string defaultOutput(const std::string& scene, const std::string& method) {
   return stem + "_" + method + ".png";
 }
 
-Image renderWithPathTracer(const Scene& scene, const RayCaster& caster, const Camera& camera,
-                           const RenderOptions& o, Console& console, RunStats& stats) {
+// The picture of a method that makes its own (no surface solution: the path tracer).
+Image renderPicture(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                    const RenderOptions& o, Console& console, RunStats& stats) {
+  const RadiosityMethod& method = o.method.chosen();
   Stopwatch renderTime;
-  PathTracedImage result =
-      renderPathTraced(scene, caster, camera, o.method.pathTracer(), console.progress("render"));
+  RenderedPicture picture =
+      method.renderPicture(scene, caster, camera, o.method.settings(), console.progress("render"));
   console.finishProgress();
-  for (const std::string& w : result.stats.warnings) console.warn(w);
-  if (result.stats.resumedTiles > 0)
-    console.info(fmt::format("went on from a checkpoint: {} tiles were done before",
-                             result.stats.resumedTiles));
+  for (const std::string& w : picture.warnings) console.warn(w);
+  if (!picture.resumed.empty()) console.info(picture.resumed);
   stats.timingsSeconds.render = renderTime.seconds();
-  stats.counts.rays = result.stats.rays;
+  stats.counts.rays = picture.rays;
   if (!o.stats.empty() && o.objectPoints > 0) {
     Stopwatch solveTime;
-    PathTracerStats objectStats;
-    stats.objects = estimateObjectRadiometry(scene, caster, o.objectPoints, o.method.pathTracer(),
-                                             &objectStats, console.progress("surfaces"));
+    EstimatedObjects estimated = method.estimateObjects(
+        scene, caster, o.objectPoints, o.method.settings(), console.progress("surfaces"));
     console.finishProgress();
-    stats.counts.rays += objectStats.rays;
+    stats.objects = std::move(estimated.objects);
+    stats.counts.rays += estimated.rays;
     stats.timingsSeconds.solve = solveTime.seconds();
   }
-  return std::move(result.image);
+  return std::move(picture.image);
 }
 
 // The solution's picture, with the scene's dynamic objects where --time puts them.
@@ -71,16 +68,16 @@ Image renderSolution(const Scene& scene, const RayCaster& caster, const Camera& 
   Stopwatch renderTime;
   o.picture.warnIfDirectUnavailable(solution, o.method.method(), console);
   PictureOptions::warnOfDynamicObjects(scene, o.method.method(), console);
-  Image image = o.picture.render(scene, caster, camera, solution, o.method, o.time,
+  Image image = o.picture.render(scene, caster, camera, solution, o.method.settings(), o.time,
                                  console.progress("render"));
   console.finishProgress();
   stats.timingsSeconds.render = renderTime.seconds();
   return image;
 }
 
-// A voxel picture with per-pixel direct light needs the first shot kept apart from the bounces.
-VoxelRadiositySettings voxelSettingsFor(const RenderOptions& o) {
-  VoxelRadiositySettings settings = o.method.voxel();
+// A picture with per-pixel direct light needs the direct light kept apart from the bounces.
+MethodSettings solveSettingsFor(const RenderOptions& o) {
+  MethodSettings settings = o.method.settings();
   settings.keepDirectLight = o.picture.direct == "per-pixel";
   return settings;
 }
@@ -98,27 +95,22 @@ int runRender(RenderOptions& o, Console& console) {
 
   const Camera camera = o.picture.camera(scene);
   InterruptGuard interruptible;
-  // The path tracer takes the objects as they are at --time: the reference, their light included.
-  if (o.method.method() == "pathtrace" && !scene.dynamicObjects.empty())
-    scene = scene.withDynamicObjectsAt(o.time);
+  // A method that makes its own pictures takes the scene as it is at --time, the objects placed
+  // and the groups' emitters scaled: the reference, the objects' light included.
+  const bool ownPictures = !o.method.chosen().capabilities().surfaceSolution;
+  if (ownPictures && !scene.dynamicObjects.empty()) scene = scene.withDynamicObjectsAt(o.time);
   const RayCaster caster(scene);  // the run's one BVH
-  const std::string& method = o.method.method();
-  const SolveReport report{stats, !o.stats.empty()};
+  const StatsReport report{stats, !o.stats.empty()};
   const std::vector<GroupScale>& groups = o.method.groupScales();
-  if (method == "pathtrace" && !groups.empty())
+  if (ownPictures && !groups.empty())
     scaleEmitters(scene, lightGroupsOf(scene, scene.lights),
                   groupScalesFor(lightGroupsOf(scene, scene.lights), groups));
   const Image image =
-      method == "pathtrace" ? renderWithPathTracer(scene, caster, camera, o, console, stats)
-      : method == "patch"
-          ? renderSolution(scene, caster, camera,
-                           solvePatches(scene, caster, o.method.patch(),
-                                        {groups, o.solution, o.time}, console, report),
-                           o, console, stats)
-          : renderSolution(scene, caster, camera,
-                           solveVoxels(scene, caster, voxelSettingsFor(o),
-                                       {groups, o.solution, o.time}, console, report),
-                           o, console, stats);
+      ownPictures ? renderPicture(scene, caster, camera, o, console, stats)
+                  : renderSolution(scene, caster, camera,
+                                   *solveSurfaces(scene, caster, solveSettingsFor(o),
+                                                  {groups, o.solution, o.time}, console, report),
+                                   o, console, stats);
   InterruptGuard::throwIfInterrupted();
   writeImage(o.output, image, o.picture.writeOptions());
   if (!o.stats.empty()) {

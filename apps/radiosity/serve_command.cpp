@@ -1,10 +1,9 @@
-// `radiosity serve SCENE`: solves the scene by the patch method (or loads a saved solution) and
-// serves the browser viewer: the lit scene, its lights to move and dim, the bounce following
-// (src/server: ViewerSession, ViewerServer). A voxel solution is shown and its light groups
-// dimmed, not relit.
+// `radiosity serve SCENE`: solves the scene (or loads a saved solution) and serves the browser
+// viewer: the lit scene, its lights to move and dim, the bounce following (src/server:
+// ViewerSession, ViewerServer). A method that does not relight has its solution shown and its
+// light groups dimmed, not relit.
 #include <fmt/format.h>
-#include <radiosity/relighter.h>
-#include <radiosity/voxel_radiosity.h>
+#include <radiosity/radiosity_method.h>
 
 #include <CLI/CLI.hpp>
 #include <atomic>
@@ -30,7 +29,8 @@ namespace {
 struct ServeOptions {
   // No pictures; the page dims and switches the light groups (a voxel solution's solved apart).
   explicit ServeOptions(CLI::App& command)
-      : method(command, {{"patch", "voxel"}, {"spp", "light_groups"}, false}) {}
+      : method(command,
+               {&MethodCapabilities::surfaceSolution, "patch", {"spp", "light_groups"}, false}) {}
   MethodOptions method;
   std::string scene, solution, host = "127.0.0.1", webDir = RADIOSITY_WEB_DIR;
   int port = 8080;
@@ -38,32 +38,38 @@ struct ServeOptions {
   float displayEdge = 0.0f;
 };
 
-// The session: the patch method's relighter, or a voxel solution shown and dimmed by group.
+// The session: the method's relighting, or a solution shown and dimmed by group.
 std::unique_ptr<ViewerSession> startSession(const ServeOptions& o, const Scene& scene,
                                             const RayCaster& caster, Console& console,
                                             const std::function<void(double)>& report) {
-  if (o.method.method() == "patch") {
-    const PatchModel model(scene, caster, o.method.patch());
-    Relighter relighter = startRelighter(model, scene.lights, o.solution, {}, console, report);
-    const float edge =
-        o.displayEdge > 0.0f ? o.displayEdge : 0.5f * relighter.solution().stats().patchSize;
-    return std::make_unique<ViewerSession>(scene, scene.lights, std::move(relighter), edge);
+  const RadiosityMethod& method = o.method.chosen();
+  MethodSettings settings = o.method.settings();
+  auto edgeOf = [&](const SurfaceSolution& solution) {
+    return o.displayEdge > 0.0f ? o.displayEdge : solution.report().detailEdge;
+  };
+  if (method.capabilities().relight) {
+    std::unique_ptr<Relighting> relighting =
+        startRelighting(scene, caster, settings, scene.lights, o.solution, {}, console, report);
+    const float edge = edgeOf(relighting->solution());
+    return std::make_unique<ViewerSession>(scene, scene.lights, method.name(),
+                                           std::move(relighting), edge);
   }
   // Shown and its groups dimmed, not relit: solved with its groups apart.
-  VoxelRadiositySettings settings = o.method.voxel();
-  settings.lightGroups = true;
-  const VoxelModel model(scene, caster, settings);
-  const ProgressCallback bar = console.progress("voxel solve");
-  VoxelRadiosity solution = o.solution.empty() ? model.solve(scene.lights,
-                                                             [&](double f) {
-                                                               report(f);
-                                                               return !bar || bar(f);
-                                                             })
-                                               : model.load(o.solution, scene.lights);
+  settings.lightGroups = method.capabilities().lightGroups;
+  const std::unique_ptr<MethodModel> model = method.prepare(scene, caster, settings);
+  const ProgressCallback bar = console.progress(model->solveLabel());
+  std::unique_ptr<SurfaceSolution> solution = o.solution.empty()
+                                                  ? model->solve(scene.lights, nullptr,
+                                                                 [&](double f) {
+                                                                   report(f);
+                                                                   return !bar || bar(f);
+                                                                 })
+                                                  : model->load(o.solution, scene.lights);
   console.finishProgress();
-  for (const std::string& w : solution.stats().warnings) console.warn(w);
-  const float edge = o.displayEdge > 0.0f ? o.displayEdge : solution.stats().voxelSize;
-  return std::make_unique<ViewerSession>(scene, scene.lights, std::move(solution), edge);
+  for (const std::string& w : solution->report().warnings) console.warn(w);
+  const float edge = edgeOf(*solution);
+  return std::make_unique<ViewerSession>(scene, scene.lights, method.name(), std::move(solution),
+                                         edge);
 }
 
 int runServe(ServeOptions& o, Console& console) {

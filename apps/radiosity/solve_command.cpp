@@ -1,10 +1,9 @@
-// `radiosity solve SCENE --method voxel|patch`: computes the radiosity solution and exports it
-// (per-element CSV, PLY point cloud, or for the patch method the lit mesh as binary glTF) with
-// its numbers in the stats file.
+// `radiosity solve SCENE --method voxel|patch|...` (the methods that solve the surfaces): computes
+// the radiosity solution and exports it (per-element CSV, PLY point cloud, or for the patch method
+// the lit mesh as binary glTF) with its numbers in the stats file.
 #include <fmt/format.h>
 #include <radiosity/error.h>
-#include <radiosity/patch_radiosity.h>
-#include <radiosity/voxel_radiosity.h>
+#include <radiosity/radiosity_method.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -27,7 +26,8 @@ namespace {
 
 struct SolveOptions {
   // No pictures: no samples per pixel.
-  explicit SolveOptions(CLI::App& command) : method(command, {{"voxel", "patch"}, {"spp"}, true}) {}
+  explicit SolveOptions(CLI::App& command)
+      : method(command, {&MethodCapabilities::surfaceSolution, "voxel", {"spp"}, true}) {}
   MethodOptions method;
   double time = 0.0;
   float exposure = 0.0f;
@@ -40,44 +40,6 @@ std::string lowerExtension(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
   return ext;
-}
-
-// How the form factors came: rows cast (and kept from before: the master table, its cache), or
-// a whole table read from the cache (the pairwise and exact estimators).
-std::string formFactorsOf(const PatchRadiosityStats& p) {
-  const char* kept = p.cacheLoaded ? "from the cache" : "kept";
-  if (p.rowsComputed == 0 && p.rowsReused > 0)
-    return fmt::format("loaded in {:.2f} s, {} rows {}", p.formFactorSeconds, p.rowsReused, kept);
-  if (p.cacheLoaded && p.rowsComputed == 0)
-    return fmt::format("loaded in {:.2f} s", p.cacheLoadSeconds);
-  const double rays = double(p.rays - p.lightRays);
-  std::string text = fmt::format("{:.2f} s, {:.1f} M rays/s", p.formFactorSeconds,
-                                 rays / std::max(p.formFactorSeconds, 1e-9) * 1e-6);
-  if (p.rowsReused > 0)
-    text += fmt::format(", {} rows cast, {} {}", p.rowsComputed, p.rowsReused, kept);
-  return text;
-}
-
-// The summary line's account of each method's run (`seconds`: the whole command's).
-std::string describeRun(const PatchRadiosityStats& p, double seconds) {
-  return fmt::format(
-      "{} patches, form factors {} ({} entries, {:.1f} MB, rows sum to {:.3f} on average), {} {} "
-      "sweeps, residual {:.2g}{}, {:.2f} s",
-      p.patches, formFactorsOf(p), p.nonZeros, double(p.tableBytes) / 1e6, p.rowSumMean,
-      p.iterations, p.solver, p.residuals.empty() ? 0.0 : p.residuals.back(),
-      p.converged   ? ""
-      : p.diverging ? " (diverging)"
-                    : " (not converged)",
-      seconds);
-}
-
-std::string describeRun(const VoxelRadiosityStats& v, double seconds) {
-  return fmt::format(
-      "{} voxels ({} sides), {} directions, {} iterations, residual {:.2g}{}, {:.2f} s "
-      "({:.1f} M visits/s)",
-      v.voxels, v.sides, v.directions, v.residuals.size(),
-      v.residuals.empty() ? 0.0 : v.residuals.back(), v.converged ? "" : " (not converged)",
-      seconds, double(v.visits) / std::max(v.sweepSeconds, 1e-9) * 1e-6);
 }
 
 // The lit mesh as glTF; with dynamic objects, theirs too (placed at --time, a node each). With
@@ -101,8 +63,7 @@ void exportGlbWithObjects(const SolveOptions& o, const Scene& scene,
 }
 
 // Exports the solution, writes the stats and prints the summary line.
-template <class Solution>
-int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solution,
+int finishSolve(const SolveOptions& o, const Scene& scene, const SurfaceSolution& solution,
                 const std::string& ext, const Stopwatch& total, RunStats& stats, Console& console) {
   InterruptGuard::throwIfInterrupted();
   if (ext == ".csv") solution.exportCsv(o.exportPath);
@@ -113,8 +74,8 @@ int finishSolve(const SolveOptions& o, const Scene& scene, const Solution& solut
     stats.settings = settingsOf(o.method.settings());
     writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), console, stats);
   }
-  console.info(fmt::format("solved {} with {}: {}{}{}{}{}", o.scene, o.method.method(),
-                           describeRun(solution.stats(), total.seconds()),
+  console.info(fmt::format("solved {} with {}: {}, {:.2f} s{}{}{}{}", o.scene, o.method.method(),
+                           solution.report().summary, total.seconds(),
                            o.exportPath.empty() ? "" : " -> " + o.exportPath,
                            o.lightmap > 0 ? " + " + lightmapIrradiancePath(o.exportPath) : "",
                            o.save.empty() ? "" : ", solution -> " + o.save,
@@ -144,21 +105,20 @@ int runSolve(SolveOptions& o, Console& console) {
     requireLightmapFits(scene, o.lightmap);
   }
   o.method.resolve(scene, "", console);
+  if (!o.save.empty() && !o.method.chosen().capabilities().saveSolution)
+    throw InputError(
+        "--save",
+        fmt::format("the {} method keeps no solution files (those that do: {})", o.method.method(),
+                    fmt::join(methodsWith(&MethodCapabilities::saveSolution), ", ")));
   InterruptGuard interruptible;
-  const SolveReport report{stats, !o.stats.empty()};
-  // A saved voxel solution keeps the first shot apart, for pictures with per-pixel direct light.
-  VoxelRadiositySettings voxelSettings = o.method.voxel();
-  if (!o.save.empty()) voxelSettings.keepDirectLight = true;
+  const StatsReport report{stats, !o.stats.empty()};
+  // A saved solution keeps its direct light apart, for pictures with per-pixel direct light.
+  MethodSettings settings = o.method.settings();
+  if (!o.save.empty()) settings.keepDirectLight = true;
   const RayCaster caster(scene);  // the run's one BVH
-  const std::vector<GroupScale>& groups = o.method.groupScales();
-  if (o.method.method() == "patch")
-    return finishSolve(
-        o, scene,
-        solvePatches(scene, caster, o.method.patch(), {groups, "", o.time}, console, report), ext,
-        total, stats, console);
-  return finishSolve(
-      o, scene, solveVoxels(scene, caster, voxelSettings, {groups, "", o.time}, console, report),
-      ext, total, stats, console);
+  const std::unique_ptr<SurfaceSolution> solution =
+      solveSurfaces(scene, caster, settings, {o.method.groupScales(), "", o.time}, console, report);
+  return finishSolve(o, scene, *solution, ext, total, stats, console);
 }
 
 }  // namespace

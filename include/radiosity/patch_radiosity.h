@@ -12,6 +12,7 @@
 #include <radiosity/progress.h>
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
+#include <radiosity/solver_settings.h>
 #include <radiosity/surface_radiance.h>
 #include <radiosity/surface_solution.h>
 
@@ -29,34 +30,6 @@ enum class PatchFormFactorEstimator { Hemisphere, Pairwise, Exact };
 enum class PatchSolverKind { Jacobi, GaussSeidel, Progressive };
 enum class PatchShading { Smooth, Flat };
 
-/// A choice as scene files, the command line and the stats spell it. One table per enum, so that
-/// a new value is one more row wherever names are read or written.
-template <class Enum>
-struct NamedChoice {
-  const char* name;
-  Enum value;
-};
-/// The names of a table's choices, in its order.
-template <class Enum, size_t N>
-std::vector<std::string> choiceNames(const NamedChoice<Enum> (&choices)[N]) {
-  std::vector<std::string> names;
-  for (const NamedChoice<Enum>& c : choices) names.push_back(c.name);
-  return names;
-}
-/// The choice a name stands for, if any.
-template <class Enum, size_t N>
-std::optional<Enum> choiceNamed(const NamedChoice<Enum> (&choices)[N], std::string_view name) {
-  for (const NamedChoice<Enum>& c : choices)
-    if (name == c.name) return c.value;
-  return std::nullopt;
-}
-/// The name of a choice ("" for a value the table lacks).
-template <class Enum, size_t N>
-const char* choiceName(const NamedChoice<Enum> (&choices)[N], Enum value) {
-  for (const NamedChoice<Enum>& c : choices)
-    if (c.value == value) return c.name;
-  return "";
-}
 inline constexpr NamedChoice<PatchFormFactorEstimator> kFormFactorEstimatorNames[] = {
     {"hemisphere", PatchFormFactorEstimator::Hemisphere},
     {"pairwise", PatchFormFactorEstimator::Pairwise},
@@ -229,10 +202,12 @@ class PatchRadiosity : public SurfaceSolution {
   void setGroupScales(std::span<const Color> scales) override;
   Color groupRadiosity(size_t group, size_t patch) const override;
   const PatchRadiosityStats& stats() const;
+  /// The stats as every method reports them (SolveReport), for the commands and the stats file.
+  SolveReport report() const override;
   /// Writes the solution file `path` (solution_file.h), atomically; `settings`: those it was
   /// solved with, which the file records (resolveMethodSettings makes the model that loads it).
   /// Throws std::runtime_error if it cannot be written.
-  void save(const std::string& path, const SolverSettings& settings) const;
+  void save(const std::string& path, const SolverSettings& settings) const override;
 
  private:
   friend class PatchModel;

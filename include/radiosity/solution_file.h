@@ -15,7 +15,7 @@ namespace rad {
 
 /// What a solution file says of itself.
 struct SolutionFileInfo {
-  std::string method;       ///< "patch" or "voxel"
+  std::string method;       ///< the name of the registered method that wrote it
   SolverSettings settings;  ///< every setting the method was solved with, by name
 };
 

@@ -68,6 +68,26 @@ struct LitMesh {
   std::vector<LitMeshGroup> groups;
 };
 
+/// A method's account of a solve: what a command prints and the stats file records.
+struct SolveReport {
+  /// The numbers of the run in a line, e.g. "4012 patches, form factors 1.2 s, ... residual 8e-4".
+  std::string summary;
+  /// The stats' counts (docs/ARCHITECTURE.md, "Stats JSON"): those the method has.
+  uint64_t patches = 0, voxels = 0, directions = 0, rays = 0;
+  double prepareSeconds = 0.0;  ///< once per geometry: meshing, voxelizing, form factors
+  double solveSeconds = 0.0;    ///< per light state: the lights' direct light and the bounces
+  int iterations = 0;
+  std::vector<double> residuals;  ///< relative residual per iteration
+  bool converged = false;         ///< the last residual fell below the tolerance
+  std::vector<std::string> warnings;
+  std::string resumed;  ///< what a checkpoint brought, said to the user; empty: nothing
+  /// The longest edge of triangles that show the solution's detail (a viewer's display mesh),
+  /// in scene units; 0: no size of its own.
+  float detailEdge = 0.0f;
+  /// The numbers particular to the method, a JSON object (the stats' entry under its name).
+  std::string detailsJson = "{}";
+};
+
 class SurfaceSolution : public SurfaceRadiance {
  public:
   /// The scene it solves.
@@ -92,6 +112,14 @@ class SurfaceSolution : public SurfaceRadiance {
   virtual void setGroupScales(std::span<const Color> scales);
   /// Element `index`'s radiosity from group `group`'s light alone, at its current scale.
   virtual Color groupRadiosity(size_t group, size_t index) const;
+
+  /// What the solve did (SolveReport); an empty report for a solution that keeps none.
+  virtual SolveReport report() const { return {}; }
+  /// Writes the solution file `path` (solution_file.h), atomically, recording `settings` (those
+  /// it was solved with) so that the same method and settings load it. Throws std::logic_error
+  /// for a method without the saveSolution capability, std::runtime_error if it cannot be
+  /// written.
+  virtual void save(const std::string& path, const SolverSettings& settings) const;
 
   /// Area-weighted means over the front-side elements of each scene object (with light groups,
   /// each group's share of its radiosity).

@@ -153,9 +153,11 @@ class VoxelRadiosity : public SurfaceSolution {
   void setGroupScales(std::span<const Color> scales) override;
   Color groupRadiosity(size_t group, size_t side) const override;
   const VoxelRadiosityStats& stats() const;
+  /// The stats as every method reports them (SolveReport), for the commands and the stats file.
+  SolveReport report() const override;
   /// Writes the solution file `path` (solution_file.h), atomically; `settings`: those it was
   /// solved with, which the file records. Throws std::runtime_error if it cannot be written.
-  void save(const std::string& path, const SolverSettings& settings) const;
+  void save(const std::string& path, const SolverSettings& settings) const override;
 
  private:
   friend class VoxelModel;

@@ -53,6 +53,10 @@ Color SurfaceSolution::groupRadiosity(size_t /*group*/, size_t /*index*/) const 
   throw std::invalid_argument("this solution's light groups were not solved apart");
 }
 
+void SurfaceSolution::save(const std::string& /*path*/, const SolverSettings& /*settings*/) const {
+  throw std::logic_error("this method's solutions are not saved to files");
+}
+
 void SurfaceSolution::exportCsv(const std::string& path) const {
   writeSurfaceElementsCsv(path, scene(), elementsOf(*this));
 }

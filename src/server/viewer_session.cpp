@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/ies_profile.h>
+#include <radiosity/radiosity_method.h>
 #include <radiosity/scene_builder.h>
 #include <tbb/parallel_for.h>
 
@@ -56,23 +57,25 @@ Json array(const Vec3& v) {
 
 }  // namespace
 
-ViewerSession::ViewerSession(const Scene& scene, std::vector<Light> lights, Relighter relighter,
-                             float displayEdge)
+ViewerSession::ViewerSession(const Scene& scene, std::vector<Light> lights, std::string method,
+                             std::unique_ptr<Relighting> relighting, float displayEdge)
     : scene_(scene),
       groups_(lightGroupsOf(scene, lights)),
       lights_(std::move(lights)),
       scales_(groups_.size(), Color(1.0f)),
-      relighter_(std::move(relighter)) {
+      method_(std::move(method)),
+      relighting_(std::move(relighting)) {
   start(displayEdge);
 }
 
-ViewerSession::ViewerSession(const Scene& scene, std::vector<Light> lights, VoxelRadiosity solution,
-                             float displayEdge)
+ViewerSession::ViewerSession(const Scene& scene, std::vector<Light> lights, std::string method,
+                             std::unique_ptr<SurfaceSolution> solution, float displayEdge)
     : scene_(scene),
       groups_(lightGroupsOf(scene, lights)),
       lights_(std::move(lights)),
       scales_(groups_.size(), Color(1.0f)),
-      voxel_(std::move(solution)) {
+      method_(std::move(method)),
+      fixed_(std::move(solution)) {
   start(displayEdge);
 }
 
@@ -85,8 +88,8 @@ void ViewerSession::start(float displayEdge) {
 }
 
 const SurfaceSolution& ViewerSession::solution() const {
-  if (relighter_) return relighter_->solution();
-  return *voxel_;
+  if (relighting_) return relighting_->solution();
+  return *fixed_;
 }
 
 void ViewerSession::shade() {
@@ -138,9 +141,9 @@ Json ViewerSession::summary() const {
           {"unit", unit.known() ? Json{{"name", unit.name}, {"metres", unit.metres}} : Json()},
           // The efficacy lux are taken at, the one IES and glTF candela are read with.
           {"lumens_per_watt", 1.0 / kWattsPerSrPerCandela},
-          {"method", relighter_ ? "patch" : "voxel"},
+          {"method", method_},
           {"patches", solution().elementCount()},
-          {"relights", relighter_.has_value()},
+          {"relights", relighting_ != nullptr},
           {"vertices", glbOrder_.size()},
           {"lights", lights},
           {"groups", groups},
@@ -220,10 +223,13 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
     std::lock_guard state(stateMutex_);
     std::vector<Light> lights = lights_;
     std::vector<Color> scales = scales_;
-    if (request.contains("lights") && voxel_)
-      refuse("/lights", "a voxel solution cannot be relit (serve --method patch moves lights)");
-    if (request.contains("groups") && voxel_ && voxel_->lightGroups().empty())
-      refuse("/groups", "this voxel solution solved its light groups together");
+    if (request.contains("lights") && fixed_)
+      refuse("/lights",
+             fmt::format("a {} solution cannot be relit (serve --method {} moves "
+                         "lights)",
+                         method_, fmt::join(methodsWith(&MethodCapabilities::relight), "|")));
+    if (request.contains("groups") && fixed_ && fixed_->lightGroups().empty())
+      refuse("/groups", fmt::format("this {} solution solved its light groups together", method_));
     if (request.contains("lights")) {
       const Json& list = request["lights"];
       if (!list.is_array()) refuse("/lights", "expected an array");
@@ -281,11 +287,11 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
       newest = asked_;
     }
     const auto start = std::chrono::steady_clock::now();
-    if (relighter_) {
-      relighter_->relight(lights, emission);
+    if (relighting_) {
+      relighting_->relight(lights, emission);
     } else {
       std::lock_guard state(stateMutex_);
-      voxel_->setGroupScales(scales_);  // the groups as solved, combined anew
+      fixed_->setGroupScales(scales_);  // the groups as solved, combined anew
     }
     shade();
     lastRelightMs_ =

@@ -1,16 +1,16 @@
 #pragma once
-// What the browser viewer shows and changes (radiosity serve): a patch solution kept up to date
-// by a Relighter as the page moves, aims, dims and switches lights, and the display mesh it is
-// drawn on (the scene's triangles cut to a viewing size, the same vertices whatever the patches
+// What the browser viewer shows and changes (radiosity serve): a solution kept up to date by its
+// method's relighting as the page moves, aims, dims and switches lights (or, by a method that does
+// not relight, shown and its light groups dimmed), and the display mesh it is drawn on (the
+// scene's triangles cut to a viewing size, the same vertices whatever the solution's elements
 // become) with each vertex's radiance. Thread-safe: the HTTP server calls it from many threads.
 // A light group's scale dims its lights and its glowing surfaces alike. Relight requests that
-// arrive while one runs are coalesced: the newest state wins, and every
-// waiting request is answered with the colours of that state.
+// arrive while one runs are coalesced: the newest state wins, and every waiting request is
+// answered with the colours of that state.
 
 #include <radiosity/light_groups.h>
-#include <radiosity/patch_radiosity.h>
-#include <radiosity/relighter.h>
-#include <radiosity/voxel_radiosity.h>
+#include <radiosity/relighting.h>
+#include <radiosity/surface_solution.h>
 
 #include <cstdint>
 #include <memory>
@@ -29,14 +29,14 @@ inline constexpr double kMaxViewerSeconds = 86400.0;
 
 class ViewerSession {
  public:
-  /// Takes the relighter (solved for `lights`) of a model of `scene`, which must outlive the
-  /// session; the display mesh's edges are at most `displayEdge` (scene units).
-  ViewerSession(const Scene& scene, std::vector<Light> lights, Relighter relighter,
-                float displayEdge);
-  /// A voxel solution of `scene` for `lights`: it cannot be relit (a light edit is refused),
-  /// but its light groups, when it solved them apart, are dimmed and switched as asked.
-  ViewerSession(const Scene& scene, std::vector<Light> lights, VoxelRadiosity solution,
-                float displayEdge);
+  /// Takes the relighting (solved for `lights`) of `scene`, which must outlive the session, by
+  /// the method named `method`; the display mesh's edges are at most `displayEdge` (scene units).
+  ViewerSession(const Scene& scene, std::vector<Light> lights, std::string method,
+                std::unique_ptr<Relighting> relighting, float displayEdge);
+  /// A solution of `scene` for `lights` by a method that does not relight: a light edit is
+  /// refused, but its light groups, when it solved them apart, are dimmed and switched as asked.
+  ViewerSession(const Scene& scene, std::vector<Light> lights, std::string method,
+                std::unique_ptr<SurfaceSolution> solution, float displayEdge);
 
   /// The scene, its lights (with ids, groups, and the state now) and the light groups, the
   /// camera and the mesh's size, as the page and scripts read them.
@@ -82,9 +82,10 @@ class ViewerSession {
   std::vector<Color> scales_;
   uint64_t asked_ = 0;  ///< generation of the newest asked state
 
-  mutable std::mutex relightMutex_;     ///< the relighter and what it shows
-  std::optional<Relighter> relighter_;  ///< the patch method's (one of the two is set)
-  std::optional<VoxelRadiosity> voxel_;
+  std::string method_;
+  mutable std::mutex relightMutex_;         ///< the relighting and what it shows
+  std::unique_ptr<Relighting> relighting_;  ///< one of the two is set
+  std::unique_ptr<SurfaceSolution> fixed_;
   std::unique_ptr<RayCaster> staticCaster_;  ///< the scene's own, for the objects' probes
   const SurfaceSolution& solution() const;
   void start(float displayEdge);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <radiosity/scene_loader.h>
+#include <radiosity/solver_settings.h>
 
 #include "scene_summary.h"
 
@@ -145,6 +146,18 @@ class JsonErrors : public testing::Test {
     return errorOf([&] { loadScene(path); });
   }
   const std::string obj_ = "\"" + kData + "small/small.obj\"";
+  // The error of a scene whose "solver" object is `solver`: the loader keeps its values, and
+  // resolving them against the methods' settings table judges them.
+  std::string resolve(const std::string& solver) {
+    const auto dir = test::scratchDir("json");
+    const std::string path =
+        test::writeFile(dir / "scene.json",
+                        "{\"geometry\": [{\"file\": " + obj_ + "}], \"solver\": " + solver + "}");
+    return errorOf([&] {
+      const Scene scene = loadScene(path);
+      resolveMethodSettings(scene.solver, {}, scene.name);
+    });
+  }
   std::string withLight(const std::string& light) {
     return "{\"geometry\": [{\"file\": " + obj_ + "}], \"lights\": [" + light + "]}";
   }
@@ -165,7 +178,7 @@ TEST_F(JsonErrors, UnknownKeysNameTheirPath) {
   expectMessage(load("{\"camera\": {\"fov\": 40}}"), {"/camera/fov", "fov_deg"});
   expectMessage(load("{\"geometry\": [{\"file\": " + obj_ + ", \"transfrom\": {}}]}"),
                 {"/geometry/0/transfrom"});
-  expectMessage(load("{\"solver\": {\"metod\": \"patch\"}}"), {"/solver/metod"});
+  expectMessage(resolve("{\"metod\": \"patch\"}"), {"/solver/metod"});
 }
 
 TEST_F(JsonErrors, UnitIsOneOfTheKnownNames) {
@@ -233,15 +246,14 @@ TEST_F(JsonErrors, WrongTypesAndRanges) {
                 {"/lights/0", "inner <= outer"});
   expectMessage(load(withLight(R"({"type": "laser", "position": [0,1,0]})")),
                 {"/lights/0/type", "laser"});
-  expectMessage(load("{\"solver\": {\"method\": \"magic\"}}"), {"/solver/method", "patch, voxel"});
-  expectMessage(load("{\"solver\": {\"spp\": 0}}"), {"/solver/spp", "out of range"});
+  expectMessage(resolve("{\"method\": \"magic\"}"), {"/solver/method", "patch, voxel"});
+  expectMessage(resolve("{\"spp\": 0}"), {"/solver/spp", "out of range"});
   // The patch method's choices are checked against the names the library spells them by.
-  expectMessage(load("{\"solver\": {\"solver\": \"gauss\"}}"),
+  expectMessage(resolve("{\"solver\": \"gauss\"}"),
                 {"/solver/solver", "'gauss'", "gauss-seidel, jacobi, progressive"});
-  expectMessage(load("{\"solver\": {\"ff_estimator\": \"rays\"}}"),
+  expectMessage(resolve("{\"ff_estimator\": \"rays\"}"),
                 {"/solver/ff_estimator", "hemisphere, pairwise, exact"});
-  expectMessage(load("{\"solver\": {\"shading\": \"gouraud\"}}"),
-                {"/solver/shading", "smooth, flat"});
+  expectMessage(resolve("{\"shading\": \"gouraud\"}"), {"/solver/shading", "smooth, flat"});
   expectMessage(load("{\"geometry\": [{\"file\": \"missing.obj\"}]}"),
                 {"missing.obj", "cannot open"});
   expectMessage(load("{\"geometry\": [{\"file\": \"a.stl\"}]}"), {"/geometry/0/file", "'.stl'"});

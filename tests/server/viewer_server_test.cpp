@@ -61,8 +61,9 @@ class ViewerServerTest : public ::testing::Test {
     web_ = fs::path(::testing::TempDir()) / "viewer_web";
     fs::create_directories(web_);
     std::ofstream(web_ / "index.html") << "<!doctype html><title>viewer</title>";
-    session_ = std::make_unique<ViewerSession>(scene_, scene_.lights,
-                                               Relighter(model_, scene_.lights), kDisplayEdge);
+    session_ = std::make_unique<ViewerSession>(scene_, scene_.lights, "patch",
+                                               std::make_unique<Relighter>(model_, scene_.lights),
+                                               kDisplayEdge);
     server_ = std::make_unique<ViewerServer>(*session_, web_);
     port_ = server_->bind("127.0.0.1", 0);
     thread_ = std::thread([this] { server_->run(); });
@@ -308,7 +309,8 @@ namespace {
 TEST(ViewerSession, DimsAGroupOfGlowingSurfaces) {
   const Scene scene = loadScene("cornell");
   const PatchModel model(scene, smallSettings());
-  ViewerSession session(scene, scene.lights, Relighter(model, scene.lights), kDisplayEdge);
+  ViewerSession session(scene, scene.lights, "patch",
+                        std::make_unique<Relighter>(model, scene.lights), kDisplayEdge);
   const std::string before = session.colors();
   const std::string after =
       session.applyLights(nlohmann::json::parse(R"({"groups": {"light": 0.25}})"));
@@ -335,8 +337,10 @@ TEST(ViewerSession, AVoxelSolutionDimsItsGroupsButMovesNoLight) {
   settings.sphereRadius = 6;
   settings.iterations = 3;
   settings.lightGroups = true;
-  ViewerSession session(scene, scene.lights, VoxelModel(scene, settings).solve(scene.lights),
-                        kDisplayEdge);
+  ViewerSession session(
+      scene, scene.lights, "voxel",
+      std::make_unique<VoxelRadiosity>(VoxelModel(scene, settings).solve(scene.lights)),
+      kDisplayEdge);
   EXPECT_EQ(session.summary()["method"], "voxel");
   const std::string before = session.colors();
   EXPECT_THROW(session.applyLights(nlohmann::json::parse(R"({"lights": [{"id": 0}]})")),
@@ -373,7 +377,8 @@ TEST(ViewerServer, AnswersProgressUntilItHasASession) {
   EXPECT_FALSE(nlohmann::json::parse(client.Get("/api/progress")->body)["ready"].get<bool>());
   const Scene scene = loadScene("cornell-spot");
   const PatchModel model(scene, smallSettings());
-  ViewerSession session(scene, scene.lights, Relighter(model, scene.lights), kDisplayEdge);
+  ViewerSession session(scene, scene.lights, "patch",
+                        std::make_unique<Relighter>(model, scene.lights), kDisplayEdge);
   server.serve(session);
   EXPECT_EQ(client.Get("/api/scene")->status, 200);
   EXPECT_TRUE(nlohmann::json::parse(client.Get("/api/progress")->body)["ready"].get<bool>());

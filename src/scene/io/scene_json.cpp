@@ -7,9 +7,7 @@
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/ies_profile.h>
-#include <radiosity/patch_radiosity.h>
 #include <radiosity/scene_builder.h>
-#include <radiosity/solver_settings.h>
 
 #include <algorithm>
 #include <cmath>
@@ -452,17 +450,18 @@ Camera readCamera(const JsonReader& r, const Json& j) {
 // A value of the "solver" object as its declaration reads it: integers for Integer settings
 // (16.0 too), doubles for Number ones. A value of the wrong kind is kept as it is, for the
 // declaration to refuse with its message.
-SettingValue settingValue(const JsonReader& r, const Json& j, const SettingDeclaration& d,
-                          const std::string& ptr) {
+// A "solver" value as JSON types it: which setting it is and whether its value is valid is
+// judged where the settings are resolved (resolveMethodSettings), against the table of the
+// registered methods' settings.
+SettingValue settingValue(const JsonReader& r, const Json& j, const std::string& ptr) {
   if (j.is_boolean()) return j.get<bool>();
   if (j.is_string()) return j.get<std::string>();
   if (!j.is_number()) r.fail(ptr, fmt::format("expected a value, got {}", j.type_name()));
+  if (j.is_number_unsigned())
+    return int64_t(std::min<uint64_t>(j.get<uint64_t>(), uint64_t(INT64_MAX)));
+  if (j.is_number_integer()) return j.get<int64_t>();
   const double v = j.get<double>();
   if (!std::isfinite(v)) r.fail(ptr, "expected a finite number");
-  const bool integral = j.is_number_integer() || v == std::floor(v);
-  if (d.type == SettingType::Integer && integral && std::abs(v) < 9.2e18)
-    return j.is_number_unsigned() ? int64_t(std::min<uint64_t>(j.get<uint64_t>(), INT64_MAX))
-                                  : int64_t(v);
   return v;
 }
 
@@ -470,19 +469,8 @@ SolverSettings readSolver(const JsonReader& r, const Json& j) {
   const std::string ptr = "/solver";
   r.requireObject(j, ptr);
   SolverSettings s;
-  for (const auto& [key, value] : j.items()) {
-    const SettingDeclaration* d = findSolverSetting(key);
-    if (!d) {
-      std::vector<std::string> names;
-      for (const SettingDeclaration& known : solverSettingDeclarations())
-        names.push_back(known.name);
-      r.fail(ptr + "/" + key,
-             fmt::format("unknown key (expected one of: {})", fmt::join(names, ", ")));
-    }
-    const SettingValue v = settingValue(r, value, *d, ptr + "/" + key);
-    if (const std::string why = d->problem(v); !why.empty()) r.fail(ptr + "/" + key, why);
-    s.values[key] = v;
-  }
+  for (const auto& [key, value] : j.items())
+    s.values[key] = settingValue(r, value, ptr + "/" + key);
   return s;
 }
 
