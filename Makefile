@@ -51,8 +51,9 @@ FUZZ_SECONDS ?= 60
 fuzz: build
 	@scripts/fuzz $(FUZZ_SECONDS) $(BUILD)
 
+# The files the ctest clang_format checks (scripts/format --check).
 format:
-	@clang-format -i $$(git ls-files '*.cpp' '*.h')
+	@scripts/format
 
 clean:
 	@rm -rf build $(OUT)
