@@ -2,13 +2,13 @@
 // on a hand-built Cornell-like box (five walls, a ceiling light, two blocks; 1 unit wide).
 #include <benchmark/benchmark.h>
 #include <radiosity/path_tracer.h>
+#include <radiosity/ray_caster.h>
 #include <radiosity/scene_builder.h>
 
 #include <array>
 #include <vector>
 
 #include "core/rng.h"
-#include <radiosity/ray_caster.h>
 
 namespace rad {
 namespace {

@@ -5,12 +5,12 @@
 #include <radiosity/scene_loader.h>
 #include <tbb/global_control.h>
 
+#include <map>
+#include <vector>
+
 #include "voxel/direction_set.h"
 #include "voxel/discrete_line_sweep.h"
 #include "voxel/voxelizer.h"
-
-#include <map>
-#include <vector>
 
 namespace rad {
 namespace {
@@ -33,8 +33,8 @@ void BM_DiscreteLineSweepPair(benchmark::State& state) {
   const VoxelGrid& grid = roomGrid(size_t(state.range(0)));
   const DirectionSet directions(38);
   std::vector<DiscreteLineSweep::SentLight> slots(grid.entryCount());
-  const DiscreteLineSweep::Source source =
-      DiscreteLineSweep::packSides(grid, [](size_t) { return Color(1.0f); }, slots);
+  const DiscreteLineSweep::Source source = DiscreteLineSweep::packSides(
+      grid, [](size_t) { return Color(1.0f); }, slots);
   std::vector<Color> gathered(grid.entryCount());
   // One thread: the kernel's own rate (a sweep shares each direction among all threads).
   const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);

@@ -7,18 +7,17 @@
 
 #include <radiosity/types.h>
 
-#include "core/rng.h"
-
-#include <glm/gtc/constants.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <glm/gtc/constants.hpp>
 #include <numeric>
 #include <span>
 #include <stdexcept>
 #include <utility>
 #include <vector>
+
+#include "core/rng.h"
 
 namespace rad {
 

@@ -1,9 +1,8 @@
 #pragma once
 // Primary rays of a pinhole camera (rad::Camera: vertical field of view, image row 0 at the top).
 
-#include <radiosity/scene.h>
-
 #include <radiosity/ray_caster.h>
+#include <radiosity/scene.h>
 
 namespace rad {
 

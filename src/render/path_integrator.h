@@ -3,10 +3,10 @@
 // ray and irradiance at a surface point. Stateless after construction, so one instance serves
 // every thread; randomness comes from the caller's Rng.
 
+#include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
 
 #include "core/rng.h"
-#include <radiosity/ray_caster.h>
 #include "lighting/direct_lighting.h"
 
 namespace rad {

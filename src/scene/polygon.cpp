@@ -22,7 +22,8 @@ double planeDeviation(std::span<const Vec3> corners) {
   for (const Vec3& c : corners) centroid += Vec3d(c);
   centroid /= double(corners.size());
   double deviation = 0.0;
-  for (const Vec3& c : corners) deviation = std::max(deviation, std::abs(glm::dot(Vec3d(c) - centroid, n / len)));
+  for (const Vec3& c : corners)
+    deviation = std::max(deviation, std::abs(glm::dot(Vec3d(c) - centroid, n / len)));
   return deviation;
 }
 
@@ -33,7 +34,8 @@ double orient2d(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
   return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-bool insideTriangle(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+bool insideTriangle(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b,
+                    const glm::dvec2& c) {
   return orient2d(a, b, p) >= 0.0 && orient2d(b, c, p) >= 0.0 && orient2d(c, a, p) >= 0.0;
 }
 
@@ -64,12 +66,16 @@ std::vector<UVec3> triangulatePolygon(std::span<const Vec3> corners, const Vec3d
     const size_t m = remaining.size();
     bool clipped = false;
     for (size_t i = 0; i < m && !clipped; ++i) {
-      const uint32_t ia = remaining[(i + m - 1) % m], ib = remaining[i], ic = remaining[(i + 1) % m];
+      const uint32_t ia = remaining[(i + m - 1) % m], ib = remaining[i],
+                     ic = remaining[(i + 1) % m];
       if (orient2d(p[ia], p[ib], p[ic]) <= 0.0) continue;  // reflex or flat corner: not an ear
       bool empty = true;
       for (uint32_t j : remaining) {
         if (j == ia || j == ib || j == ic) continue;
-        if (insideTriangle(p[j], p[ia], p[ib], p[ic])) { empty = false; break; }
+        if (insideTriangle(p[j], p[ia], p[ib], p[ic])) {
+          empty = false;
+          break;
+        }
       }
       if (!empty) continue;
       triangles.emplace_back(ia, ib, ic);

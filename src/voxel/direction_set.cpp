@@ -14,7 +14,9 @@ double cornerSolidAngle(double x, double y, double d) {
   return std::atan2(x * y, d * std::sqrt(x * x + y * y + d * d));
 }
 
-bool insideBall(const IVec3& v, int radius) { return v.x * v.x + v.y * v.y + v.z * v.z <= radius * radius; }
+bool insideBall(const IVec3& v, int radius) {
+  return v.x * v.x + v.y * v.y + v.z * v.z <= radius * radius;
+}
 
 }  // namespace
 

@@ -9,9 +9,8 @@
 
 #include <radiosity/types.h>
 
-#include <glm/vec3.hpp>
-
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <vector>
 
 namespace rad {
@@ -19,9 +18,9 @@ namespace rad {
 using IVec3 = glm::ivec3;
 
 struct DiscreteDirection {
-  IVec3 step;          ///< primitive integer direction (components divided by their gcd)
-  Vec3d unit;          ///< step normalized
-  double solidAngle;   ///< the direction's factor, in steradians
+  IVec3 step;         ///< primitive integer direction (components divided by their gcd)
+  Vec3d unit;         ///< step normalized
+  double solidAngle;  ///< the direction's factor, in steradians
 };
 
 class DirectionSet {

@@ -3,9 +3,9 @@
 // eight voxel centres around the point, each voxel contributing its side that faces the point's
 // way and lies in the point's surface, renormalized over the voxels that have such a side.
 
-#include "voxel/voxel_grid.h"
-
 #include <span>
+
+#include "voxel/voxel_grid.h"
 
 namespace rad {
 

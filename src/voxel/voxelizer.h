@@ -16,7 +16,7 @@
 namespace rad {
 
 struct VoxelizerSettings {
-  float voxelSize = 0.0f;     ///< edge length in scene units; 0: derive it from targetVoxels
+  float voxelSize = 0.0f;        ///< edge length in scene units; 0: derive it from targetVoxels
   size_t targetVoxels = 200000;  ///< approximate cell count when voxelSize is 0
 };
 

@@ -1,7 +1,6 @@
 // RayCaster against hand-placed triangles whose hits are worked out by hand.
-#include <radiosity/ray_caster.h>
-
 #include <gtest/gtest.h>
+#include <radiosity/ray_caster.h>
 #include <radiosity/scene_builder.h>
 #include <tbb/parallel_for.h>
 

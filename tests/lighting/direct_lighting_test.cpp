@@ -3,11 +3,11 @@
 #include "lighting/direct_lighting.h"
 
 #include <gtest/gtest.h>
+#include <radiosity/ray_caster.h>
 
 #include <cmath>
 
 #include "core/rng.h"
-#include <radiosity/ray_caster.h>
 #include "light_test_scenes.h"
 
 namespace rad {

@@ -1,6 +1,8 @@
 // Baking a SurfaceRadiance into the scene's triangles: the cut covers each triangle exactly, no
 // piece is longer than asked, a sliver becomes a row of pieces rather than a grid, and every
 // vertex carries the radiance at its own position.
+#include "output/baked_mesh.h"
+
 #include <gtest/gtest.h>
 #include <radiosity/scene_builder.h>
 
@@ -8,8 +10,6 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
-
-#include "output/baked_mesh.h"
 
 namespace rad {
 namespace {

@@ -1,11 +1,11 @@
 // Form factors against the closed forms of docs/references.md section 1.
 #include <gtest/gtest.h>
+#include <radiosity/ray_caster.h>
 
 #include <array>
 #include <cmath>
 #include <functional>
 
-#include <radiosity/ray_caster.h>
 #include "patch/form_factor_estimators.h"
 #include "patch/point_polygon_form_factor.h"
 #include "patch_test_scenes.h"
@@ -71,8 +71,8 @@ TEST(PointPolygonFormFactor, MatchesClosedFormsWithin1e6) {
   EXPECT_NEAR(pointPolygonFormFactor(origin, up, rectangle(1, 1, 1)), 0.138531606, 1e-6);  // 1(d)
   const std::vector<Vec3d> square{{-0.5, -0.5, 1}, {-0.5, 0.5, 1}, {0.5, 0.5, 1}, {0.5, -0.5, 1}};
   EXPECT_NEAR(pointPolygonFormFactor(origin, up, square), 0.2394564705, 1e-6);  // 1(f)
-  const std::vector<Vec3d> triangle{{0, 0, 1}, {0, 1, 1}, {1, 0, 1}};          // facing down
-  EXPECT_NEAR(pointPolygonFormFactor(origin, up, triangle), 0.0962250, 1e-6);  // 1(f)
+  const std::vector<Vec3d> triangle{{0, 0, 1}, {0, 1, 1}, {1, 0, 1}};           // facing down
+  EXPECT_NEAR(pointPolygonFormFactor(origin, up, triangle), 0.0962250, 1e-6);   // 1(f)
   // 1(e): disc of radius 1 at height 1 as a 4096-gon (docs/references.md 1(e): 0.4999999);
   // tilted by 20 degrees: cos(20) * 0.2 at height 2.
   auto disc = [](double h) {
@@ -110,8 +110,7 @@ Estimate estimate(const Scene& scene, float patchSize, FormFactorSettings settin
   for (int r = 0; r < runs; ++r) {
     settings.seed = uint64_t(1000 + r);
     FormFactorRows rows = estimateFormFactors(mesh, caster, settings, {});
-    values.push_back(
-        test::objectFormFactor(mesh, FormFactorTable::fromRows(std::move(rows))));
+    values.push_back(test::objectFormFactor(mesh, FormFactorTable::fromRows(std::move(rows))));
   }
   Estimate e;
   for (double v : values) e.mean += v / runs;
@@ -165,7 +164,8 @@ TEST(HemisphereFormFactors, EmitterColumnsExactPerPatch) {
     if (mesh.patches()[p].object == light) settings.exactColumns.push_back(p);
   ASSERT_EQ(settings.exactColumns.size(), 1u);
   const uint32_t lightPatch = settings.exactColumns[0];
-  FormFactorTable table = FormFactorTable::fromRows(estimateFormFactors(mesh, caster, settings, {}));
+  FormFactorTable table =
+      FormFactorTable::fromRows(estimateFormFactors(mesh, caster, settings, {}));
   std::vector<float> area;
   for (const Patch& p : mesh.patches()) area.push_back(p.area);
   table.symmetrize(area);
@@ -180,10 +180,9 @@ TEST(HemisphereFormFactors, EmitterColumnsExactPerPatch) {
     constexpr int kSide = 32;
     for (int y = 0; y < kSide; ++y)
       for (int x = 0; x < kSide; ++x)
-        reference +=
-            test::pointToParallelRectangleF(lo3.x + (hi3.x - lo3.x) * (x + 0.5) / kSide,
-                                            lo3.y + (hi3.y - lo3.y) * (y + 0.5) / kSide, lo, hi,
-                                            lo, hi, c);
+        reference += test::pointToParallelRectangleF(lo3.x + (hi3.x - lo3.x) * (x + 0.5) / kSide,
+                                                     lo3.y + (hi3.y - lo3.y) * (y + 0.5) / kSide,
+                                                     lo, hi, lo, hi, c);
     reference /= kSide * kSide;
     double value = 0.0;
     const auto columns = table.columns(i);

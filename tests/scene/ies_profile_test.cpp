@@ -1,10 +1,9 @@
 // IES LM-63 parser and evaluator. References: docs/references.md section 4 (layout, symmetry,
 // the flux of the photompy tilt file) and closed-form integrals stated beside each test.
 
+#include <gtest/gtest.h>
 #include <radiosity/error.h>
 #include <radiosity/ies_profile.h>
-
-#include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
@@ -115,11 +114,13 @@ TEST(IesProfile, TypeBFile) {
 // A Type C table with constant intensity I over the lower hemisphere emits 2 pi I lumens;
 // over the whole sphere 4 pi I (the integral of sin V over [0, pi/2] is 1, over [0, pi] 2).
 TEST(IesProfile, ConstantTablesHaveClosedFormFlux) {
-  const std::string lower = "IESNA:LM-63-2002\n[TEST] t\nTILT=NONE\n"
-                            "1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 45 90\n0\n100 100 100\n";
+  const std::string lower =
+      "IESNA:LM-63-2002\n[TEST] t\nTILT=NONE\n"
+      "1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 45 90\n0\n100 100 100\n";
   EXPECT_NEAR(parseIesProfile(lower, "lower.ies").totalFlux(), 2 * kPi * 100, 1e-9);
-  const std::string sphere = "IESNA:LM-63-2002\nTILT=NONE\n"
-                             "1 -1 2 3 1 1 2 0 0 0\n0.5 1 10\n0 90 180\n0\n100 100 100\n";
+  const std::string sphere =
+      "IESNA:LM-63-2002\nTILT=NONE\n"
+      "1 -1 2 3 1 1 2 0 0 0\n0.5 1 10\n0 90 180\n0\n100 100 100\n";
   const IesProfile p = parseIesProfile(sphere, "sphere.ies");
   // Multiplier 2 and ballast factor 0.5 cancel.
   EXPECT_NEAR(p.totalFlux(), 4 * kPi * 100, 1e-9);
@@ -130,8 +131,9 @@ TEST(IesProfile, ConstantTablesHaveClosedFormFlux) {
 // I(H) piecewise linear through 100, 200, 300, 200 at 0, 90, 180, 270 (and 100 at 360), constant
 // in V over the sphere: flux = 2 * integral of I dH = 2 * (pi/2)(150 + 250 + 250 + 150) = 800 pi.
 TEST(IesProfile, FullCircleWrapsAround) {
-  const std::string text = "IESNA:LM-63-1995\nTILT=NONE\n1 1000 1 2 4 1 2 0 0 0\n1 1 10\n0 180\n"
-                           "0 90 180 270\n100 100\n200 200\n300 300\n200 200\n";
+  const std::string text =
+      "IESNA:LM-63-1995\nTILT=NONE\n1 1000 1 2 4 1 2 0 0 0\n1 1 10\n0 180\n"
+      "0 90 180 270\n100 100\n200 200\n300 300\n200 200\n";
   const IesProfile p = parseIesProfile(text, "full.ies");
   EXPECT_NEAR(p.totalFlux(), 800 * kPi, 1e-9);
   EXPECT_NEAR(at(p, 90, 315), 150.0, 1e-9);
@@ -140,8 +142,9 @@ TEST(IesProfile, FullCircleWrapsAround) {
 
 TEST(IesProfile, BilateralSymmetryFolds) {
   // Last H = 180: mirror about the 0-180 plane, so H = 270 reads the 90 plane.
-  const std::string text = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 3 1 2 0 0 0\n1 1 10\n0 90\n"
-                           "0 90 180\n10 10\n20 20\n30 30\n";
+  const std::string text =
+      "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 3 1 2 0 0 0\n1 1 10\n0 90\n"
+      "0 90 180\n10 10\n20 20\n30 30\n";
   const IesProfile p = parseIesProfile(text, "bilateral.ies");
   EXPECT_NEAR(at(p, 45, 270), 20.0, 1e-9);
   EXPECT_NEAR(at(p, 45, 225), 25.0, 1e-9);
@@ -162,7 +165,8 @@ TEST(IesProfile, BadInputNamesFileAndLine) {
   EXPECT_NE(m.find("found 4"), std::string::npos) << m;
   m = messageOf(head + "0 22.5 45 67.5 90\n0\n1 2 3 4 5 6\n", "extra.ies");
   EXPECT_NE(m.find("extra.ies:7"), std::string::npos) << m;
-  m = messageOf("IESNA:LM-63-2002\nTILT=lamp.tlt\n1 -1 1 1 1 1 2 0 0 0\n1 1 10\n0\n0\n1\n", "t.ies");
+  m = messageOf("IESNA:LM-63-2002\nTILT=lamp.tlt\n1 -1 1 1 1 1 2 0 0 0\n1 1 10\n0\n0\n1\n",
+                "t.ies");
   EXPECT_NE(m.find("t.ies:2"), std::string::npos) << m;
   EXPECT_NE(m.find("not supported"), std::string::npos) << m;
   m = messageOf("IESNA:LM-63-2002\n[TEST] x\n", "notilt.ies");

@@ -2,10 +2,9 @@
 // Test helpers: order-independent summaries of a loaded scene, so that the same geometry read
 // from different formats (or built in code) can be compared.
 
+#include <gtest/gtest.h>
 #include <radiosity/error.h>
 #include <radiosity/scene.h>
-
-#include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
@@ -45,7 +44,8 @@ inline std::map<std::string, ObjectSummary> summarize(const Scene& s, double pos
                 p2 = s.positions[s.triangles[t].z];
     o.volume += glm::dot(p0, glm::cross(p1, p2)) / 6.0;
     o.areaByNormal[key(s.triangleNormal(t), 1e-3)] += a;
-    for (int k = 0; k < 3; ++k) o.positions.insert(key(s.positions[s.triangles[t][k]], positionStep));
+    for (int k = 0; k < 3; ++k)
+      o.positions.insert(key(s.positions[s.triangles[t][k]], positionStep));
     ++o.triangles;
     o.material = &s.materialOf(t);
   }

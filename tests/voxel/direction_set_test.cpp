@@ -1,8 +1,8 @@
 #include "voxel/direction_set.h"
 
 #include <gtest/gtest.h>
-#include <glm/gtc/constants.hpp>
 
+#include <glm/gtc/constants.hpp>
 #include <numeric>
 #include <set>
 #include <tuple>

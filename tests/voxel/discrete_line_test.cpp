@@ -1,21 +1,20 @@
 // Properties of the discrete lines and of the voxelization they run through.
-#include "core/rng.h"
-#include "voxel/direction_set.h"
-#include "voxel/discrete_line_sweep.h"
-#include "voxel/voxelizer.h"
-
-#include "voxel/voxel_test_scenes.h"
-
-#include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <glm/gtc/constants.hpp>
 #include <map>
 #include <random>
 #include <set>
+
+#include "core/rng.h"
+#include "voxel/direction_set.h"
+#include "voxel/discrete_line_sweep.h"
+#include "voxel/voxel_test_scenes.h"
+#include "voxel/voxelizer.h"
 
 namespace rad {
 namespace {
@@ -144,8 +143,7 @@ TEST(DiscreteLines, LineTableHoldsOnlyTheLinesThroughTheBox) {
   }
   DiscreteLineSweep diagonal(grid, {});
   diagonal.lineOfEachCell(IVec3(1, 1, 1));
-  EXPECT_EQ(diagonal.lineCount(),
-            size_t(n.x * n.y + n.y * n.z + n.z * n.x - n.x - n.y - n.z + 1));
+  EXPECT_EQ(diagonal.lineCount(), size_t(n.x * n.y + n.y * n.z + n.z * n.x - n.x - n.y - n.z + 1));
 }
 
 TEST(DiscreteLines, SweepOrderAdvancesAlongTheDirection) {
@@ -472,8 +470,8 @@ TEST(DiscreteLineSweep, FacingPlatesGetTheSameLightWhicheverWayTheLinesRun) {
   // back: both ways must give every side B cos w = 1 along the normal.
   const VoxelGrid grid = facingPlates();
   std::vector<DiscreteLineSweep::SentLight> slots(grid.entryCount());
-  const DiscreteLineSweep::Source source =
-      DiscreteLineSweep::packSides(grid, [](size_t) { return Color(1.0f); }, slots);
+  const DiscreteLineSweep::Source source = DiscreteLineSweep::packSides(
+      grid, [](size_t) { return Color(1.0f); }, slots);
   for (const IVec3& step : {IVec3(1, 0, 0), IVec3(-1, 0, 0)}) {
     DiscreteLineSweep sweep(grid, {});
     std::vector<Color> gathered(grid.entryCount(), Color(0.0f));

@@ -1,13 +1,12 @@
 #pragma once
 // Scenes for the voxel method's tests, built by hand (independent of the loaders).
 
-#include "render/test_scenes.h"
-
 #include <radiosity/scene_builder.h>
 
+#include <cmath>
 #include <glm/gtc/constants.hpp>
 
-#include <cmath>
+#include "render/test_scenes.h"
 
 namespace rad::test {
 
@@ -25,7 +24,8 @@ inline void addSphere(SceneBuilder& b, const Vec3& c, float r, bool inward, uint
   auto point = [&](int i, int j) {
     const float theta = glm::pi<float>() * float(i) / float(rings);
     const float phi = 2.0f * glm::pi<float>() * float(j) / float(segments);
-    return c + r * Vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+    return c + r * Vec3(std::sin(theta) * std::cos(phi), std::cos(theta),
+                        std::sin(theta) * std::sin(phi));
   };
   for (int i = 0; i < rings; ++i)
     for (int j = 0; j < segments; ++j) {

@@ -3,13 +3,13 @@
 // around the light's 130 x 105 mm hole, the warped red wall is two triangles, the front is open
 // and the blocks have no bottoms. Materials: docs/references.md 2.5.
 
-#include "scene/builtin/builtin_scenes.h"
-
 #include <radiosity/scene_builder.h>
 
 #include <array>
 #include <initializer_list>
 #include <vector>
+
+#include "scene/builtin/builtin_scenes.h"
 
 namespace rad {
 
@@ -45,16 +45,25 @@ enum { kWhite, kRed, kGreen, kLight };
 const std::vector<Part>& parts() {
   static const std::vector<Part> kParts{
       {"floor", kWhite, {{1, 2, 3, 4}}},
-      {"ceiling", kWhite,
-       {{5, 6, 7, 8}, {6, 9, 10, 7}, {9, 11, 12, 10}, {8, 7, 13, 14}, {10, 12, 15, 16},
-        {14, 13, 17, 18}, {13, 16, 19, 17}, {16, 15, 20, 19}}},
+      {"ceiling",
+       kWhite,
+       {{5, 6, 7, 8},
+        {6, 9, 10, 7},
+        {9, 11, 12, 10},
+        {8, 7, 13, 14},
+        {10, 12, 15, 16},
+        {14, 13, 17, 18},
+        {13, 16, 19, 17},
+        {16, 15, 20, 19}}},
       {"back_wall", kWhite, {{4, 3, 18, 20}}},
       {"right_wall_green", kGreen, {{3, 2, 5, 18}}},
       {"left_wall_red", kRed, {{1, 4, 20}, {1, 20, 11}}},
       {"light", kLight, {{10, 16, 13, 7}}},
-      {"short_block", kWhite,
+      {"short_block",
+       kWhite,
        {{21, 22, 23, 24}, {25, 24, 23, 26}, {27, 21, 24, 25}, {28, 22, 21, 27}, {26, 23, 22, 28}}},
-      {"tall_block", kWhite,
+      {"tall_block",
+       kWhite,
        {{29, 30, 31, 32}, {33, 29, 32, 34}, {34, 32, 31, 35}, {35, 31, 30, 36}, {36, 30, 29, 33}}},
   };
   return kParts;

@@ -4,7 +4,6 @@
 #include <radiosity/scene_builder.h>
 
 #include <glm/mat4x4.hpp>
-
 #include <string>
 
 namespace rad {

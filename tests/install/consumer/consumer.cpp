@@ -5,6 +5,7 @@
 
 int main() {
   const rad::Scene scene = rad::loadScene("cornell");
-  std::printf("cornell: %zu objects, %zu triangles\n", scene.objects.size(), scene.triangles.size());
+  std::printf("cornell: %zu objects, %zu triangles\n", scene.objects.size(),
+              scene.triangles.size());
   return scene.objects.size() == 8 ? 0 : 1;
 }
