@@ -1,4 +1,5 @@
-// `radiosity bench [pathtrace|patch|relight|voxel|voxel-scaling|interior|all] [--json]`: throughput
+// `radiosity bench [pathtrace|patch|relight|probe|voxel|all|voxel-scaling|interior|distributed]
+// [--json]`: throughput
 // numbers that notes and reports quote. Fixed workloads on built-in scenes, so numbers from
 // different machines compare.
 #include <fmt/format.h>

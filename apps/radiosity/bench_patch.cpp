@@ -126,8 +126,9 @@ double directLightPassMs(const Scene& scene, const PatchMesh& mesh, int points) 
 }
 
 // cornell-spot: the lights' direct light, adaptive subdivision and the solve on the refined mesh;
-// then the spot moved 10 cm on the same model (what relighting pays without the next issue's
-// delta propagation: the rows of the nodes the new beam edge made, the table, the solve).
+// then the spot moved 10 cm on the same model (what a solve of the model pays for moved lights,
+// without the Relighter's shooting of the change: the rows of the nodes the new beam edge made,
+// the table, the solve).
 nlohmann::json measureLights(Console& console) {
   const Scene scene = loadScene("cornell-spot");
   console.detail("bench patch: cornell-spot, adaptive subdivision");

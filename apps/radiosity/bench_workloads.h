@@ -37,8 +37,9 @@ nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius, siz
 nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxVoxels,
                                  const std::string& outputDirectory);
 
-/// A real interior's size (atrium:`detail`, 252k triangles at 180) rendered by each method with
-/// its defaults, each in a process of its own: the time of each stage and its peak memory.
+/// A real interior's size (atrium-textured:`detail`, 252k triangles at 180) rendered by each
+/// method with its defaults, each in a process of its own: the time of each stage and its peak
+/// memory.
 nlohmann::json benchInterior(Console& console, int detail);
 
 /// One voxel solve (room:16 at `voxels`, R = 12) on one process with one thread against the same

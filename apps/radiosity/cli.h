@@ -1,5 +1,6 @@
 #pragma once
-// The command line: `radiosity render|solve|bench|info ...` (contract in docs/ARCHITECTURE.md).
+// The command line: `radiosity render|solve|animate|serve|info|bench ...` (contract in
+// docs/ARCHITECTURE.md).
 
 #include <iosfwd>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Steps shared by the commands that compute light transport (render, solve).
+// Steps shared by the commands that compute light transport (render, solve, animate, serve).
 
 #include <radiosity/scene.h>
 

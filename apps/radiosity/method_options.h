@@ -1,7 +1,8 @@
 #pragma once
-// The light-transport method and its settings, shared by `render` and `solve`: each setting is
-// a flag and a key of the scene's "solver" object; the flag wins, then the scene, then the
-// method's default. Also the solve both commands run: progress, warnings and stats.
+// The light-transport method and its settings, shared by `render`, `solve`, `animate` and
+// `serve`: each setting is a flag and a key of the scene's "solver" object; the flag wins, then
+// the scene, then the method's default. Also the solve the commands run: progress, warnings and
+// stats.
 
 #include <radiosity/light_groups.h>
 #include <radiosity/radiosity_method.h>

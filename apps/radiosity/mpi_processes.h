@@ -1,8 +1,9 @@
 #pragma once
-// `mpirun -np N radiosity ...`: one run split among N processes (MPI ranks). The voxel method
-// sweeps a block of the direction pairs in each process and adds the blocks' light in a fixed
-// order (process_share.h); rank 0 alone writes outputs and speaks. Built without MPI, or started
-// without mpirun, the tool runs as one process.
+// `mpirun -np N radiosity ...`: one run split among N processes (MPI ranks). Each method takes
+// its share of the work through process_share.h (the voxel method a block of the direction pairs
+// and of the first shot, the patch method rows of form factors and Jacobi's sweeps, the path
+// tracer every N-th tile) and the shares are added in a fixed order; rank 0 alone writes outputs
+// and speaks. Built without MPI, or started without mpirun, the tool runs as one process.
 
 #include <radiosity/process_share.h>
 

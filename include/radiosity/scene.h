@@ -73,8 +73,9 @@ struct Face {
   float area = 0.0f;
 };
 
-/// Object: the light a dynamic object reflects, summarized at its centre
-/// (lighting/dynamic_objects.h; made by the program, not read from scene files).
+/// Object: one axis lobe of the light a dynamic object reflects, leaving from the centroid of its
+/// faces that send it (lighting/dynamic_objects.h; made by the program, not read from scene
+/// files).
 enum class LightType { Point, Spot, Ies, Object };
 /// "point", "spot", "ies" or "object", as the scene file and the stats spell it.
 const char* lightTypeName(LightType type);

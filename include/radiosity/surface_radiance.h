@@ -25,7 +25,7 @@ struct SurfaceHit {
 class SurfaceRadiance {
  public:
   virtual ~SurfaceRadiance() = default;
-  /// Radiance (W / (m^2 sr), scene units) leaving the surface at `hit` toward the viewer;
+  /// Radiance (W / (sr scene unit^2)) leaving the surface at `hit` toward the viewer;
   /// 0 from the back of a one-sided face. Safe to call from many threads at once.
   virtual Color radiance(const SurfaceHit& hit) const = 0;
   /// True where indirectIrradiance() answers: the method kept its direct light apart.

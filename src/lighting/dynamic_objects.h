@@ -1,13 +1,16 @@
 #pragma once
 // Objects that move, lit by the static solution (after "real-time radiosity II"'s radiosity
-// mapping): a probe at each object's centre sees the static scene's light (CubeProbe), and each
-// of its vertices takes its irradiance from that view plus the direct light of the point, spot
-// and IES lights by shadow rays; hits on the object are shaded by interpolating its vertices'
-// irradiance, smooth across its mesh. What an object reflects goes back to the static scene as a
-// light at its centre (LightType::Object): its radiant intensity toward d blends six lobes, the
-// object's faces summarized by axis, sum_k P_k max(0, d . e_k) with P_k = sum over its
-// triangles of B A max(0, n . e_k) / pi. Not yet: several probes for a large object, recapture
-// only when something moved, the object's shadow in the static solution.
+// mapping): a probe at each object's centre (or a grid of probes over a large object, blended by
+// inverse squared distance) sees the static scene's light (CubeProbe), and each of its vertices
+// takes its irradiance from that view plus the direct light of the point, spot and IES lights by
+// shadow rays; hits on the object are shaded by interpolating its vertices' irradiance, smooth
+// across its mesh. A ProbeCache keeps the probes of an object that barely moved under unchanged
+// lights. What an object reflects goes back to the static scene as six lights (LightType::Object,
+// objectLights), one per axis lobe, each leaving from the centroid of the faces that send it:
+// lobe k sends P_k max(0, d . e_k) toward d, P_k = sum over the object's triangles facing e_k of
+// B A max(0, n . e_k) / pi. The commands solve the static scene again with those lights, its
+// point, spot and IES lights' direct light then shadowed by the placed objects; the bounce light
+// and the glowing surfaces' light that an object blocks are not taken out of the static solution.
 
 #include <radiosity/surface_solution.h>
 

@@ -28,7 +28,7 @@ struct LightRefinementSettings {
 };
 
 struct LightRefinement {
-  std::vector<Color> direct;  ///< D per patch of the refined mesh (patchLightIrradiance's mean)
+  std::vector<Color> direct;  ///< D per patch of the refined mesh (lightOnPatch's)
   size_t basePatches = 0;     ///< patches before refinement
   size_t split = 0;           ///< patches split, over all rounds
   int rounds = 0;             ///< rounds that split something

@@ -1,12 +1,14 @@
 #pragma once
 // The viewer's HTTP server (cpp-httplib): the JSON API over a ViewerSession and the page's
-// static files. Binds 127.0.0.1 unless told otherwise. The API (README, "Viewer"):
+// static files. Binds 127.0.0.1 unless told otherwise. The API (docs/ARCHITECTURE.md, "The
+// viewer's server"):
 //   GET  /api/progress  {"ready", "progress"}: the solve's progress before the rest answers (503)
 //   GET  /api/scene     the session's summary (JSON)
 //   GET  /api/mesh.glb  the display mesh (binary glTF)
 //   GET  /api/colors    its vertices' linear radiance, float32 RGB in the .glb's vertex order
 //   GET  /api/irradiance  its vertices' irradiance H (W per square scene unit), as the colours
 //   GET  /api/objects.csv  each object's mean irradiance and radiosity
+//   GET  /api/dynamic?t=   the dynamic objects placed at t seconds, lit by probes (JSON)
 //   POST /api/lights    a light state (JSON, see ViewerSession::applyLights); answers the new
 //                       colours as /api/colors does, with the relight's time in X-Relight-Ms
 // A bad request gets 400 with {"error": message} and changes nothing. Static files come only

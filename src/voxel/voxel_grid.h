@@ -25,7 +25,7 @@ struct VoxelMaterial {
 };
 
 /// What a voxel side is made of and whose it is. Sides share a handful of these, so each side
-/// keeps a 4-byte index instead of its material, object and face (9 bytes).
+/// keeps an index into them (VoxelGrid::surface: 2 bytes, 4 past 65,536 surfaces).
 struct VoxelSurface {
   VoxelMaterial material;
   uint32_t object = 0;    ///< the scene object the side belongs to
