@@ -26,7 +26,7 @@ TEST(VoxelCornell, SurfaceMeansMatchThePathTracerAndThePatchMethod) {
   for (const ObjectRadiometry& o : patch.objectRadiometry()) patches[o.name] = o;
 
   // A coarse solve to keep the test fast (20k voxels, R = 12: 1,250 directions); measured
-  // 0.6-3.6% below the path tracer. Finer settings come closer (docs/ARCHITECTURE.md).
+  // 0.6-3.6% below the path tracer. Finer settings come closer (docs/RESULTS.md).
   VoxelRadiositySettings settings;
   settings.targetVoxels = 20000;
   settings.sphereRadius = 12;
