@@ -183,8 +183,8 @@ Scene floorUnderALight(bool blocker) {
   test::addQuadFacing(b, test::axisSquare(Vec3(0.0f), 2, 2.0f), Vec3(0, 0, 1), grey,
                       b.addObject("floor"));
   if (blocker)
-    test::addQuadFacing(b, test::axisSquare(Vec3(-1.0f / 6.0f, -1.0f / 6.0f, 0.5f), 2, 0.1f), Vec3(0, 0, 1),
-                        grey, b.addObject("blocker"));
+    test::addQuadFacing(b, test::axisSquare(Vec3(-1.0f / 6.0f, -1.0f / 6.0f, 0.5f), 2, 0.1f),
+                        Vec3(0, 0, 1), grey, b.addObject("blocker"));
   Scene scene = b.build();
   Light light;
   light.position = Vec3(0.0f, 0.0f, 1.0f);
