@@ -17,7 +17,6 @@
 #include "command_support.h"
 #include "commands.h"
 #include "frame_files.h"
-#include "lighting/dynamic_objects.h"
 #include "method_options.h"
 #include "picture_options.h"
 
@@ -91,12 +90,12 @@ int runAnimate(AnimateOptions& o, Console& console) {
   frameFiles.createDirectory();
 
   InterruptGuard interruptible;
-  const RayCaster caster(scene);  // the run's one BVH
+  const RadiosityEngine engine(scene, o.method.settings());
   auto timeOf = [&](int frame) { return o.start + double(frame) / o.fps; };
   Stopwatch solveTime;
   const std::vector<Light> first = lightsAt(scene, timeOf(0), groups, scales);
   const std::unique_ptr<Relighting> relighting =
-      startRelighting(scene, caster, o.method.settings(), first, o.solution, o.relight, console);
+      startRelighting(engine, first, o.solution, o.relight, console);
   Relighting& relighter = *relighting;
   stats.timingsSeconds.solve = solveTime.seconds();
 
@@ -113,25 +112,12 @@ int runAnimate(AnimateOptions& o, Console& console) {
         std::vector<Light> lights = lightsAt(scene, record.t, groups, scales);
         if (lights != lastLights) probes.invalidate();
         lastLights = lights;
-        if (scene.dynamicObjects.empty()) {
-          record.relight = relighter.relight(lights);
-        } else {
-          // The objects in place: their shadows, and their reflected light as the last frame's
-          // solution lit them (a frame behind).
-          const Scene placed = scene.withDynamicObjectsAt(record.t);
-          const RayCaster placedCaster(placed);
-          for (const Light& l :
-               DynamicObjectLighting(placed, relighter.solution(), caster, placedCaster)
-                   .objectLights())
-            lights.push_back(l);
-          record.relight = relighter.relight(lights, {}, &placedCaster);
-        }
+        record.relight = engine.relight(relighter, lights, record.t);
         record.relightMs = record.relight.milliseconds;
       }
       Stopwatch renderTime;
-      const Image image =
-          o.picture.render(scene, caster, camera, relighter.solution(), o.method.settings(),
-                           record.t, progressPart(progress, f, o.frames), &probes);
+      const Image image = o.picture.render(engine, relighter.solution(), camera, record.t,
+                                           progressPart(progress, f, o.frames), &probes);
       writeImage(frameFiles.name(f), image, o.picture.writeOptions());
       record.renderMs = 1e3 * renderTime.seconds();
       records.push_back(record);

@@ -11,7 +11,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "bench_workloads.h"
-#include "lighting/cube_probe.h"
+#include "probes/cube_probe.h"
 
 namespace rad::cli {
 

@@ -14,7 +14,6 @@
 
 #include "command_support.h"
 #include "core/cache_directory.h"
-#include "lighting/dynamic_objects.h"
 #include "mpi_processes.h"
 
 namespace rad::cli {
@@ -22,16 +21,14 @@ namespace rad::cli {
 namespace {
 
 // The light groups, their scales and power, and the per-object means.
-void reportObjects(const Scene& scene, const RayCaster& caster, const SurfaceSolution& solution,
-                   double seconds, const StatsReport& report) {
+void reportObjects(const RadiosityEngine& engine, const SurfaceSolution& solution, double seconds,
+                   const StatsReport& report) {
   if (!report.objectMeans) return;
+  const Scene& scene = engine.scene();
   report.stats.objects = solution.objectRadiometry();
-  if (!scene.dynamicObjects.empty()) {
-    const Scene placed = scene.withDynamicObjectsAt(seconds);
-    const RayCaster placedCaster(placed);
-    for (const auto& s : DynamicObjectLighting(placed, solution, caster, placedCaster).summaries())
+  if (!scene.dynamicObjects.empty())
+    for (const DynamicObjectSummary& s : engine.objectsAt(solution, seconds).summaries())
       report.stats.dynamicObjects.push_back({s.name, s.meanIrradiance, s.lobes});
-  }
   const std::span<const LightGroup> groups = solution.lightGroups();
   for (size_t g = 0; g < groups.size(); ++g) {
     const Color scale = solution.groupScales()[g];
@@ -187,29 +184,16 @@ void MethodOptions::resolve(const Scene& scene) {
   settings_.processes = MpiProcesses::share();
 }
 
-std::unique_ptr<SurfaceSolution> solveSurfaces(const Scene& scene, const RayCaster& caster,
-                                               const MethodSettings& settings,
+std::unique_ptr<SurfaceSolution> solveSurfaces(const RadiosityEngine& engine,
                                                const SolutionSource& source, Console& console,
                                                const StatsReport& report) {
-  const std::unique_ptr<MethodModel> model =
-      radiosityMethod(settings.method).prepare(scene, caster, settings);
-  const std::string label = model->solveLabel();
+  const Scene& scene = engine.scene();
+  std::string label = engine.model().solveLabel();
+  if (!scene.dynamicObjects.empty()) label += ", then with the objects' bounce";
   std::unique_ptr<SurfaceSolution> solution =
-      source.file.empty() ? model->solve(scene.lights, nullptr, console.progress(label))
-                          : model->load(source.file, scene.lights);
+      source.file.empty() ? engine.solve(scene.lights, source.seconds, console.progress(label))
+                          : engine.load(source.file);
   console.finishProgress();
-  if (!scene.dynamicObjects.empty() && source.file.empty()) {
-    // Once more with the objects in place: their reflected light as lights, and their shadows
-    // in the lights' direct light.
-    const Scene placed = scene.withDynamicObjectsAt(source.seconds);
-    const RayCaster placedCaster(placed);
-    std::vector<Light> lights = scene.lights;
-    for (const Light& l :
-         DynamicObjectLighting(placed, *solution, caster, placedCaster).objectLights())
-      lights.push_back(l);
-    solution = model->solve(lights, &placedCaster, console.progress(label + ", objects' bounce"));
-    console.finishProgress();
-  }
   const SolveReport r = solution->report();
   for (const std::string& w : r.warnings) console.warn(w);
   if (!r.resumed.empty()) console.info(r.resumed);
@@ -235,31 +219,28 @@ std::unique_ptr<SurfaceSolution> solveSurfaces(const Scene& scene, const RayCast
   stats.residual = r.residuals.empty() ? 0.0 : r.residuals.back();
   stats.converged = r.converged;
   stats.residuals = r.residuals;
-  reportObjects(scene, caster, *solution, source.seconds, report);
+  reportObjects(engine, *solution, source.seconds, report);
   return solution;
 }
 
-std::unique_ptr<Relighting> startRelighting(const Scene& scene, const RayCaster& caster,
-                                            const MethodSettings& settings,
+std::unique_ptr<Relighting> startRelighting(const RadiosityEngine& engine,
                                             std::span<const Light> lights,
                                             const std::string& solutionFile,
                                             const RelightSettings& relight, Console& console,
                                             const std::function<void(double)>& alsoReport) {
-  const RadiosityMethod& method = radiosityMethod(settings.method);
+  const RadiosityMethod& method = engine.method();
   if (!method.capabilities().relight)
     throw InputError("--method " + method.name(),
                      fmt::format("does not relight (the methods that do: {})",
                                  fmt::join(methodsWith(&MethodCapabilities::relight), ", ")));
-  // The relighting keeps what it needs of the model.
-  const std::unique_ptr<MethodModel> model = method.prepare(scene, caster, settings);
-  ProgressCallback bar =
-      console.progress(solutionFile.empty() ? model->solveLabel() : "reading " + solutionFile);
+  ProgressCallback bar = console.progress(solutionFile.empty() ? engine.model().solveLabel()
+                                                               : "reading " + solutionFile);
   const ProgressCallback progress = [bar, alsoReport](double fraction) {
     if (alsoReport) alsoReport(fraction);
     return !bar || bar(fraction);
   };
   std::unique_ptr<Relighting> relighting =
-      model->startRelighting(lights, solutionFile, relight, progress);
+      engine.startRelighting(lights, solutionFile, relight, progress);
   console.finishProgress();
   for (const std::string& w : relighting->solution().report().warnings) console.warn(w);
   return relighting;

@@ -5,6 +5,7 @@
 // stats.
 
 #include <radiosity/light_groups.h>
+#include <radiosity/radiosity_engine.h>
 #include <radiosity/radiosity_method.h>
 #include <radiosity/scene.h>
 #include <radiosity/solver_settings.h>
@@ -93,20 +94,17 @@ struct SolutionSource {
   double seconds = 0.0;  ///< where the dynamic objects are (their light is one more bounce)
 };
 
-/// Solves `scene` (through `caster`, the run's one ray caster) by the settings' method with a
-/// progress bar, or loads it from the source's file, scales its light groups as the source asks,
-/// prints the method's warnings and reports its numbers. With dynamic objects, solves again with
-/// the light they reflect (DynamicObjectLighting::objectLights) as lights. Throws what the
-/// method throws.
-std::unique_ptr<SurfaceSolution> solveSurfaces(const Scene& scene, const RayCaster& caster,
-                                               const MethodSettings& settings,
+/// Solves the engine's scene (RadiosityEngine::solve: with its dynamic objects at the source's
+/// time) with a progress bar, or loads it from the source's file, scales its light groups as the
+/// source asks, prints the method's warnings and reports its numbers. Throws what the method
+/// throws.
+std::unique_ptr<SurfaceSolution> solveSurfaces(const RadiosityEngine& engine,
                                                const SolutionSource& source, Console& console,
                                                const StatsReport& report);
-/// A relighting by the settings' method for `lights`: solved with a progress bar, or started
+/// A relighting by the engine's method for `lights`: solved with a progress bar, or started
 /// from the solution file `solutionFile` when it is set; prints the solution's warnings.
 /// Throws InputError for a method that does not relight.
-std::unique_ptr<Relighting> startRelighting(const Scene& scene, const RayCaster& caster,
-                                            const MethodSettings& settings,
+std::unique_ptr<Relighting> startRelighting(const RadiosityEngine& engine,
                                             std::span<const Light> lights,
                                             const std::string& solutionFile,
                                             const RelightSettings& relight, Console& console,

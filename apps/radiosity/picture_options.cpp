@@ -13,7 +13,6 @@
 #include "command_support.h"
 #include "console.h"
 #include "core/memory_usage.h"
-#include "lighting/dynamic_objects.h"
 #include "method_options.h"
 
 namespace rad::cli {
@@ -130,15 +129,7 @@ ImageWriteOptions PictureOptions::writeOptions() const {
   return options;
 }
 
-Image PictureOptions::render(const Scene& scene, const RayCaster& caster, const Camera& camera,
-                             const SurfaceSolution& solution, const MethodSettings& run,
-                             double seconds, const ProgressCallback& progress,
-                             ProbeCache* probes) const {
-  const SurfaceRenderSettings settings = surfaceSettings(run);
-  if (scene.dynamicObjects.empty())
-    return renderSurfaceRadiance(scene, caster, camera, solution, settings, progress);
-  const Scene placed = scene.withDynamicObjectsAt(seconds);
-  const RayCaster placedCaster(placed);
+DynamicObjectSettings PictureOptions::objectSettings() const {
   DynamicObjectSettings objects;
   objects.probeMoveThreshold = probeMoveThreshold;
   objects.probeResolution = probeResolution;
@@ -146,8 +137,14 @@ Image PictureOptions::render(const Scene& scene, const RayCaster& caster, const 
   objects.way = probeWay == "exact"     ? ProbeIrradiance::Exact
                 : probeWay == "pattern" ? ProbeIrradiance::Pattern
                                         : ProbeIrradiance::Harmonic;
-  const DynamicObjectLighting lighting(placed, solution, caster, placedCaster, objects, probes);
-  return renderSurfaceRadiance(placed, placedCaster, camera, lighting, settings, progress);
+  return objects;
+}
+
+Image PictureOptions::render(const RadiosityEngine& engine, const SurfaceSolution& solution,
+                             const Camera& camera, double seconds, const ProgressCallback& progress,
+                             ProbeCache* probes) const {
+  return engine.render(solution, camera, seconds, surfaceSettings(engine.settings()),
+                       objectSettings(), probes, progress);
 }
 
 void PictureOptions::warnOfDynamicObjects(const Scene& scene, const std::string& method,

@@ -3,6 +3,7 @@
 // radiosity solution's direct light is drawn, and how the file is written.
 
 #include <radiosity/image.h>
+#include <radiosity/radiosity_engine.h>
 #include <radiosity/scene.h>
 #include <radiosity/solver_settings.h>
 #include <radiosity/surface_radiance.h>
@@ -14,10 +15,6 @@
 namespace CLI {
 class App;
 }  // namespace CLI
-
-namespace rad {
-class ProbeCache;
-}  // namespace rad
 
 namespace rad::cli {
 
@@ -42,13 +39,16 @@ struct PictureOptions {
   /// How a radiosity solution is drawn: camera rays and seed from the run's settings.
   SurfaceRenderSettings surfaceSettings(const MethodSettings& settings) const;
   ImageWriteOptions writeOptions() const;
-  /// The picture of `solution` (made under `settings`) through `camera`; with the scene's dynamic
-  /// objects placed as at `seconds`, each lit by probes of the solution (DynamicObjectLighting).
+  /// How dynamic objects are lit: --probe-res, --probe-way, --probe-spacing and
+  /// --probe-move-threshold.
+  DynamicObjectSettings objectSettings() const;
+  /// The picture of `solution` (by `engine`) through `camera`; with the scene's dynamic objects
+  /// placed as at `seconds`, each lit by probes of the solution (RadiosityEngine::render).
   /// `probes`: the probes of earlier frames to keep where their objects barely moved (null:
   /// none).
-  Image render(const Scene& scene, const RayCaster& caster, const Camera& camera,
-               const SurfaceSolution& solution, const MethodSettings& settings, double seconds,
-               const ProgressCallback& progress, ProbeCache* probes = nullptr) const;
+  Image render(const RadiosityEngine& engine, const SurfaceSolution& solution, const Camera& camera,
+               double seconds, const ProgressCallback& progress,
+               ProbeCache* probes = nullptr) const;
   float probeMoveThreshold = 0.0f;  ///< --probe-move-threshold (animate)
   int probeResolution = 16;         ///< --probe-res: texels a cube face of a dynamic object's probe
   std::string probeWay = "harmonic";  ///< --probe-way: exact, harmonic or pattern

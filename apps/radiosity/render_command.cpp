@@ -38,12 +38,14 @@ std::string defaultOutput(const std::string& scene, const std::string& method) {
 }
 
 // The picture of a method that makes its own (no surface solution: the path tracer).
-Image renderPicture(const Scene& scene, const RayCaster& caster, const Camera& camera,
-                    const RenderOptions& o, Console& console, RunStats& stats) {
-  const RadiosityMethod& method = o.method.chosen();
+Image renderPicture(const RadiosityEngine& engine, const Camera& camera, const RenderOptions& o,
+                    Console& console, RunStats& stats) {
+  const RadiosityMethod& method = engine.method();
+  const Scene& scene = engine.scene();
+  const RayCaster& caster = engine.caster();
   Stopwatch renderTime;
   RenderedPicture picture =
-      method.renderPicture(scene, caster, camera, o.method.settings(), console.progress("render"));
+      method.renderPicture(scene, caster, camera, engine.settings(), console.progress("render"));
   console.finishProgress();
   for (const std::string& w : picture.warnings) console.warn(w);
   if (!picture.resumed.empty()) console.info(picture.resumed);
@@ -52,7 +54,7 @@ Image renderPicture(const Scene& scene, const RayCaster& caster, const Camera& c
   if (!o.stats.empty() && o.objectPoints > 0) {
     Stopwatch solveTime;
     EstimatedObjects estimated = method.estimateObjects(
-        scene, caster, o.objectPoints, o.method.settings(), console.progress("surfaces"));
+        scene, caster, o.objectPoints, engine.settings(), console.progress("surfaces"));
     console.finishProgress();
     stats.objects = std::move(estimated.objects);
     stats.counts.rays += estimated.rays;
@@ -62,14 +64,13 @@ Image renderPicture(const Scene& scene, const RayCaster& caster, const Camera& c
 }
 
 // The solution's picture, with the scene's dynamic objects where --time puts them.
-Image renderSolution(const Scene& scene, const RayCaster& caster, const Camera& camera,
+Image renderSolution(const RadiosityEngine& engine, const Camera& camera,
                      const SurfaceSolution& solution, const RenderOptions& o, Console& console,
                      RunStats& stats) {
   Stopwatch renderTime;
   o.picture.warnIfDirectUnavailable(solution, o.method.method(), console);
-  PictureOptions::warnOfDynamicObjects(scene, o.method.method(), console);
-  Image image = o.picture.render(scene, caster, camera, solution, o.method.settings(), o.time,
-                                 console.progress("render"));
+  PictureOptions::warnOfDynamicObjects(engine.scene(), o.method.method(), console);
+  Image image = o.picture.render(engine, solution, camera, o.time, console.progress("render"));
   console.finishProgress();
   stats.timingsSeconds.render = renderTime.seconds();
   return image;
@@ -99,18 +100,18 @@ int runRender(RenderOptions& o, Console& console) {
   // and the groups' emitters scaled: the reference, the objects' light included.
   const bool ownPictures = !o.method.chosen().capabilities().surfaceSolution;
   if (ownPictures && !scene.dynamicObjects.empty()) scene = scene.withDynamicObjectsAt(o.time);
-  const RayCaster caster(scene);  // the run's one BVH
   const StatsReport report{stats, !o.stats.empty()};
   const std::vector<GroupScale>& groups = o.method.groupScales();
   if (ownPictures && !groups.empty())
     scaleEmitters(scene, lightGroupsOf(scene, scene.lights),
                   groupScalesFor(lightGroupsOf(scene, scene.lights), groups));
+  const RadiosityEngine engine(scene, solveSettingsFor(o));
   const Image image =
-      ownPictures ? renderPicture(scene, caster, camera, o, console, stats)
-                  : renderSolution(scene, caster, camera,
-                                   *solveSurfaces(scene, caster, solveSettingsFor(o),
-                                                  {groups, o.solution, o.time}, console, report),
-                                   o, console, stats);
+      ownPictures
+          ? renderPicture(engine, camera, o, console, stats)
+          : renderSolution(engine, camera,
+                           *solveSurfaces(engine, {groups, o.solution, o.time}, console, report), o,
+                           console, stats);
   InterruptGuard::throwIfInterrupted();
   writeImage(o.output, image, o.picture.writeOptions());
   if (!o.stats.empty()) {

@@ -40,35 +40,35 @@ struct ServeOptions {
 
 // The session: the method's relighting, or a solution shown and dimmed by group.
 std::unique_ptr<ViewerSession> startSession(const ServeOptions& o, const Scene& scene,
-                                            const RayCaster& caster, Console& console,
+                                            Console& console,
                                             const std::function<void(double)>& report) {
-  const RadiosityMethod& method = o.method.chosen();
+  const MethodCapabilities can = o.method.chosen().capabilities();
   MethodSettings settings = o.method.settings();
+  // Without relighting: shown and its groups dimmed, so solved with its groups apart.
+  if (!can.relight) settings.lightGroups = can.lightGroups;
+  auto engine = std::make_unique<const RadiosityEngine>(scene, settings);
   auto edgeOf = [&](const SurfaceSolution& solution) {
     return o.displayEdge > 0.0f ? o.displayEdge : solution.report().detailEdge;
   };
-  if (method.capabilities().relight) {
+  if (can.relight) {
     std::unique_ptr<Relighting> relighting =
-        startRelighting(scene, caster, settings, scene.lights, o.solution, {}, console, report);
+        startRelighting(*engine, scene.lights, o.solution, {}, console, report);
     const float edge = edgeOf(relighting->solution());
-    return std::make_unique<ViewerSession>(scene, scene.lights, method.name(),
-                                           std::move(relighting), edge);
+    return std::make_unique<ViewerSession>(std::move(engine), scene.lights, std::move(relighting),
+                                           edge);
   }
-  // Shown and its groups dimmed, not relit: solved with its groups apart.
-  settings.lightGroups = method.capabilities().lightGroups;
-  const std::unique_ptr<MethodModel> model = method.prepare(scene, caster, settings);
-  const ProgressCallback bar = console.progress(model->solveLabel());
+  const ProgressCallback bar = console.progress(engine->model().solveLabel());
   std::unique_ptr<SurfaceSolution> solution = o.solution.empty()
-                                                  ? model->solve(scene.lights, nullptr,
-                                                                 [&](double f) {
-                                                                   report(f);
-                                                                   return !bar || bar(f);
-                                                                 })
-                                                  : model->load(o.solution, scene.lights);
+                                                  ? engine->solve(scene.lights, 0.0,
+                                                                  [&](double f) {
+                                                                    report(f);
+                                                                    return !bar || bar(f);
+                                                                  })
+                                                  : engine->load(o.solution);
   console.finishProgress();
   for (const std::string& w : solution->report().warnings) console.warn(w);
   const float edge = edgeOf(*solution);
-  return std::make_unique<ViewerSession>(scene, scene.lights, method.name(), std::move(solution),
+  return std::make_unique<ViewerSession>(std::move(engine), scene.lights, std::move(solution),
                                          edge);
 }
 
@@ -76,7 +76,6 @@ int runServe(ServeOptions& o, Console& console) {
   RunStats stats;
   const Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
   o.method.resolve(scene, o.solution, console);
-  const RayCaster caster(scene);  // the relighter's, for as long as it serves
   // Listening from the start: the page shows the solve's progress until the session is there.
   ViewerServer server(o.webDir);
   const int port = server.bind(o.host, o.port);
@@ -93,7 +92,7 @@ int runServe(ServeOptions& o, Console& console) {
   });
   std::unique_ptr<ViewerSession> session;
   try {
-    session = startSession(o, scene, caster, console, [&](double f) { server.setProgress(f); });
+    session = startSession(o, scene, console, [&](double f) { server.setProgress(f); });
   } catch (...) {
     done = true;
     watcher.join();

@@ -15,9 +15,7 @@
 #include "command_support.h"
 #include "commands.h"
 #include "core/memory_usage.h"
-#include "lighting/dynamic_objects.h"
 #include "method_options.h"
-#include "output/gltf_export.h"
 #include "output/lightmap_atlas.h"
 
 namespace rad::cli {
@@ -44,8 +42,9 @@ std::string lowerExtension(const std::string& path) {
 
 // The lit mesh as glTF; with dynamic objects, theirs too (placed at --time, a node each). With
 // a lightmap, the scene's triangles under their atlas (a lightmap holds static light only).
-void exportGlbWithObjects(const SolveOptions& o, const Scene& scene,
+void exportGlbWithObjects(const SolveOptions& o, const RadiosityEngine& engine,
                           const SurfaceSolution& solution, Console& console) {
+  const Scene& scene = engine.scene();
   if (o.lightmap > 0) {
     if (!scene.dynamicObjects.empty())
       console.warn(
@@ -54,21 +53,18 @@ void exportGlbWithObjects(const SolveOptions& o, const Scene& scene,
                       scene.dynamicObjects.size(), o.exportPath));
     return solution.exportLightmappedGlb(o.exportPath, o.lightmap, o.exposure);
   }
-  if (scene.dynamicObjects.empty()) return solution.exportGlb(o.exportPath, o.exposure);
-  LitMesh mesh = solution.litMesh();
-  const Scene placed = scene.withDynamicObjectsAt(o.time);
-  const RayCaster staticCaster(scene), placedCaster(placed);
-  DynamicObjectLighting(placed, solution, staticCaster, placedCaster).appendObjects(mesh);
-  writeLitMeshGlb(o.exportPath, mesh, o.exposure);
+  engine.exportGlb(solution, o.time, o.exportPath, o.exposure);
 }
 
 // Exports the solution, writes the stats and prints the summary line.
-int finishSolve(const SolveOptions& o, const Scene& scene, const SurfaceSolution& solution,
-                const std::string& ext, const Stopwatch& total, RunStats& stats, Console& console) {
+int finishSolve(const SolveOptions& o, const RadiosityEngine& engine,
+                const SurfaceSolution& solution, const std::string& ext, const Stopwatch& total,
+                RunStats& stats, Console& console) {
+  const Scene& scene = engine.scene();
   InterruptGuard::throwIfInterrupted();
   if (ext == ".csv") solution.exportCsv(o.exportPath);
   if (ext == ".ply") solution.exportPly(o.exportPath, o.exposure);
-  if (ext == ".glb") exportGlbWithObjects(o, scene, solution, console);
+  if (ext == ".glb") exportGlbWithObjects(o, engine, solution, console);
   if (!o.save.empty()) solution.save(o.save, solvedWith(o.method.settings()));
   if (!o.stats.empty()) {
     stats.settings = settingsOf(o.method.settings());
@@ -115,10 +111,10 @@ int runSolve(SolveOptions& o, Console& console) {
   // A saved solution keeps its direct light apart, for pictures with per-pixel direct light.
   MethodSettings settings = o.method.settings();
   if (!o.save.empty()) settings.keepDirectLight = true;
-  const RayCaster caster(scene);  // the run's one BVH
+  const RadiosityEngine engine(scene, settings);
   const std::unique_ptr<SurfaceSolution> solution =
-      solveSurfaces(scene, caster, settings, {o.method.groupScales(), "", o.time}, console, report);
-  return finishSolve(o, scene, *solution, ext, total, stats, console);
+      solveSurfaces(engine, {o.method.groupScales(), "", o.time}, console, report);
+  return finishSolve(o, engine, *solution, ext, total, stats, console);
 }
 
 }  // namespace

@@ -11,13 +11,13 @@
 #include <numeric>
 #include <optional>
 
+#include "core/progress_ticker.h"
 #include "core/rng.h"
 #include "geometry/sampling.h"
 #include "patch/form_factor_estimators.h"
 #include "patch/patch_quadrature.h"
 #include "patch/point_polygon_form_factor.h"
 #include "patch/row_exchange.h"
-#include "render/progress_ticker.h"
 
 namespace rad {
 

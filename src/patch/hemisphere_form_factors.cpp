@@ -11,10 +11,10 @@
 #include <cmath>
 #include <optional>
 
+#include "core/progress_ticker.h"
 #include "core/rng.h"
 #include "geometry/sampling.h"
 #include "patch/form_factor_estimators.h"
-#include "render/progress_ticker.h"
 
 namespace rad {
 

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "render/progress_ticker.h"
+#include "core/progress_ticker.h"
 
 namespace rad {
 

@@ -12,8 +12,8 @@
 #include <unordered_map>
 
 #include "core/checksummed_file.h"
+#include "core/progress_ticker.h"
 #include "patch/row_exchange.h"
-#include "render/progress_ticker.h"
 
 namespace rad {
 

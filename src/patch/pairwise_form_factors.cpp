@@ -13,12 +13,12 @@
 #include <glm/gtc/constants.hpp>
 #include <span>
 
+#include "core/progress_ticker.h"
 #include "core/rng.h"
 #include "geometry/sampling.h"
 #include "patch/form_factor_estimators.h"
 #include "patch/point_polygon_form_factor.h"
 #include "patch/row_exchange.h"
-#include "render/progress_ticker.h"
 
 namespace rad {
 

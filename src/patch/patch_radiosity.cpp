@@ -17,7 +17,7 @@
 
 #include "core/convergence_advice.h"
 #include "lighting/direct_lighting.h"
-#include "output/lit_mesh_texturing.h"
+#include "lit_mesh/lit_mesh_texturing.h"
 #include "patch/form_factor_cache.h"
 #include "patch/form_factor_estimators.h"
 #include "patch/light_refinement.h"

@@ -7,9 +7,9 @@
 
 #include <glm/gtc/constants.hpp>
 
-#include "output/solution_file.h"
 #include "patch/patch_model_state.h"
 #include "patch/patch_radiosity_impl.h"
+#include "scene/solution_file.h"
 
 namespace rad {
 

@@ -14,10 +14,10 @@
 
 #include "core/memory_usage.h"
 #include "core/process_collectives.h"
+#include "core/progress_ticker.h"
 #include "geometry/sampling.h"
 #include "render/path_integrator.h"
 #include "render/path_tracer_settings.h"
-#include "render/progress_ticker.h"
 
 namespace rad {
 

@@ -14,11 +14,11 @@
 
 #include "core/checksummed_file.h"
 #include "core/process_collectives.h"
+#include "core/progress_ticker.h"
 #include "geometry/sampling.h"
 #include "render/camera_rays.h"
 #include "render/path_integrator.h"
 #include "render/path_tracer_settings.h"
-#include "render/progress_ticker.h"
 #include "render/render_checkpoint.h"
 
 namespace rad {

@@ -7,11 +7,11 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "core/progress_ticker.h"
 #include "core/rng.h"
 #include "geometry/sampling.h"
 #include "lighting/direct_lighting.h"
 #include "render/camera_rays.h"
-#include "render/progress_ticker.h"
 
 namespace rad {
 

@@ -14,7 +14,6 @@
 #include <cstring>
 #include <glm/gtx/component_wise.hpp>
 
-#include "lighting/dynamic_objects.h"
 #include "output/gltf_export.h"
 #include "output/surface_samples.h"
 
@@ -57,30 +56,31 @@ Json array(const Vec3& v) {
 
 }  // namespace
 
-ViewerSession::ViewerSession(const Scene& scene, std::vector<Light> lights, std::string method,
-                             std::unique_ptr<Relighting> relighting, float displayEdge)
-    : scene_(scene),
-      groups_(lightGroupsOf(scene, lights)),
+ViewerSession::ViewerSession(std::unique_ptr<const RadiosityEngine> engine,
+                             std::vector<Light> lights, std::unique_ptr<Relighting> relighting,
+                             float displayEdge)
+    : engine_(std::move(engine)),
+      scene_(engine_->scene()),
+      groups_(lightGroupsOf(scene_, lights)),
       lights_(std::move(lights)),
       scales_(groups_.size(), Color(1.0f)),
-      method_(std::move(method)),
       relighting_(std::move(relighting)) {
   start(displayEdge);
 }
 
-ViewerSession::ViewerSession(const Scene& scene, std::vector<Light> lights, std::string method,
-                             std::unique_ptr<SurfaceSolution> solution, float displayEdge)
-    : scene_(scene),
-      groups_(lightGroupsOf(scene, lights)),
+ViewerSession::ViewerSession(std::unique_ptr<const RadiosityEngine> engine,
+                             std::vector<Light> lights, std::unique_ptr<SurfaceSolution> solution,
+                             float displayEdge)
+    : engine_(std::move(engine)),
+      scene_(engine_->scene()),
+      groups_(lightGroupsOf(scene_, lights)),
       lights_(std::move(lights)),
       scales_(groups_.size(), Color(1.0f)),
-      method_(std::move(method)),
       fixed_(std::move(solution)) {
   start(displayEdge);
 }
 
 void ViewerSession::start(float displayEdge) {
-  if (!scene_.dynamicObjects.empty()) staticCaster_ = std::make_unique<RayCaster>(scene_);
   display_ = cutSurfaces(scene_, displayEdge);
   glbOrder_ = glbVertexOrder(display_.mesh);
   shade();
@@ -141,7 +141,7 @@ Json ViewerSession::summary() const {
           {"unit", unit.known() ? Json{{"name", unit.name}, {"metres", unit.metres}} : Json()},
           // The efficacy lux are taken at, the one IES and glTF candela are read with.
           {"lumens_per_watt", 1.0 / kWattsPerSrPerCandela},
-          {"method", method_},
+          {"method", engine_->method().name()},
           {"patches", solution().elementCount()},
           {"relights", relighting_ != nullptr},
           {"vertices", glbOrder_.size()},
@@ -170,12 +170,10 @@ Json ViewerSession::objectsAt(double seconds) const {
     refuse("/t", fmt::format("expected a time in [0, {:g}] s", kMaxViewerSeconds));
   Json objects = Json::array();
   if (scene_.dynamicObjects.empty()) return {{"t", seconds}, {"objects", objects}};
-  const Scene placed = scene_.withDynamicObjectsAt(seconds);
-  const RayCaster placedCaster(placed);
   LitMesh mesh;
   {
     std::lock_guard relight(relightMutex_);
-    DynamicObjectLighting(placed, solution(), *staticCaster_, placedCaster).appendObjects(mesh);
+    engine_->objectsAt(solution(), seconds).appendObjects(mesh);
   }
   // appendObjects gives every triangle three vertices of its own, a group per object.
   for (const LitMeshGroup& g : mesh.groups) {
@@ -224,12 +222,13 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
     std::vector<Light> lights = lights_;
     std::vector<Color> scales = scales_;
     if (request.contains("lights") && fixed_)
-      refuse("/lights",
-             fmt::format("a {} solution cannot be relit (serve --method {} moves "
-                         "lights)",
-                         method_, fmt::join(methodsWith(&MethodCapabilities::relight), "|")));
+      refuse("/lights", fmt::format("a {} solution cannot be relit (serve --method {} moves "
+                                    "lights)",
+                                    engine_->method().name(),
+                                    fmt::join(methodsWith(&MethodCapabilities::relight), "|")));
     if (request.contains("groups") && fixed_ && fixed_->lightGroups().empty())
-      refuse("/groups", fmt::format("this {} solution solved its light groups together", method_));
+      refuse("/groups", fmt::format("this {} solution solved its light groups together",
+                                    engine_->method().name()));
     if (request.contains("lights")) {
       const Json& list = request["lights"];
       if (!list.is_array()) refuse("/lights", "expected an array");

@@ -9,6 +9,7 @@
 // answered with the colours of that state.
 
 #include <radiosity/light_groups.h>
+#include <radiosity/radiosity_engine.h>
 #include <radiosity/relighting.h>
 #include <radiosity/surface_solution.h>
 
@@ -20,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "output/baked_mesh.h"
+#include "lit_mesh/baked_mesh.h"
 
 namespace rad {
 
@@ -29,13 +30,13 @@ inline constexpr double kMaxViewerSeconds = 86400.0;
 
 class ViewerSession {
  public:
-  /// Takes the relighting (solved for `lights`) of `scene`, which must outlive the session, by
-  /// the method named `method`; the display mesh's edges are at most `displayEdge` (scene units).
-  ViewerSession(const Scene& scene, std::vector<Light> lights, std::string method,
+  /// Takes the engine (whose scene must outlive the session) and its relighting, solved for
+  /// `lights`; the display mesh's edges are at most `displayEdge` (scene units).
+  ViewerSession(std::unique_ptr<const RadiosityEngine> engine, std::vector<Light> lights,
                 std::unique_ptr<Relighting> relighting, float displayEdge);
-  /// A solution of `scene` for `lights` by a method that does not relight: a light edit is
-  /// refused, but its light groups, when it solved them apart, are dimmed and switched as asked.
-  ViewerSession(const Scene& scene, std::vector<Light> lights, std::string method,
+  /// A solution for `lights` by a method that does not relight: a light edit is refused, but
+  /// its light groups, when it solved them apart, are dimmed and switched as asked.
+  ViewerSession(std::unique_ptr<const RadiosityEngine> engine, std::vector<Light> lights,
                 std::unique_ptr<SurfaceSolution> solution, float displayEdge);
 
   /// The scene, its lights (with ids, groups, and the state now) and the light groups, the
@@ -71,6 +72,7 @@ class ViewerSession {
   std::vector<Light> effectiveLights() const;  // with the groups' scales; under stateMutex_
   void shade();                                // under relightMutex_
 
+  std::unique_ptr<const RadiosityEngine> engine_;
   const Scene& scene_;
   std::vector<LightGroup> groups_;
   SurfaceBake display_;
@@ -82,11 +84,9 @@ class ViewerSession {
   std::vector<Color> scales_;
   uint64_t asked_ = 0;  ///< generation of the newest asked state
 
-  std::string method_;
   mutable std::mutex relightMutex_;         ///< the relighting and what it shows
   std::unique_ptr<Relighting> relighting_;  ///< one of the two is set
   std::unique_ptr<SurfaceSolution> fixed_;
-  std::unique_ptr<RayCaster> staticCaster_;  ///< the scene's own, for the objects' probes
   const SurfaceSolution& solution() const;
   void start(float displayEdge);
   uint64_t reached_ = 0;  ///< generation the relighter and the colours are at

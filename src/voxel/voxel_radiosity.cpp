@@ -10,7 +10,7 @@
 
 #include "core/convergence_advice.h"
 #include "core/memory_usage.h"
-#include "output/baked_mesh.h"
+#include "lit_mesh/baked_mesh.h"
 #include "voxel/voxel_radiosity_impl.h"
 #include "voxel/voxelizer.h"
 

@@ -5,7 +5,7 @@
 #include <radiosity/error.h>
 #include <radiosity/voxel_radiosity.h>
 
-#include "output/solution_file.h"
+#include "scene/solution_file.h"
 #include "voxel/voxel_radiosity_impl.h"
 
 namespace rad {

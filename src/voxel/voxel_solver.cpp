@@ -15,9 +15,9 @@
 
 #include "core/memory_usage.h"
 #include "core/process_collectives.h"
+#include "core/progress_ticker.h"
 #include "core/rng.h"
 #include "lighting/direct_lighting.h"
-#include "render/progress_ticker.h"
 #include "voxel/direction_set.h"
 #include "voxel/exact_color_sum.h"
 #include "voxel/half_float.h"

@@ -1,13 +1,15 @@
 // A method only the suite knows, registered at run time, goes through the same code as the built-in
 // ones: its settings join the one table (flags, scene keys, stats), the commands' solve
-// (cli::solveSurfaces) solves it, the pictures' renderer draws it, its solutions are saved and
-// loaded through the shared solution file, and the viewer's session serves it. The method
+// (cli::solveSurfaces through the RadiosityEngine) solves it, the pictures' renderer draws it, its
+// solutions are saved and loaded through the shared solution file, and the viewer's session serves
+// it. The method
 // ("facet-direct") lights each scene triangle by the point lights at its centroid, through one
 // shadow ray each, without bounces: what it gives is the inverse-square cosine law
 // (docs/references.md 3.5), which the tests check it against.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <radiosity/error.h>
+#include <radiosity/radiosity_engine.h>
 #include <radiosity/radiosity_method.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/solution_file.h>
@@ -20,11 +22,11 @@
 #include "console.h"
 #include "method_options.h"
 #include "output/run_stats.h"
-#include "output/solution_file.h"
 #include "picture_options.h"
 #include "render/test_scenes.h"
 #include "scene/scene_summary.h"
 #include "scene/setting_fields.h"
+#include "scene/solution_file.h"
 #include "server/viewer_session.h"
 
 namespace rad {
@@ -247,13 +249,13 @@ TEST(MethodSeam, ARegisteredMethodsSettingsJoinTheOneTable) {
 TEST(MethodSeam, TheCommandsSolveItAndReportItsNumbers) {
   registerFacetMethod();
   const Scene scene = floorUnderALight(true);
-  const RayCaster caster(scene);
+  const RadiosityEngine engine(scene, facetSettings(scene));
   std::ostringstream out, err;
   cli::Console console(out, err);
   console.setQuiet(true);
   RunStats stats;
-  const std::unique_ptr<SurfaceSolution> solution = cli::solveSurfaces(
-      scene, caster, facetSettings(scene), {{}, "", 0.0}, console, {stats, true});
+  const std::unique_ptr<SurfaceSolution> solution =
+      cli::solveSurfaces(engine, {{}, "", 0.0}, console, {stats, true});
   ASSERT_EQ(solution->elementCount(), scene.triangles.size());
   int lit = 0, shadowed = 0;
   for (size_t t = 0; t < solution->elementCount(); ++t) {
@@ -277,10 +279,10 @@ TEST(MethodSeam, TheCommandsSolveItAndReportItsNumbers) {
 TEST(MethodSeam, ThePicturesDrawIt) {
   registerFacetMethod();
   const Scene scene = floorUnderALight(false);
-  const RayCaster caster(scene);
-  const std::unique_ptr<MethodModel> model =
-      radiosityMethod(kName).prepare(scene, caster, facetSettings(scene));
-  const std::unique_ptr<SurfaceSolution> solution = model->solve(scene.lights, nullptr, {});
+  SolverSettings given;
+  given.values["spp"] = int64_t(1);
+  const RadiosityEngine engine(scene, facetSettings(scene, given));
+  const std::unique_ptr<SurfaceSolution> solution = engine.solve(scene.lights, 0.0);
   // Looking straight down at (0.5, 0.3): a point of the triangle below, which shows
   // rho H / pi with H that of its centroid.
   cli::PictureOptions picture;
@@ -290,10 +292,7 @@ TEST(MethodSeam, ThePicturesDrawIt) {
   camera.target = Vec3(0.5f, 0.3f, 0.0f);
   camera.width = camera.height = 9;
   camera.fovDeg = 1.0f;
-  SolverSettings given;
-  given.values["spp"] = int64_t(1);
-  const Image image =
-      picture.render(scene, caster, camera, *solution, facetSettings(scene, given), 0.0, {});
+  const Image image = picture.render(engine, *solution, camera, 0.0, {});
   uint32_t below = 0;
   const Vec2 b = scene.barycentricOf(0, Vec3(0.5f, 0.3f, 0.0f));
   if (b.x < 0.0f || b.y < 0.0f || b.x + b.y > 1.0f) below = 1;
@@ -332,10 +331,9 @@ TEST(MethodSeam, ItsSolutionsAreSavedAndLoadedThroughTheSharedFile) {
 TEST(MethodSeam, TheViewerServesItAndRefusesToRelightIt) {
   registerFacetMethod();
   const Scene scene = floorUnderALight(false);
-  const RayCaster caster(scene);
-  const std::unique_ptr<MethodModel> model =
-      radiosityMethod(kName).prepare(scene, caster, facetSettings(scene));
-  ViewerSession session(scene, scene.lights, kName, model->solve(scene.lights, nullptr, {}), 0.5f);
+  auto engine = std::make_unique<const RadiosityEngine>(scene, facetSettings(scene));
+  std::unique_ptr<SurfaceSolution> solution = engine->solve(scene.lights, 0.0);
+  ViewerSession session(std::move(engine), scene.lights, std::move(solution), 0.5f);
   EXPECT_EQ(session.summary()["method"], kName);
   EXPECT_FALSE(session.summary()["relights"].get<bool>());
   const std::string before = session.colors();

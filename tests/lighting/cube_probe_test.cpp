@@ -2,7 +2,7 @@
 // closed forms: a furnace (uniform radiance L all round: E = pi L), a sky linear in z
 // (L = 1 + z: E = pi + 2 pi / 3 n_z, the cosine-weighted hemisphere integral), and a coloured
 // wall the normal faces.
-#include "lighting/cube_probe.h"
+#include "probes/cube_probe.h"
 
 #include <gtest/gtest.h>
 #include <radiosity/patch_radiosity.h>

@@ -1,6 +1,6 @@
 // Dynamic objects: placed where their paths say, and lit at their vertices by probes of the
 // static solution (against a furnace's closed form and the colour of the wall a vertex faces).
-#include "lighting/dynamic_objects.h"
+#include "probes/dynamic_objects.h"
 
 #include <gtest/gtest.h>
 #include <radiosity/patch_radiosity.h>

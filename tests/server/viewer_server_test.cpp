@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 #include <radiosity/error.h>
+#include <radiosity/radiosity_engine.h>
 #include <radiosity/relighter.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
@@ -20,7 +21,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "output/baked_mesh.h"
+#include "lit_mesh/baked_mesh.h"
 #include "output/gltf_export.h"
 #include "scene/builtin/builtin_shapes.h"
 #include "server/viewer_session.h"
@@ -38,6 +39,17 @@ PatchRadiositySettings smallSettings() {
 }
 
 constexpr float kDisplayEdge = 60.0f;
+
+// The session `radiosity serve --method patch` makes at smallSettings(): the engine's relighting.
+std::unique_ptr<ViewerSession> patchSession(const Scene& scene) {
+  MethodSettings settings;
+  settings.method = "patch";
+  settings.section<PatchRadiositySettings>() = smallSettings();
+  auto engine = std::make_unique<const RadiosityEngine>(scene, settings);
+  std::unique_ptr<Relighting> relighting = engine->startRelighting(scene.lights, "", {});
+  return std::make_unique<ViewerSession>(std::move(engine), scene.lights, std::move(relighting),
+                                         kDisplayEdge);
+}
 
 // cornell-spot with a 100 mm box that moves 250 mm along x in 2 s on the floor.
 Scene cornellSpotWithAMovingBox() {
@@ -61,9 +73,7 @@ class ViewerServerTest : public ::testing::Test {
     web_ = fs::path(::testing::TempDir()) / "viewer_web";
     fs::create_directories(web_);
     std::ofstream(web_ / "index.html") << "<!doctype html><title>viewer</title>";
-    session_ = std::make_unique<ViewerSession>(scene_, scene_.lights, "patch",
-                                               std::make_unique<Relighter>(model_, scene_.lights),
-                                               kDisplayEdge);
+    session_ = patchSession(scene_);
     server_ = std::make_unique<ViewerServer>(*session_, web_);
     port_ = server_->bind("127.0.0.1", 0);
     thread_ = std::thread([this] { server_->run(); });
@@ -308,9 +318,8 @@ namespace {
 // vertex by its scale (all the light is the lamp's), within the relighter's tolerance.
 TEST(ViewerSession, DimsAGroupOfGlowingSurfaces) {
   const Scene scene = loadScene("cornell");
-  const PatchModel model(scene, smallSettings());
-  ViewerSession session(scene, scene.lights, "patch",
-                        std::make_unique<Relighter>(model, scene.lights), kDisplayEdge);
+  const std::unique_ptr<ViewerSession> held = patchSession(scene);
+  ViewerSession& session = *held;
   const std::string before = session.colors();
   const std::string after =
       session.applyLights(nlohmann::json::parse(R"({"groups": {"light": 0.25}})"));
@@ -332,15 +341,15 @@ namespace {
 // refused, and the state stays as it was.
 TEST(ViewerSession, AVoxelSolutionDimsItsGroupsButMovesNoLight) {
   const Scene scene = loadScene("cornell");
-  VoxelRadiositySettings settings;
-  settings.targetVoxels = 5000;
-  settings.sphereRadius = 6;
-  settings.iterations = 3;
+  MethodSettings settings;
+  settings.method = "voxel";
+  settings.section<VoxelRadiositySettings>().targetVoxels = 5000;
+  settings.section<VoxelRadiositySettings>().sphereRadius = 6;
+  settings.section<VoxelRadiositySettings>().iterations = 3;
   settings.lightGroups = true;
-  ViewerSession session(
-      scene, scene.lights, "voxel",
-      std::make_unique<VoxelRadiosity>(VoxelModel(scene, settings).solve(scene.lights)),
-      kDisplayEdge);
+  auto engine = std::make_unique<const RadiosityEngine>(scene, settings);
+  std::unique_ptr<SurfaceSolution> solution = engine->solve(scene.lights, 0.0);
+  ViewerSession session(std::move(engine), scene.lights, std::move(solution), kDisplayEdge);
   EXPECT_EQ(session.summary()["method"], "voxel");
   const std::string before = session.colors();
   EXPECT_THROW(session.applyLights(nlohmann::json::parse(R"({"lights": [{"id": 0}]})")),
@@ -376,10 +385,8 @@ TEST(ViewerServer, AnswersProgressUntilItHasASession) {
   EXPECT_DOUBLE_EQ(nlohmann::json::parse(early->body)["progress"].get<double>(), 0.25);
   EXPECT_FALSE(nlohmann::json::parse(client.Get("/api/progress")->body)["ready"].get<bool>());
   const Scene scene = loadScene("cornell-spot");
-  const PatchModel model(scene, smallSettings());
-  ViewerSession session(scene, scene.lights, "patch",
-                        std::make_unique<Relighter>(model, scene.lights), kDisplayEdge);
-  server.serve(session);
+  const std::unique_ptr<ViewerSession> session = patchSession(scene);
+  server.serve(*session);
   EXPECT_EQ(client.Get("/api/scene")->status, 200);
   EXPECT_TRUE(nlohmann::json::parse(client.Get("/api/progress")->body)["ready"].get<bool>());
   server.stop();

@@ -1,4 +1,4 @@
-#include "output/lit_mesh_texturing.h"
+#include "lit_mesh/lit_mesh_texturing.h"
 
 namespace rad {
 

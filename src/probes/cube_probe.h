@@ -10,6 +10,7 @@
 //   Pattern  the published way: texels sampled where the normal meets the cube (see pattern()).
 // The lights' own direct light is not in the view (they have no area); it is added per vertex.
 
+#include <radiosity/placed_objects.h>
 #include <radiosity/ray_caster.h>
 #include <radiosity/surface_radiance.h>
 
@@ -18,8 +19,6 @@
 #include <vector>
 
 namespace rad {
-
-enum class ProbeIrradiance { Exact, Harmonic, Pattern };
 
 class CubeProbe {
  public:

@@ -1,5 +1,5 @@
 // T = (I - diag(rho) F)^-1, one dense LU per channel.
-#include "lighting/precomputed_transfer.h"
+#include "patch/precomputed_transfer.h"
 
 #include <radiosity/error.h>
 #include <tbb/blocked_range.h>

@@ -12,6 +12,7 @@
 // point, spot and IES lights' direct light then shadowed by the placed objects; the bounce light
 // and the glowing surfaces' light that an object blocks are not taken out of the static solution.
 
+#include <radiosity/placed_objects.h>
 #include <radiosity/surface_solution.h>
 
 #include <map>
@@ -19,40 +20,20 @@
 #include <string>
 #include <vector>
 
-#include "lighting/cube_probe.h"
 #include "lighting/direct_lighting.h"
+#include "probes/cube_probe.h"
 
 namespace rad {
 
-struct DynamicObjectSettings {
-  int probeResolution = 16;  ///< texels a cube face
-  ProbeIrradiance way = ProbeIrradiance::Harmonic;
-  /// A probe kept from an earlier frame (ProbeCache) is captured again once its object's centre
-  /// moved more than this (scene units); 0: whenever it moved at all.
-  float probeMoveThreshold = 0.0f;
-  /// An object larger than this (scene units) along some axis gets a grid of probes over its
-  /// box, at most this far apart, blended at each vertex by inverse squared distance (one
-  /// probe's lighting holds only near it); 0: one probe at each object's centre.
-  float probeSpacing = 0.0f;
-};
-
-/// The probes of earlier frames, by object name and probe, so that an object that barely moved
-/// under unchanged lights is not captured again (selective update). The caller says when the static
-/// light changed (invalidate()); it counts the captures.
-class ProbeCache {
- public:
-  /// The static solution's light changed: every probe is captured anew.
-  void invalidate() { probes_.clear(); }
-  size_t captures() const { return captures_; }
-
- private:
-  friend class DynamicObjectLighting;
+/// What a ProbeCache keeps: by object name and probe, the probes of earlier frames and where
+/// they were captured (placed_objects.h).
+struct ProbeCache::State {
   struct Probes {
     Vec3 centre{0.0f};
     std::shared_ptr<const CubeProbe> full, bounce;
   };
-  std::map<std::string, Probes> probes_;
-  size_t captures_ = 0;
+  std::map<std::string, Probes> probes;
+  size_t captures = 0;
 };
 
 /// The static solution with the dynamic objects in place, as one SurfaceRadiance over `placed`
@@ -84,12 +65,7 @@ class DynamicObjectLighting : public SurfaceRadiance {
   /// the radiance radiance() gives at their corners.
   void appendObjects(LitMesh& mesh) const;
   /// Per object (in order): its name, its area-weighted mean irradiance and its light's lobes.
-  struct Summary {
-    std::string name;
-    Color meanIrradiance{0.0f};
-    std::array<Color, 6> lobes{};
-  };
-  std::vector<Summary> summaries() const;
+  std::vector<DynamicObjectSummary> summaries() const;
 
   /// The irradiance of vertex `v` of `placed` (an object's; 0 for the scene's own), full and
   /// without the lights' and emitters' direct light.

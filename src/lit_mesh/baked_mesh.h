@@ -8,8 +8,6 @@
 #include <radiosity/surface_radiance.h>
 #include <radiosity/surface_solution.h>
 
-#include "output/gltf_export.h"
-
 namespace rad {
 
 /// The scene's triangles, one group per scene object, each cut (longest-edge bisection, slivers

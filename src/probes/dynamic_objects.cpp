@@ -1,5 +1,5 @@
 // Probes and vertex irradiance for the dynamic objects placed in a scene.
-#include "lighting/dynamic_objects.h"
+#include "probes/dynamic_objects.h"
 
 #include <tbb/parallel_for.h>
 
@@ -8,6 +8,15 @@
 #include "lighting/direct_lighting.h"
 
 namespace rad {
+
+ProbeCache::ProbeCache() : state_(std::make_unique<State>()) {}
+ProbeCache::~ProbeCache() = default;
+void ProbeCache::invalidate() {
+  state_->probes.clear();
+}
+size_t ProbeCache::captures() const {
+  return state_->captures;
+}
 
 namespace {
 
@@ -100,18 +109,18 @@ DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceS
               at.push_back(box.min + size * (Vec3(i, j, k) + 0.5f) / Vec3(n));
       }
     }
-    std::vector<const ProbeCache::Probes*> probes;
-    std::vector<ProbeCache::Probes> uncached(at.size());
+    std::vector<const ProbeCache::State::Probes*> probes;
+    std::vector<ProbeCache::State::Probes> uncached(at.size());
     for (size_t k = 0; k < at.size(); ++k) {
       const std::string key = placed.objects[object].name + "#" + std::to_string(k);
-      ProbeCache::Probes& p = cache ? cache->probes_[key] : uncached[k];
+      ProbeCache::State::Probes& p = cache ? cache->state().probes[key] : uncached[k];
       if (!p.full || glm::length(at[k] - p.centre) > settings.probeMoveThreshold) {
         auto full = std::make_shared<CubeProbe>(settings.probeResolution);
         auto bounce = std::make_shared<CubeProbe>(settings.probeResolution);
         full->capture(staticCaster, solution, at[k]);
         bounce->capture(staticCaster, reflected, at[k]);
         p = {at[k], std::move(full), std::move(bounce)};
-        if (cache) ++cache->captures_;
+        if (cache) ++cache->state().captures;
       }
       probes.push_back(&p);
     }
@@ -121,7 +130,7 @@ DynamicObjectLighting::DynamicObjectLighting(const Scene& placed, const SurfaceS
       const Vec3 p = placed.positions[v];
       Color full(0.0f), bounce(0.0f);
       float total = 0.0f;
-      for (const ProbeCache::Probes* probe : probes) {
+      for (const ProbeCache::State::Probes* probe : probes) {
         const Vec3 d = p - probe->centre;
         const float w = probes.size() == 1 ? 1.0f : 1.0f / (glm::dot(d, d) + 1e-12f);
         full += w * probe->full->irradiance(n, settings.way);
@@ -210,7 +219,7 @@ void DynamicObjectLighting::appendObjects(LitMesh& mesh) const {
     mesh.triangleTextures.resize(mesh.indices.size() / 3, LitMesh::kUntextured);
 }
 
-std::vector<DynamicObjectLighting::Summary> DynamicObjectLighting::summaries() const {
+std::vector<DynamicObjectSummary> DynamicObjectLighting::summaries() const {
   std::vector<Vec3d> sum(placed_.objects.size(), Vec3d(0.0));
   std::vector<double> area(placed_.objects.size(), 0.0);
   for (uint32_t t = placed_.staticTriangles; t < placed_.triangles.size(); ++t) {
@@ -220,7 +229,7 @@ std::vector<DynamicObjectLighting::Summary> DynamicObjectLighting::summaries() c
     sum[object] += a * Vec3d(full_[tri.x] + full_[tri.y] + full_[tri.z]) / 3.0;
     area[object] += a;
   }
-  std::vector<Summary> out;
+  std::vector<DynamicObjectSummary> out;
   const std::vector<ObjectLobes> lobes = objectLobes();
   for (size_t o = 0; o < sum.size(); ++o) {
     if (!(area[o] > 0.0)) continue;

@@ -1,4 +1,4 @@
-#include "output/baked_mesh.h"
+#include "lit_mesh/baked_mesh.h"
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "output/lit_mesh_texturing.h"
+#include "lit_mesh/lit_mesh_texturing.h"
 
 namespace rad {
 

@@ -1,5 +1,5 @@
 // The cube view of a probe and the three ways from it to a vertex's irradiance.
-#include "lighting/cube_probe.h"
+#include "probes/cube_probe.h"
 
 #include <radiosity/error.h>
 #include <tbb/blocked_range.h>

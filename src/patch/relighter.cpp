@@ -14,10 +14,10 @@
 #include <tuple>
 
 #include "lighting/direct_lighting.h"
-#include "lighting/precomputed_transfer.h"
 #include "patch/light_refinement.h"
 #include "patch/patch_radiosity_impl.h"
 #include "patch/patch_solver_terms.h"
+#include "patch/precomputed_transfer.h"
 
 namespace rad {
 

@@ -1,5 +1,5 @@
 // The solution files' container: what every method's file starts and ends with.
-#include "output/solution_file.h"
+#include "scene/solution_file.h"
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
