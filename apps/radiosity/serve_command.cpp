@@ -81,6 +81,11 @@ int runServe(ServeOptions& o, Console& console) {
   const int port = server.bind(o.host, o.port);
   console.info(fmt::format("serving {} at http://{}:{}/ (solving first; Ctrl-C stops)", o.scene,
                            o.host, port));
+  if (o.host != "127.0.0.1" && o.host != "localhost" && o.host != "::1")
+    console.warn(fmt::format(
+        "--host {}: the viewer listens beyond this machine, and anyone who reaches {}:{} can "
+        "move and dim its lights (requests must name it in their Host as {} or localhost)",
+        o.host, o.host, port, o.host));
   InterruptGuard interruptible;
   std::thread listener([&] { server.run(); });
   server.waitUntilRunning();

@@ -17,6 +17,13 @@ namespace rad {
 /// origins near 1e18). A kilometre-wide site in millimetres is 1e6.
 constexpr float kMaxSceneCoordinate = 1e9f;
 
+/// Largest light a scene, a request or a light group's scale may set: a light's intensity (W/sr)
+/// and a material's emission (W/(sr unit^2)), the scaled ones included. Beyond any lamp or sun in
+/// any length unit (the sun's intensity is 3e25 W/sr, but seen from 1 AU as 1.4e3 W/m^2 of
+/// irradiance), and 20 orders of magnitude below a float's range, so that no product a solve
+/// forms (over areas, form factors, bounces) overflows to infinity or NaN.
+constexpr float kMaxLight = 1e18f;
+
 /// The reflectance a file's 1 becomes: the solvers need rho below 1.
 constexpr float kMaxReflectance = 0.999f;
 

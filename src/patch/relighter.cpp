@@ -221,6 +221,16 @@ void Relighter::State::applyEmission(std::span<const Color> scales) {
 
 // With the transfer, the unshot radiosity bounces out in one step: B += (T - I) U, H += F T U.
 void Relighter::State::shoot() {
+  const double norm = sourceNorm(system);
+  if (norm == 0.0) {
+    // No light put in (every light off or dimmed to 0): the answer is no light, exactly, not
+    // the last state less its change (shot to a tolerance a zero norm gives no measure of, or
+    // through the transfer with its rounding).
+    shooting = {sources(system), directIrradiance(system), std::vector<Color>(system.size())};
+    stats.shots = 0;
+    stats.unshot = 0.0;
+    return;
+  }
   if (transfer) {
     transfer->propagate(shooting.unshot, table(), shooting.radiosity, shooting.irradiance);
     stats.shots = size_t(std::count_if(shooting.unshot.begin(), shooting.unshot.end(),
@@ -230,7 +240,6 @@ void Relighter::State::shoot() {
     return;
   }
   PatchSolution record;
-  const double norm = sourceNorm(system);
   shootUnshotInSweeps(table(), system, shooting, norm,
                       {settings.tolerance, m.settings.maxIterations}, record);
   stats.shots = record.shots;
@@ -240,9 +249,14 @@ void Relighter::State::shoot() {
 // The solution the renderers see: the state plus the ambient term for what is left unshot.
 void Relighter::State::publish() {
   solutionOf(system, shooting, m.solution);
+  // A change shot to a tolerance leaves its residue, of either sign, where the light is near
+  // none: the light shown is never below none.
+  for (Color& b : m.solution.radiosity) b = glm::max(b, Color(0.0f));
+  for (Color& h : m.solution.irradiance) h = glm::max(h, Color(0.0f));
   m.mix.setEmissionScales(emissionScales);  // what radiance() shows of the emitters
   m.lightDirect = system.direct;
   m.indirect = m.indirectOf(m.solution, rowsOf(table()), system);
+  for (Color& h : m.indirect) h = glm::max(h, Color(0.0f));
   if (stats.meshChanged) {
     m.hanging = m.mesh->hangingVertices();
     m.recordMesh();

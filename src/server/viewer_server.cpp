@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <httplib.h>
 #include <radiosity/error.h>
+#include <sys/socket.h>
 
 #include <charconv>
 #include <chrono>
@@ -20,6 +21,29 @@ namespace {
 void badRequest(httplib::Response& response, const std::string& message) {
   response.status = 400;
   response.set_content(nlohmann::json{{"error", message}}.dump(), "application/json");
+}
+
+void forbidden(httplib::Response& response, const std::string& message) {
+  response.status = 403;
+  response.set_content(nlohmann::json{{"error", message}}.dump(), "application/json");
+}
+
+// The host a Host header or an origin's authority names, without its port ("[::1]:8080" ->
+// "::1").
+std::string hostOf(std::string authority) {
+  if (!authority.empty() && authority.front() == '[') {
+    const size_t close = authority.find(']');
+    return close == std::string::npos ? authority : authority.substr(1, close - 1);
+  }
+  return authority.substr(0, authority.find(':'));
+}
+
+// Listening sockets that share no port: SO_REUSEADDR (a restart need not wait out TIME_WAIT)
+// without the SO_REUSEPORT httplib adds by default, under which a second server on the same
+// port would take half the connections.
+void exclusivePort(int socket) {
+  int yes = 1;
+  setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
 }
 
 void binary(httplib::Response& response, const std::string& bytes) {
@@ -57,6 +81,14 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
   httplib::Server& http = *http_;
   // Above the limit httplib itself answers 413 without reading it; up to it, a 400 below.
   http.set_payload_max_length(4 * kMaxBody);
+  http.set_socket_options(exclusivePort);
+  http.set_pre_routing_handler(
+      [this](const httplib::Request& request, httplib::Response& response) {
+        const std::string why = refusal(request);
+        if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
+        forbidden(response, why);
+        return httplib::Server::HandlerResponse::Handled;
+      });
   http.Get("/api/progress", [this](const httplib::Request&, httplib::Response& response) {
     response.set_content(
         nlohmann::json{{"ready", session_.load() != nullptr}, {"progress", progress_.load()}}
@@ -132,11 +164,31 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
 
 ViewerServer::~ViewerServer() = default;
 
+std::string ViewerServer::refusal(const httplib::Request& request) const {
+  const std::string host = request.get_header_value("Host");
+  const std::string name = hostOf(host);
+  if (name != "localhost" && name != "127.0.0.1" && name != "::1" && name != host_)
+    return fmt::format("Host '{}' is not this server (expected localhost, 127.0.0.1, [::1]{})",
+                       host, host_.empty() ? "" : " or " + host_);
+  if (request.method == "GET" || request.method == "HEAD") return "";
+  if (request.has_header("Origin") && request.get_header_value("Origin") != "http://" + host)
+    return fmt::format("a request from origin '{}': only this server's own page changes it",
+                       request.get_header_value("Origin"));
+  const std::string type = request.get_header_value("Content-Type");
+  if (type.substr(0, type.find(';')) != "application/json")
+    return fmt::format("Content-Type '{}': expected application/json", type);
+  return "";
+}
+
 int ViewerServer::bind(const std::string& host, int port) {
+  host_ = host;
   const int bound = port == 0                         ? http_->bind_to_any_port(host)
                     : http_->bind_to_port(host, port) ? port
                                                       : -1;
-  if (bound < 0) throw std::runtime_error(fmt::format("cannot listen on {}:{}", host, port));
+  if (bound < 0)
+    throw InputError(fmt::format("--host {} --port {}", host, port),
+                     "cannot listen there: the port is taken (another server holds it) or the "
+                     "address is not this machine's");
   return bound;
 }
 

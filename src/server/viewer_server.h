@@ -12,7 +12,11 @@
 //   POST /api/lights    a light state (JSON, see ViewerSession::applyLights); answers the new
 //                       colours as /api/colors does, with the relight's time in X-Relight-Ms
 // A bad request gets 400 with {"error": message} and changes nothing. Static files come only
-// from the page's folder.
+// from the page's folder. Only the server's own page and command-line clients drive it: every
+// request must name the server in its Host (localhost, 127.0.0.1, [::1] or the address it was
+// bound to: no DNS rebinding), and a POST must come from the same origin (or carry no Origin, as
+// command-line clients send) with Content-Type application/json (no cross-site "simple"
+// request); else 403. No CORS headers are sent. A port another server holds is refused.
 
 #include <atomic>
 #include <filesystem>
@@ -21,6 +25,7 @@
 
 namespace httplib {
 class Server;
+struct Request;
 struct Response;
 }  // namespace httplib
 
@@ -41,8 +46,8 @@ class ViewerServer {
   void setProgress(double fraction);
   ~ViewerServer();
 
-  /// Binds `host`:`port` (0: a free port) and returns the port; throws std::runtime_error if it
-  /// cannot.
+  /// Binds `host`:`port` (0: a free port) and returns the port; throws InputError naming the
+  /// address if it cannot (the port is taken: no other server shares it).
   int bind(const std::string& host, int port);
   /// Answers requests until stop(); call after bind().
   void run();
@@ -58,7 +63,12 @@ class ViewerServer {
   template <class F>
   void withSession(httplib::Response& response, F&& f) const;
 
+  /// Why a request is refused (403) before any route sees it: a Host that is not this server,
+  /// a state change from another origin or not as JSON; "" when it is not.
+  std::string refusal(const httplib::Request& request) const;
+
   std::unique_ptr<httplib::Server> http_;
+  std::string host_;  ///< the address bound to; a request's Host may name it
   std::atomic<ViewerSession*> session_{nullptr};
   std::atomic<double> progress_{0.0};
 };

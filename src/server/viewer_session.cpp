@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <glm/gtx/component_wise.hpp>
+#include <span>
 
 #include "output/gltf_export.h"
 #include "output/surface_samples.h"
@@ -38,11 +39,30 @@ Vec3 vec3(const Json& j, const std::string& where) {
   return v;
 }
 
+// A light's intensity or a group's scale: as a scene file may hold them, in [0, kMaxLight].
 Color nonNegative(const Json& j, const std::string& where) {
+  if (j.is_number() && !std::isfinite(j.get<double>())) refuse(where, "expected finite numbers");
   const Color c = j.is_number() ? Color(j.get<float>()) : vec3(j, where);
-  if (!(minComponent(c) >= 0.0f) || !std::isfinite(maxComponent(c)))
-    refuse(where, "expected finite numbers >= 0");
+  if (!(minComponent(c) >= 0.0f) || !(maxComponent(c) <= kMaxLight))
+    refuse(where, fmt::format("expected numbers in [0, {:g}]", kMaxLight));
   return c;
+}
+
+// Why the lights at these group scales would be more light than a scene may hold (an intensity
+// or an emission times its group's scale beyond kMaxLight), or "".
+std::string tooMuchLight(const Scene& scene, std::span<const Light> lights,
+                         std::span<const LightGroup> groups, std::span<const Color> scales) {
+  for (size_t g = 0; g < groups.size(); ++g) {
+    for (uint32_t i : groups[g].lights)
+      if (!(maxComponent(lights[i].intensity * scales[g]) <= kMaxLight))
+        return fmt::format("light {}'s intensity times group '{}''s scale is beyond {:g} W/sr", i,
+                           groups[g].name, kMaxLight);
+    for (uint32_t m : groups[g].materials)
+      if (!(maxComponent(scene.materials[m].emission * scales[g]) <= kMaxLight))
+        return fmt::format("material '{}''s emission times group '{}''s scale is beyond {:g}",
+                           scene.materials[m].name, groups[g].name, kMaxLight);
+  }
+  return "";
 }
 
 // The floats as the API sends them: their bytes (little-endian float32 on every supported machine).
@@ -249,8 +269,10 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
               refuse(at + "/position", fmt::format("beyond {:g} scene units", kMaxSceneCoordinate));
           } else if (key == "direction") {
             const Vec3 d = vec3(value, at + "/direction");
-            if (!(glm::length(d) > 0.0f)) refuse(at + "/direction", "zero length");
-            light.direction = glm::normalize(d);
+            // Scaled to a largest component of 1 first: the length of [1e20, 0, 0] overflows.
+            const float largest = glm::compMax(glm::abs(d));
+            if (!(largest > 0.0f)) refuse(at + "/direction", "zero length");
+            light.direction = glm::normalize(d / largest);
           } else if (key == "intensity") {
             light.intensity = nonNegative(value, at + "/intensity");
           } else {
@@ -269,6 +291,8 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
         scales[g] = nonNegative(value, "/groups/" + name);
       }
     }
+    if (const std::string why = tooMuchLight(scene_, lights, groups_, scales); !why.empty())
+      refuse(request.contains("groups") ? "/groups" : "/lights", why);
     lights_ = std::move(lights);
     scales_ = std::move(scales);
     mine = ++asked_;

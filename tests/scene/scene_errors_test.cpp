@@ -238,6 +238,10 @@ TEST_F(JsonErrors, WrongTypesAndRanges) {
                 {"/lights/0/position", "3 numbers"});
   expectMessage(load(withLight(R"({"type": "point", "position": [0,1,0], "intensity": [1,-1,1]})")),
                 {"/lights/0/intensity", ">= 0"});
+  // Beyond kMaxLight: more light than a solve's products hold in floats.
+  expectMessage(
+      load(withLight(R"({"type": "point", "position": [0,1,0], "intensity": [1e19,1,1]})")),
+      {"/lights/0/intensity", "must be below 1e+18"});
   expectMessage(load(withLight(R"({"type": "spot", "position": [0,1,0], "direction": [0,0,0],
                     "intensity": [1,1,1], "inner_angle_deg": 10, "outer_angle_deg": 20})")),
                 {"/lights/0/direction", "zero length"});

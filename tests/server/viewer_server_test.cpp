@@ -14,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -77,6 +78,7 @@ class ViewerServerTest : public ::testing::Test {
     server_ = std::make_unique<ViewerServer>(*session_, web_);
     port_ = server_->bind("127.0.0.1", 0);
     thread_ = std::thread([this] { server_->run(); });
+    server_->waitUntilRunning();  // a stop() before run() listens would not end it
     client_ = std::make_unique<httplib::Client>("127.0.0.1", port_);
   }
   void TearDown() override {
@@ -212,6 +214,73 @@ TEST_F(ViewerServerTest, BadRequestsAre400AndChangeNothing) {
   EXPECT_TRUE(client_->Get("/api/colors")->body == colorsBefore);
 }
 
+// A request cannot poison the session: an intensity times its group's scale beyond what a scene
+// may hold (kMaxLight) is refused as a whole, and the relights after it stay finite.
+TEST_F(ViewerServerTest, LightBeyondWhatASceneMayHoldIsRefused) {
+  const std::string colorsBefore = client_->Get("/api/colors")->body;
+  for (const std::string bad :
+       {R"({"lights": [{"id": 0, "intensity": [3e38, 3e38, 3e38]}], "groups": {"light0": 10}})",
+        R"({"lights": [{"id": 0, "intensity": [1e19, 0, 0]}]})",
+        R"({"lights": [{"id": 0, "intensity": [1e17, 1e17, 1e17]}], "groups": {"light0": 100}})",
+        R"({"groups": {"light0": 3e38}})", R"({"groups": {"light0": 1e300}})"}) {
+    const auto r = post(bad);
+    ASSERT_TRUE(r) << bad;
+    EXPECT_EQ(r->status, 400) << bad << " " << r->body;
+  }
+  EXPECT_TRUE(client_->Get("/api/colors")->body == colorsBefore);
+  const auto normal = post(R"({"lights": [{"id": 0, "intensity": [1e5, 1e5, 1e5]}]})");
+  ASSERT_TRUE(normal);
+  ASSERT_EQ(normal->status, 200) << normal->body;
+  const float* c = reinterpret_cast<const float*>(normal->body.data());
+  for (size_t k = 0; k < normal->body.size() / 4; ++k)
+    ASSERT_TRUE(std::isfinite(c[k]) && c[k] >= 0.0f) << k << " " << c[k];
+}
+
+// A direction's length is not what it is read by: [1e20, 0, 0] is the +x axis (its length
+// overflows a float).
+TEST_F(ViewerServerTest, AHugeDirectionIsItsAxis) {
+  const auto r = post(R"({"lights": [{"id": 0, "direction": [1e20, 0, 0]}]})");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const nlohmann::json light = nlohmann::json::parse(client_->Get("/api/scene")->body)["lights"][0];
+  EXPECT_EQ(light["direction"], nlohmann::json::array({1.0, 0.0, 0.0}));
+}
+
+// Only this server's own page and command-line clients drive it: another Host (DNS
+// rebinding), a cross-site "simple" request (text/plain, another Origin) or a POST that is not
+// JSON gets 403 and changes nothing; reading from a command-line client needs no Origin.
+TEST_F(ViewerServerTest, RequestsFromOtherSitesAre403) {
+  const std::string colorsBefore = client_->Get("/api/colors")->body;
+  const std::string move = R"({"lights": [{"id": 0, "position": [100, 400, 100]}]})";
+  const auto rebound = client_->Get("/api/scene", {{"Host", "evil.example"}});
+  ASSERT_TRUE(rebound);
+  EXPECT_EQ(rebound->status, 403);
+  const auto simple =
+      client_->Post("/api/lights", {{"Origin", "http://evil.example"}}, move, "text/plain");
+  ASSERT_TRUE(simple);
+  EXPECT_EQ(simple->status, 403);
+  const auto crossOrigin =
+      client_->Post("/api/lights", {{"Origin", "http://evil.example"}}, move, "application/json");
+  ASSERT_TRUE(crossOrigin);
+  EXPECT_EQ(crossOrigin->status, 403);
+  const auto plain = client_->Post("/api/lights", move, "text/plain");
+  ASSERT_TRUE(plain);
+  EXPECT_EQ(plain->status, 403);
+  EXPECT_FALSE(simple->has_header("Access-Control-Allow-Origin"));
+  EXPECT_TRUE(client_->Get("/api/colors")->body == colorsBefore);
+  // The page itself: same origin, JSON.
+  const std::string self = "http://127.0.0.1:" + std::to_string(port_);
+  const auto own = client_->Post("/api/lights", {{"Origin", self}}, move, "application/json");
+  ASSERT_TRUE(own);
+  EXPECT_EQ(own->status, 200) << own->body;
+}
+
+// A port another server listens on is refused, not shared (no SO_REUSEPORT).
+TEST_F(ViewerServerTest, ABusyPortIsRefused) {
+  ViewerServer second(web_);
+  EXPECT_THROW(second.bind("127.0.0.1", port_), InputError);
+}
+
 // The moving box as the page asks for it: where its path puts it at each time (held after its
 // last keyframe), lit, and a time that is not one refused.
 TEST_F(ViewerServerTest, ServesTheDynamicObjectsWhereTheirPathsPutThem) {
@@ -329,6 +398,29 @@ TEST(ViewerSession, DimsAGroupOfGlowingSurfaces) {
   double sumBefore = 0.0, sumAfter = 0.0;
   for (size_t k = 0; k < before.size() / 4; ++k) sumBefore += a[k], sumAfter += b[k];
   EXPECT_NEAR(sumAfter / sumBefore, 0.25, 0.005);
+}
+
+// Every light off is no light at all, exactly (not the last state less a change shot to a
+// tolerance), and on again the light comes back.
+TEST(ViewerSession, EveryLightOffIsNoLight) {
+  for (const char* name : {"cornell", "cornell-spot"}) {
+    const Scene scene = loadScene(name);
+    const std::unique_ptr<ViewerSession> session = patchSession(scene);
+    const std::string group = scene.lights.empty() ? "light" : "light0";
+    const std::string off =
+        session->applyLights(nlohmann::json::parse(R"({"groups": {")" + group + R"(": 0}})"));
+    const float* c = reinterpret_cast<const float*>(off.data());
+    for (size_t k = 0; k < off.size() / 4; ++k) ASSERT_EQ(c[k], 0.0f) << name << " " << k;
+    const std::string on =
+        session->applyLights(nlohmann::json::parse(R"({"groups": {")" + group + R"(": 1}})"));
+    const float* d = reinterpret_cast<const float*>(on.data());
+    double sum = 0.0;
+    for (size_t k = 0; k < on.size() / 4; ++k) {
+      ASSERT_GE(d[k], 0.0f) << name << " " << k;
+      sum += d[k];
+    }
+    EXPECT_GT(sum, 0.0) << name;
+  }
 }
 
 }  // namespace

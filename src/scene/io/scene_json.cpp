@@ -114,10 +114,14 @@ class JsonReader {
   /// A colour whose components must lie in [lo, hi) (or [lo, inf) when hi is infinite).
   Color color(const Json& j, const std::string& ptr, const char* name, double lo, double hi) const {
     const Vec3 c = vec3(j, ptr);
+    // Light (intensity, emission) is bounded only by kMaxLight; other colours by a range of
+    // their own.
+    const bool light = hi >= kMaxLight;
     for (int i = 0; i < 3; ++i)
       if (!(c[i] >= lo && c[i] < hi))
-        fail(ptr, std::isinf(hi) ? fmt::format("{} {} must be >= {}", name, c[i], lo)
-                                 : fmt::format("{} {} must be in [{}, {})", name, c[i], lo, hi));
+        fail(ptr, !light       ? fmt::format("{} {} must be in [{}, {})", name, c[i], lo, hi)
+                  : c[i] >= lo ? fmt::format("{} {:g} must be below {:g}", name, c[i], hi)
+                               : fmt::format("{} {} must be >= {}", name, c[i], lo));
     return c;
   }
 
@@ -303,7 +307,7 @@ void readMaterials(const JsonReader& r, const Json& j, const std::set<std::strin
       found = true;
       if (m.contains("rho")) mat.rho = r.color(m["rho"], ptr + "/rho", "rho", 0.0, 1.0);
       if (m.contains("emission"))
-        mat.emission = r.color(m["emission"], ptr + "/emission", "emission", 0.0, INFINITY);
+        mat.emission = r.color(m["emission"], ptr + "/emission", "emission", 0.0, kMaxLight);
       if (m.contains("two_sided")) mat.twoSided = r.boolean(m["two_sided"], ptr + "/two_sided");
       readCoverage(r, m, ptr, mat);
     }
@@ -352,7 +356,7 @@ std::vector<LightKeyframe> readPath(const JsonReader& r, const Json& j, const st
     if (k.contains("direction"))
       key.direction = readDirection(r, k["direction"], at + "/direction");
     if (k.contains("intensity"))
-      key.intensity = r.color(k["intensity"], at + "/intensity", "intensity", 0.0, INFINITY);
+      key.intensity = r.color(k["intensity"], at + "/intensity", "intensity", 0.0, kMaxLight);
     path.push_back(key);
   }
   return path;
@@ -398,7 +402,7 @@ Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
   }
   if (light.type != LightType::Ies)
     light.intensity =
-        r.color(required("intensity"), ptr + "/intensity", "intensity", 0.0, INFINITY);
+        r.color(required("intensity"), ptr + "/intensity", "intensity", 0.0, kMaxLight);
   if (light.type == LightType::Spot) {
     light.innerAngleDeg = float(r.number(required("inner_angle_deg"), ptr + "/inner_angle_deg"));
     light.outerAngleDeg = float(r.number(required("outer_angle_deg"), ptr + "/outer_angle_deg"));
