@@ -46,6 +46,18 @@ void exclusivePort(int socket) {
   setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
 }
 
+// The handler of a path asked with a method it does not take.
+httplib::Server::Handler methodNotAllowed(const std::string& allowed) {
+  return [allowed](const httplib::Request& request, httplib::Response& response) {
+    response.status = 405;
+    response.set_header("Allow", allowed);
+    response.set_content(
+        nlohmann::json{{"error", request.method + " " + request.path + ": expected " + allowed}}
+            .dump(),
+        "application/json");
+  };
+}
+
 void binary(httplib::Response& response, const std::string& bytes) {
   response.set_content(bytes, "application/octet-stream");
 }
@@ -135,6 +147,9 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
     if (request.body.size() > kMaxBody)
       return badRequest(response,
                         fmt::format("body of {} bytes; at most {}", request.body.size(), kMaxBody));
+    // A NUL byte ends the JSON text for the parser, and what follows would pass unread.
+    if (request.body.find('\0') != std::string::npos)
+      return badRequest(response, "the body holds a NUL byte");
     const nlohmann::json body = nlohmann::json::parse(request.body, nullptr, false);
     if (body.is_discarded()) return badRequest(response, "the body is not valid JSON");
     withSession(response, [&](ViewerSession& session) {
@@ -147,6 +162,16 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
       }
     });
   });
+  // A known path asked with another method: 405 naming the one it takes.
+  for (const char* path : {"/api/progress", "/api/scene", "/api/mesh.glb", "/api/colors",
+                           "/api/irradiance", "/api/objects.csv", "/api/dynamic"}) {
+    http.Post(path, methodNotAllowed("GET"));
+    http.Put(path, methodNotAllowed("GET"));
+    http.Delete(path, methodNotAllowed("GET"));
+  }
+  http.Get("/api/lights", methodNotAllowed("POST"));
+  http.Put("/api/lights", methodNotAllowed("POST"));
+  http.Delete("/api/lights", methodNotAllowed("POST"));
   std::error_code ec;
   if (std::filesystem::is_directory(webRoot, ec)) http.set_mount_point("/", webRoot.string());
   http.set_exception_handler(

@@ -275,6 +275,26 @@ TEST_F(ViewerServerTest, RequestsFromOtherSitesAre403) {
   EXPECT_EQ(own->status, 200) << own->body;
 }
 
+// A known path asked with a method it does not take is 405 with Allow; a body with a NUL byte
+// (JSON, then a NUL and junk) is refused whole.
+TEST_F(ViewerServerTest, WrongMethodsAre405AndNulBytes400) {
+  const auto get = client_->Get("/api/lights");
+  ASSERT_TRUE(get);
+  EXPECT_EQ(get->status, 405);
+  EXPECT_EQ(get->get_header_value("Allow"), "POST");
+  const auto post = client_->Post("/api/colors", "{}", "application/json");
+  ASSERT_TRUE(post);
+  EXPECT_EQ(post->status, 405);
+  EXPECT_EQ(post->get_header_value("Allow"), "GET");
+  const std::string colorsBefore = client_->Get("/api/colors")->body;
+  const auto nul =
+      client_->Post("/api/lights", std::string(R"({"groups": {"light0": 0.5}})") + '\0' + "junk",
+                    "application/json");
+  ASSERT_TRUE(nul);
+  EXPECT_EQ(nul->status, 400);
+  EXPECT_TRUE(client_->Get("/api/colors")->body == colorsBefore);
+}
+
 // A port another server listens on is refused, not shared (no SO_REUSEPORT).
 TEST_F(ViewerServerTest, ABusyPortIsRefused) {
   ViewerServer second(web_);
