@@ -59,7 +59,7 @@ std::unique_ptr<ViewerSession> startSession(const ServeOptions& o, const Scene& 
   }
   const ProgressCallback bar = console.progress(engine->model().solveLabel());
   std::unique_ptr<SurfaceSolution> solution = o.solution.empty()
-                                                  ? engine->solve(scene.lights, 0.0,
+                                                  ? engine->solve(scene.lights, o.time,
                                                                   [&](double f) {
                                                                     report(f);
                                                                     return !bar || bar(f);

@@ -1,5 +1,6 @@
 // The engine (radiosity_engine.h): one ray caster and one model for a scene, and the dynamic
 // objects' part in every solve, relight, picture and export, written here once.
+#include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/radiosity_engine.h>
 
@@ -39,7 +40,10 @@ const MethodSettings& RadiosityEngine::settings() const {
 
 const MethodModel& RadiosityEngine::model() const {
   if (!impl_->model)
-    impl_->method.prepare(impl_->scene, impl_->caster, impl_->settings);  // throws, naming them
+    throw InputError(
+        "--method " + impl_->method.name(),
+        fmt::format("renders pictures only; the methods that solve the surfaces: {}",
+                    fmt::join(methodsWith(&MethodCapabilities::surfaceSolution), ", ")));
   return *impl_->model;
 }
 
