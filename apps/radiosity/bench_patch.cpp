@@ -4,10 +4,10 @@
 // form-factor cache that the Jacobi run loads, so its rays are cast once (progressive refinement
 // casts the rows it asks for itself, without a cache).
 #include <fmt/format.h>
+#include <radiosity/kernel_timing.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene_loader.h>
-#include <tbb/parallel_for.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,8 +17,6 @@
 #include <system_error>
 
 #include "bench_workloads.h"
-#include "lighting/direct_lighting.h"
-#include "patch/patch_light_injection.h"
 
 namespace rad::cli {
 
@@ -104,27 +102,6 @@ nlohmann::json measure(const Workload& w, Console& console) {
   return result;
 }
 
-// One pass of the lights' direct light over every patch (what relighting pays per frame): the
-// median of 21 passes, in milliseconds.
-double directLightPassMs(const Scene& scene, const PatchMesh& mesh, int points) {
-  const RayCaster caster(scene);
-  const DirectLighting direct(scene, caster);
-  std::vector<Color> d(mesh.size());
-  std::vector<double> ms;
-  for (int pass = 0; pass < 21; ++pass) {
-    const auto start = std::chrono::steady_clock::now();
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(mesh.size()), 64),
-                      [&](const auto& r) {
-                        for (uint32_t p = r.begin(); p != r.end(); ++p)
-                          d[p] = lightOnPatch(mesh, p, direct, points).direct;
-                      });
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                     .count());
-  }
-  std::nth_element(ms.begin(), ms.begin() + 10, ms.end());
-  return ms[10];
-}
-
 // cornell-spot: the lights' direct light, adaptive subdivision and the solve on the refined mesh;
 // then the spot moved 10 cm on the same model (what a solve of the model pays for moved lights,
 // without the Relighter's shooting of the change: the rows of the nodes the new beam edge made,
@@ -144,8 +121,7 @@ nlohmann::json measureLights(Console& console) {
   const PatchRadiosity again = model.solve(moved);
   const double movedSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const PatchMesh mesh(scene, {0.0f, 10000});
-  const double passMs = directLightPassMs(scene, mesh, 4);
+  const DirectLightPassTiming pass = measurePatchDirectLight(scene, 10000, 4);
   const double total = p.meshSeconds + p.lightSeconds + p.formFactorSeconds + p.solveSeconds;
   nlohmann::json result = {
       {"scene", "cornell-spot"},
@@ -163,15 +139,16 @@ nlohmann::json measureLights(Console& console) {
       {"moved_rows_computed", again.stats().rowsComputed},
       {"moved_rows_reused", again.stats().rowsReused},
       {"moved_s", movedSeconds},
-      {"direct_pass_patches", mesh.size()},
-      {"direct_pass_ms", passMs}};
+      {"direct_pass_patches", pass.patches},
+      {"direct_pass_ms", pass.medianMs}};
   result["summary"] = fmt::format(
       "cornell-spot: {} -> {} patches by adaptive subdivision ({} rounds), {} rows, light rays "
       "{:.1f} M/s, {} table entries, {:.2f} s in all; spot moved 10 cm: {} rows cast, {} reused, "
       "{:.2f} s; direct light of {} patches x 4 points {:.2f} ms",
       p.basePatches, p.patches, p.refineRounds, p.rowsComputed,
       result["light_rays_per_s"].get<double>() * 1e-6, p.nonZeros, total,
-      again.stats().rowsComputed, again.stats().rowsReused, movedSeconds, mesh.size(), passMs);
+      again.stats().rowsComputed, again.stats().rowsReused, movedSeconds, pass.patches,
+      pass.medianMs);
   return result;
 }
 

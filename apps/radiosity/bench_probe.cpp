@@ -2,28 +2,19 @@
 // box's centre, then the irradiance of a 10k-vertex object's vertices (the normals of a sphere)
 // by each of the three ways. ms a capture and ms a frame per object (capture plus its vertices).
 #include <fmt/format.h>
+#include <radiosity/kernel_timing.h>
 #include <radiosity/patch_radiosity.h>
+#include <radiosity/placed_objects.h>
 #include <radiosity/scene_loader.h>
-#include <tbb/parallel_for.h>
 
-#include <chrono>
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 
 #include "bench_workloads.h"
-#include "probes/cube_probe.h"
 
 namespace rad::cli {
 
 namespace {
-
-double msOf(const std::function<void()>& work, int repeats) {
-  const auto start = std::chrono::steady_clock::now();
-  for (int r = 0; r < repeats; ++r) work();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-             .count() /
-         repeats;
-}
 
 // `count` unit normals spread over the sphere (a Fibonacci lattice).
 std::vector<Vec3> sphereNormals(size_t count) {
@@ -47,23 +38,16 @@ nlohmann::json benchProbe(Console& console, int resolution) {
   const PatchRadiosity solution = PatchModel(scene, caster, settings).solve(scene.lights);
   const Bounds b = scene.bounds();
   const Vec3 centre = 0.5f * (b.min + b.max);
-  CubeProbe probe(resolution);
   console.detail(fmt::format("bench probe: {0}x{0} texels a face", resolution));
-  const double captureMs = msOf([&] { probe.capture(caster, solution, centre); }, 20);
   const std::vector<Vec3> normals = sphereNormals(10000);
-  std::vector<Color> irradiance(normals.size());
+  const CubeProbeTiming timing = measureCubeProbe(caster, solution, centre, resolution, normals);
+  const double captureMs = timing.captureMs;
   nlohmann::json ways = nlohmann::json::object();
   std::string summary = fmt::format("probe {0}x{0}: capture {1:.2f} ms", resolution, captureMs);
   for (const auto& [name, way] : {std::pair{"exact", ProbeIrradiance::Exact},
                                   std::pair{"harmonic", ProbeIrradiance::Harmonic},
                                   std::pair{"pattern", ProbeIrradiance::Pattern}}) {
-    const int repeats = way == ProbeIrradiance::Exact ? 2 : 20;
-    const double ms = msOf(
-        [&] {
-          tbb::parallel_for(size_t(0), normals.size(),
-                            [&](size_t v) { irradiance[v] = probe.irradiance(normals[v], way); });
-        },
-        repeats);
+    const double ms = timing.irradianceMs[int(way)];
     ways[name] = {{"vertices_ms", ms}, {"frame_ms", captureMs + ms}};
     summary += fmt::format("; {} {:.2f} ms for 10k vertices ({:.2f} ms a frame)", name, ms,
                            captureMs + ms);

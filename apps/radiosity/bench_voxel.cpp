@@ -1,5 +1,7 @@
 #include <fmt/format.h>
+#include <radiosity/atomic_file.h>
 #include <radiosity/error.h>
+#include <radiosity/kernel_timing.h>
 #include <radiosity/scene.h>
 #include <radiosity/scene_loader.h>
 #include <radiosity/voxel_radiosity.h>
@@ -10,12 +12,7 @@
 #include <vector>
 
 #include "bench_workloads.h"
-#include "core/atomic_file.h"
 #include "log_log_plot.h"
-#include "voxel/direction_set.h"
-#include "voxel/discrete_line_sweep.h"
-#include "voxel/voxel_solver.h"
-#include "voxel/voxelizer.h"
 
 namespace rad::cli {
 
@@ -57,72 +54,7 @@ SweepMeasurement measureSweep(const Scene& scene, float voxelSize, int sphereRad
           double(s.memoryBytes) / double(s.sides)};
 }
 
-struct SampledSweepMeasurement {
-  size_t voxels = 0, sides = 0, directions = 0, directionsSwept = 0;
-  /// The median round's time and rate, and the fastest round's rate.
-  double secondsPerRound = 0.0, visitsPerSecond = 0.0, bestVisitsPerSecond = 0.0;
-  double bytesPerSide = 0.0, bytesPerVoxel = 0.0;
-};
 constexpr int kRounds = 3;
-
-// The sweeps of every `pairStride`-th direction pair of the sphere of radius R (all octants and
-// dominant axes, in the sphere's own mix), on all threads, kRounds times, at `voxels` voxels.
-// A sweep's rate depends on the grid (room:16 at 93k voxels visits 30% slower per thread than at
-// 1-2M) and on the directions' mix, not on how many directions there are: the paper's sphere
-// sampled at the paper's voxel count extrapolates to its workload within a few percent of a
-// real iteration, and the default (a 24th of the directions, three times) takes an eighth of
-// one. Memory is counted as a solve's stats count it.
-SampledSweepMeasurement measureSampledSweep(const Scene& scene, size_t voxels, int sphereRadius,
-                                            size_t pairStride, Console& console) {
-  VoxelizerSettings voxelizer;
-  voxelizer.targetVoxels = voxels;
-  const VoxelGrid grid = voxelizeScene(scene, voxelizer);
-  const DirectionSet directions(sphereRadius);
-  std::vector<size_t> pairs;
-  for (size_t k = 0; k < directions.pairCount(); k += pairStride) pairs.push_back(k);
-  // Records sized for the sphere's widest direction, as a solve sizes them.
-  std::vector<IVec3> steps;
-  for (size_t k = 0; k < directions.pairCount(); ++k) steps.push_back(directions.pairFirst(k).step);
-
-  std::vector<DiscreteLineSweep::SentLight> sent(grid.entryCount());
-  const DiscreteLineSweep::Source source = DiscreteLineSweep::packSides(
-      grid, [](size_t) { return Color(1.0f); }, sent);
-  std::vector<Color> gathered(grid.entryCount(), Color(0.0f));
-  DiscreteLineSweep sweep(grid, {});
-  sweep.reserveLines(maxLineCount(grid, steps));
-  const ProgressCallback progress =
-      console.progress(fmt::format("sweep {} voxels", grid.cellCount()));
-  std::vector<double> seconds;
-  for (int round = 0; round < kRounds; ++round) {
-    const Stopwatch clock;
-    for (size_t i = 0; i < pairs.size(); ++i) {
-      sweep.sweepPair(directions.pairFirst(pairs[i]), source, gathered);
-      if (progress &&
-          !progress(double(round * pairs.size() + i + 1) / double(kRounds * pairs.size())))
-        throw Cancelled();
-    }
-    seconds.push_back(clock.seconds());
-  }
-  console.finishProgress();
-  // What a solve's stats count: the grid, the solver's arrays and the sweep's.
-  VoxelSolverSettings solver;
-  solver.sphereRadius = sphereRadius;
-  const double bytes =
-      double(grid.memoryBytes() + grid.entryCount() * voxelSolverBytesPerSide(solver) +
-             sweep.workingBytes());
-  std::sort(seconds.begin(), seconds.end());
-  // A pair visits every cell once for each of its two directions.
-  const double visits = 2.0 * double(pairs.size()) * double(grid.cellCount());
-  return {grid.cellCount(),
-          grid.entryCount(),
-          directions.size(),
-          2 * pairs.size(),
-          seconds[seconds.size() / 2],
-          visits / seconds[seconds.size() / 2],
-          visits / seconds.front(),
-          bytes / double(grid.entryCount()),
-          bytes / double(grid.cellCount())};
-}
 
 std::string svgPlot(const std::vector<SweepMeasurement>& points, double slope) {
   LogLogPlot plot{fmt::format("Voxel sweep: seconds per iteration against voxels, log-log slope "
@@ -142,21 +74,28 @@ std::string svgPlot(const std::vector<SweepMeasurement>& points, double slope) {
 
 nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius, size_t pairStride) {
   const Scene scene = loadScene(kScene);
-  const SampledSweepMeasurement m =
-      measureSampledSweep(scene, voxels, sphereRadius, pairStride, console);
-  const double paperSeconds = kPaperVisits / m.visitsPerSecond;
+  // The default (a 24th of the directions, three times) takes an eighth of one iteration.
+  const VoxelSweepRate m =
+      measureVoxelSweepRate(scene, voxels, sphereRadius, pairStride, kRounds,
+                            console.progress(fmt::format("sweep {} at {} voxels", kScene, voxels)));
+  console.finishProgress();
+  const double median = m.roundSeconds[m.roundSeconds.size() / 2];
+  const double visitsPerSecond = m.visitsPerRound / median;
+  const double bestVisitsPerSecond = m.visitsPerRound / m.roundSeconds.front();
+  const double bytesPerSide = m.bytes / double(m.sides), bytesPerVoxel = m.bytes / double(m.voxels);
+  const double paperSeconds = kPaperVisits / visitsPerSecond;
   return {
       {"scene", kScene},
       {"voxels", m.voxels},
       {"sides", m.sides},
       {"directions", m.directions},
       {"directions_swept", m.directionsSwept},
-      {"seconds_per_round", m.secondsPerRound},
+      {"seconds_per_round", median},
       {"rounds", kRounds},
-      {"visits_per_s", m.visitsPerSecond},
-      {"visits_per_s_best", m.bestVisitsPerSecond},
-      {"bytes_per_side", m.bytesPerSide},
-      {"bytes_per_voxel", m.bytesPerVoxel},
+      {"visits_per_s", visitsPerSecond},
+      {"visits_per_s_best", bestVisitsPerSecond},
+      {"bytes_per_side", bytesPerSide},
+      {"bytes_per_voxel", bytesPerVoxel},
       {"paper_workload_s", paperSeconds},
       {"speedup_over_paper", kPaperSeconds / paperSeconds},
       {"summary",
@@ -164,9 +103,9 @@ nlohmann::json benchVoxel(Console& console, size_t voxels, int sphereRadius, siz
            "{:.1f} M visits/s, median of {} rounds (fastest {:.1f}) ({} {} voxels, {} of R {}'s {} "
            "directions, {:.2f} s/round, {:.1f} B/side, {:.1f} B/voxel); "
            "paper workload (2e6 voxels, R 38, 6 it.) extrapolated: {:.0f} s = {:.0f}x the paper",
-           m.visitsPerSecond * 1e-6, kRounds, m.bestVisitsPerSecond * 1e-6, kScene, m.voxels,
-           m.directionsSwept, sphereRadius, m.directions, m.secondsPerRound, m.bytesPerSide,
-           m.bytesPerVoxel, paperSeconds, kPaperSeconds / paperSeconds)}};
+           visitsPerSecond * 1e-6, kRounds, bestVisitsPerSecond * 1e-6, kScene, m.voxels,
+           m.directionsSwept, sphereRadius, m.directions, median, bytesPerSide, bytesPerVoxel,
+           paperSeconds, kPaperSeconds / paperSeconds)}};
 }
 
 nlohmann::json benchVoxelScaling(Console& console, int sphereRadius, size_t maxVoxels,

@@ -1,7 +1,9 @@
 #include "cli.h"
 
 #include <fmt/format.h>
+#include <radiosity/atomic_file.h>
 #include <radiosity/error.h>
+#include <radiosity/message_text.h>
 #include <radiosity/version.h>
 #include <tbb/global_control.h>
 
@@ -15,8 +17,6 @@
 #include "command_support.h"
 #include "commands.h"
 #include "console.h"
-#include "core/atomic_file.h"
-#include "core/message_text.h"
 #include "mpi_processes.h"
 
 namespace rad::cli {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/process_memory.h>
 #include <radiosity/scene_loader.h>
 #include <unistd.h>
 
@@ -11,7 +12,6 @@
 #include <cstring>
 #include <filesystem>
 
-#include "core/memory_usage.h"
 #include "mpi_processes.h"
 
 namespace rad::cli {
@@ -78,7 +78,7 @@ void checkOutputPath(const std::string& option, const std::string& path) {
   const fs::file_status status = fs::status(file, ec);
   if (fs::is_directory(status) || file.filename().empty())
     throw InputError(where, "is a directory, expected a file name");
-  // Outputs are written to a temporary in the directory and renamed (core/atomic_file.h); a
+  // Outputs are written to a temporary in the directory and renamed (radiosity/atomic_file.h); a
   // device or a pipe is written in place.
   const bool inPlace = fs::exists(status) && !fs::is_regular_file(status);
   if (::access(inPlace ? file.c_str() : dir.c_str(), W_OK) != 0)

@@ -1,12 +1,12 @@
 #pragma once
 // Steps shared by the commands that compute light transport (render, solve, animate, serve).
 
+#include <radiosity/run_stats.h>
 #include <radiosity/scene.h>
 
 #include <string>
 
 #include "console.h"
-#include "output/run_stats.h"
 
 namespace CLI {
 class App;

@@ -1,6 +1,7 @@
 #include "frame_files.h"
 
 #include <fmt/format.h>
+#include <radiosity/atomic_file.h>
 #include <radiosity/error.h>
 #include <radiosity/image.h>
 #include <spawn.h>
@@ -13,8 +14,6 @@
 #include <optional>
 #include <stdexcept>
 #include <vector>
-
-#include "core/atomic_file.h"
 
 extern char** environ;
 

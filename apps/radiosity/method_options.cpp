@@ -1,6 +1,7 @@
 #include "method_options.h"
 
 #include <fmt/format.h>
+#include <radiosity/cache_directory.h>
 #include <radiosity/error.h>
 #include <radiosity/solution_file.h>
 
@@ -13,7 +14,6 @@
 #include <vector>
 
 #include "command_support.h"
-#include "core/cache_directory.h"
 #include "mpi_processes.h"
 
 namespace rad::cli {

@@ -7,6 +7,7 @@
 #include <radiosity/light_groups.h>
 #include <radiosity/radiosity_engine.h>
 #include <radiosity/radiosity_method.h>
+#include <radiosity/run_stats.h>
 #include <radiosity/scene.h>
 #include <radiosity/solver_settings.h>
 
@@ -16,7 +17,6 @@
 #include <vector>
 
 #include "console.h"
-#include "output/run_stats.h"
 
 namespace CLI {
 class App;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <radiosity/error.h>
+#include <radiosity/process_memory.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -12,7 +13,6 @@
 
 #include "command_support.h"
 #include "console.h"
-#include "core/memory_usage.h"
 #include "method_options.h"
 
 namespace rad::cli {

@@ -14,9 +14,7 @@
 
 #include "command_support.h"
 #include "commands.h"
-#include "core/memory_usage.h"
 #include "method_options.h"
-#include "output/lightmap_atlas.h"
 
 namespace rad::cli {
 
@@ -93,13 +91,8 @@ int runSolve(SolveOptions& o, Console& console) {
   if (o.lightmap > 0) checkOutputPath("--lightmap", lightmapIrradiancePath(o.exportPath));
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
-  if (o.lightmap > 0) {
-    // Before the solve: an atlas too small for the scene's charts is refused before any work.
-    requireMemory(double(o.lightmap) * o.lightmap * kLightmapBytesPerTexel, "--lightmap",
-                  fmt::format("a lightmap atlas of {0} x {0} texels", o.lightmap),
-                  "give a smaller size");
-    requireLightmapFits(scene, o.lightmap);
-  }
+  // Before the solve: an atlas too small for the scene's charts is refused before any work.
+  if (o.lightmap > 0) requireLightmapExport(scene, o.lightmap);
   o.method.resolve(scene, "", console);
   if (!o.save.empty() && !o.method.chosen().capabilities().saveSolution)
     throw InputError(

@@ -141,6 +141,11 @@ class SurfaceSolution : public SurfaceRadiance {
   void exportLightmappedGlb(const std::string& path, int size, float exposureEV = 0.0f) const;
 };
 
+/// Refuses a lightmap atlas of `size` x `size` texels before a long solve, at the cost of one
+/// packing: throws InputError when its images would not fit in the memory left or the scene's
+/// charts do not fit in it (exportLightmappedGlb would refuse the same after the solve).
+void requireLightmapExport(const Scene& scene, int size);
+
 /// Where exportLightmappedGlb puts the irradiance atlas of `glbPath`: its extension replaced by
 /// ".lightmap.exr".
 std::string lightmapIrradiancePath(const std::string& glbPath);

@@ -168,4 +168,8 @@ class VoxelRadiosity : public SurfaceSolution {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The voxel size that gives about `targetVoxels` surface voxels for this scene (what
+/// VoxelRadiositySettings::targetVoxels becomes).
+float voxelSizeForCount(const Scene& scene, size_t targetVoxels);
+
 }  // namespace rad

@@ -1,6 +1,5 @@
-#include "core/atomic_file.h"
-
 #include <fcntl.h>
+#include <radiosity/atomic_file.h>
 #include <signal.h>
 #include <unistd.h>
 

@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "core/memory_usage.h"
+#include "core/vector_memory.h"
 
 namespace rad {
 

@@ -1,4 +1,4 @@
-#include "core/cache_directory.h"
+#include <radiosity/cache_directory.h>
 
 #include <algorithm>
 #include <array>

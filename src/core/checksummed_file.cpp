@@ -1,9 +1,10 @@
 #include "core/checksummed_file.h"
 
+#include <radiosity/atomic_file.h>
+
 #include <cstdlib>
 #include <cstring>
 
-#include "core/atomic_file.h"
 #include "core/binary_io.h"
 
 namespace rad {

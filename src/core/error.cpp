@@ -1,6 +1,5 @@
 #include <radiosity/error.h>
-
-#include "core/message_text.h"
+#include <radiosity/message_text.h>
 
 namespace rad {
 

@@ -1,6 +1,5 @@
-#include "core/message_text.h"
-
 #include <fmt/format.h>
+#include <radiosity/message_text.h>
 
 namespace rad {
 

@@ -7,6 +7,7 @@
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <fmt/format.h>
+#include <radiosity/atomic_file.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -18,7 +19,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/atomic_file.h"
 #include "output/image_formats.h"
 
 namespace rad {

@@ -1,3 +1,4 @@
+#include <radiosity/atomic_file.h>
 #include <radiosity/error.h>
 #include <radiosity/image.h>
 
@@ -6,7 +7,6 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "core/atomic_file.h"
 #include "output/image_formats.h"
 
 namespace rad {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/process_memory.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -126,7 +127,9 @@ void packSmallest(UnplacedCharts& c, int size) {
 
 }  // namespace
 
-void requireLightmapFits(const Scene& scene, int size) {
+void requireLightmapExport(const Scene& scene, int size) {
+  requireMemory(double(size) * size * kLightmapBytesPerTexel, "--lightmap",
+                fmt::format("a lightmap atlas of {0} x {0} texels", size), "give a smaller size");
   UnplacedCharts c = chartsOf(scene);
   packSmallest(c, size);
 }

@@ -45,8 +45,6 @@ inline constexpr double kLightmapBytesPerTexel = 48.0;
 /// largest density that packs them into `size` x `size` texels. Throws InputError when even
 /// the smallest charts do not fit (a face needs at least 5 x 5 texels with its gutters).
 LightmapAtlas packLightmapAtlas(const Scene& scene, int size);
-/// The same refusal alone, at the cost of one packing: for a check before a long solve.
-void requireLightmapFits(const Scene& scene, int size);
 
 /// The atlas's images: per texel, the irradiance H (W per square scene unit) and the radiance
 /// leaving the surface (what a picture shows), both linear. Texels between charts stay 0.

@@ -1,8 +1,9 @@
+#include <radiosity/atomic_file.h>
+
 #include <fstream>
 #include <stdexcept>
 #include <vector>
 
-#include "core/atomic_file.h"
 #include "output/image_formats.h"
 
 // The one translation unit of the library that holds stb_image_write's implementation.

@@ -1,9 +1,8 @@
-#include "output/run_stats.h"
+#include <radiosity/atomic_file.h>
+#include <radiosity/run_stats.h>
 
 #include <glm/gtc/constants.hpp>
 #include <nlohmann/json.hpp>
-
-#include "core/atomic_file.h"
 
 namespace rad {
 

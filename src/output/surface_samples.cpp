@@ -1,12 +1,11 @@
 #include "output/surface_samples.h"
 
 #include <fmt/format.h>
+#include <radiosity/atomic_file.h>
 #include <radiosity/image.h>
 
 #include <cstring>
 #include <glm/gtc/constants.hpp>
-
-#include "core/atomic_file.h"
 
 namespace rad {
 

@@ -2,6 +2,7 @@
 #include "patch/form_factor_cache.h"
 
 #include <fmt/format.h>
+#include <radiosity/cache_directory.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -9,7 +10,6 @@
 #include <fstream>
 
 #include "core/binary_io.h"
-#include "core/cache_directory.h"
 #include "core/checksummed_file.h"
 #include "scene/scene_hash.h"
 

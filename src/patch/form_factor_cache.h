@@ -2,8 +2,8 @@
 // The form-factor table on disk, so that a second run on the same geometry with the same meshing
 // and estimator settings loads it instead of casting rays. The file holds a magic, a format
 // version, the key it was computed for, the table and a checksum of all of it; it is written
-// atomically (core/atomic_file.h). A file that is truncated, corrupt, of another version or for
-// another key is never used: the loader says why in one warning and the caller recomputes.
+// atomically (radiosity/atomic_file.h). A file that is truncated, corrupt, of another version or
+// for another key is never used: the loader says why in one warning and the caller recomputes.
 
 #include <radiosity/scene.h>
 

@@ -13,7 +13,7 @@
 #include <memory>
 
 #include "core/buckets.h"
-#include "core/memory_usage.h"
+#include "core/vector_memory.h"
 
 namespace rad {
 

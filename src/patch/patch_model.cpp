@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
+#include <radiosity/process_memory.h>
 
 #include <chrono>
 #include <cmath>
 
-#include "core/memory_usage.h"
 #include "patch/patch_model_state.h"
 
 namespace rad {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/path_tracer.h>
+#include <radiosity/process_memory.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -12,7 +13,6 @@
 #include <chrono>
 #include <glm/gtc/constants.hpp>
 
-#include "core/memory_usage.h"
 #include "core/process_collectives.h"
 #include "core/progress_ticker.h"
 #include "geometry/sampling.h"

@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/message_text.h>
 #include <radiosity/scene_builder.h>
 
 #include <array>
@@ -7,7 +8,6 @@
 #include <glm/gtx/component_wise.hpp>
 #include <optional>
 
-#include "core/message_text.h"
 #include "scene/polygon.h"
 
 namespace rad {

@@ -2,11 +2,11 @@
 #include "scene/solution_file.h"
 
 #include <fmt/format.h>
+#include <radiosity/atomic_file.h>
 #include <radiosity/error.h>
 
 #include <cstring>
 
-#include "core/atomic_file.h"
 #include "scene/scene_hash.h"
 
 namespace rad {

@@ -2,6 +2,7 @@
 // L. Williams, "Pyramidal parametrics", SIGGRAPH 1983).
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/process_memory.h>
 #include <radiosity/texture.h>
 
 #include <algorithm>
@@ -11,7 +12,6 @@
 #include <iterator>
 
 #include "core/binary_io.h"
-#include "core/memory_usage.h"
 
 // The library's own copy of stb_image, static so that it never meets another one at link time.
 #define STB_IMAGE_IMPLEMENTATION

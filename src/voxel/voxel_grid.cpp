@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/memory_usage.h"
+#include "core/vector_memory.h"
 #include "voxel/half_float.h"
 
 namespace rad {

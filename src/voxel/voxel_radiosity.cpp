@@ -9,7 +9,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "core/convergence_advice.h"
-#include "core/memory_usage.h"
+#include "core/vector_memory.h"
 #include "lit_mesh/baked_mesh.h"
 #include "voxel/voxel_radiosity_impl.h"
 #include "voxel/voxelizer.h"

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/process_memory.h>
 #include <radiosity/ray_caster.h>
 #include <tbb/parallel_for.h>
 
@@ -13,10 +14,10 @@
 #include <map>
 #include <memory>
 
-#include "core/memory_usage.h"
 #include "core/process_collectives.h"
 #include "core/progress_ticker.h"
 #include "core/rng.h"
+#include "core/vector_memory.h"
 #include "lighting/direct_lighting.h"
 #include "voxel/direction_set.h"
 #include "voxel/exact_color_sum.h"

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/process_memory.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -13,7 +14,7 @@
 #include <map>
 #include <tuple>
 
-#include "core/memory_usage.h"
+#include "core/vector_memory.h"
 #include "voxel/half_float.h"
 
 namespace rad {

@@ -10,6 +10,7 @@
 
 #include <radiosity/progress.h>
 #include <radiosity/scene.h>
+#include <radiosity/voxel_radiosity.h>
 
 #include "voxel/voxel_grid.h"
 
@@ -26,8 +27,6 @@ struct VoxelizerSettings {
 VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
                         const ProgressCallback& progress = {});
 
-/// The voxel size that gives about `targetVoxels` surface voxels for this scene.
-float voxelSizeForCount(const Scene& scene, size_t targetVoxels);
 /// About how many surface voxels this scene has at `voxelSize` (the inverse of the above).
 double expectedVoxelCount(const Scene& scene, float voxelSize);
 

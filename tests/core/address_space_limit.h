@@ -2,11 +2,10 @@
 // Lowers this process's address-space limit (ulimit -v) for the lifetime of an object, to what
 // the process holds now plus `room` bytes: how tests make a run short of memory on purpose.
 
+#include <radiosity/process_memory.h>
 #include <sys/resource.h>
 
 #include <cstdint>
-
-#include "core/memory_usage.h"
 
 namespace rad::test {
 

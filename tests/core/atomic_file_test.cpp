@@ -1,6 +1,5 @@
-#include "core/atomic_file.h"
-
 #include <gtest/gtest.h>
+#include <radiosity/atomic_file.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>

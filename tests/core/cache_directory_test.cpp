@@ -1,7 +1,6 @@
 // The cache directory's cap: radiosity's files, least recently used first, and nothing else.
-#include "core/cache_directory.h"
-
 #include <gtest/gtest.h>
+#include <radiosity/cache_directory.h>
 
 #include <algorithm>
 #include <chrono>

@@ -11,6 +11,7 @@
 #include <radiosity/error.h>
 #include <radiosity/radiosity_engine.h>
 #include <radiosity/radiosity_method.h>
+#include <radiosity/run_stats.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/solution_file.h>
 
@@ -21,7 +22,6 @@
 
 #include "console.h"
 #include "method_options.h"
-#include "output/run_stats.h"
 #include "picture_options.h"
 #include "render/test_scenes.h"
 #include "scene/scene_summary.h"

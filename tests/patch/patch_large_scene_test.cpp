@@ -2,6 +2,7 @@
 // the closure of its form-factor rows and the energy balance, which real scenes broke.
 #include <gtest/gtest.h>
 #include <radiosity/patch_radiosity.h>
+#include <radiosity/run_stats.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
 
@@ -9,7 +10,6 @@
 #include <filesystem>
 #include <string>
 
-#include "output/run_stats.h"
 #include "patch/form_factor_table.h"
 #include "patch/patch_mesh.h"
 #include "render/test_scenes.h"

@@ -4,6 +4,7 @@
 #include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
+#include <radiosity/run_stats.h>
 #include <radiosity/scene_loader.h>
 #include <sys/stat.h>
 
@@ -14,7 +15,6 @@
 #include <map>
 
 #include "core/binary_io.h"
-#include "output/run_stats.h"
 #include "patch/form_factor_estimators.h"
 #include "patch/form_factor_table.h"
 #include "patch_test_scenes.h"

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/ies_profile.h>
+#include <radiosity/message_text.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -23,7 +24,6 @@
 
 #include "core/checked_size.h"
 #include "core/json_nesting.h"
-#include "core/message_text.h"
 #include "scene/io/text_file.h"
 #include "scene/io/texture_files.h"
 

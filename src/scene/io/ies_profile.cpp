@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/ies_profile.h>
+#include <radiosity/message_text.h>
 
 #include <algorithm>
 #include <cctype>
@@ -25,7 +26,6 @@
 #include <optional>
 #include <sstream>
 
-#include "core/message_text.h"
 #include "scene/io/text_file.h"
 
 namespace rad {

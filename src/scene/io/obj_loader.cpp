@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/message_text.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -17,7 +18,6 @@
 #include <map>
 #include <set>
 
-#include "core/message_text.h"
 #include "scene/io/text_file.h"
 #include "scene/io/texture_files.h"
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <radiosity/error.h>
 #include <radiosity/ies_profile.h>
+#include <radiosity/message_text.h>
 #include <radiosity/scene_builder.h>
 
 #include <algorithm>
@@ -18,7 +19,6 @@
 #include <set>
 
 #include "core/json_nesting.h"
-#include "core/message_text.h"
 #include "scene/io/gltf_loader.h"
 #include "scene/io/obj_loader.h"
 #include "scene/io/text_file.h"

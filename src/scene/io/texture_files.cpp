@@ -2,8 +2,7 @@
 
 #include <fmt/format.h>
 #include <radiosity/error.h>
-
-#include "core/message_text.h"
+#include <radiosity/message_text.h>
 
 namespace rad {
 

@@ -1,6 +1,6 @@
-#include "core/memory_usage.h"
 
 #include <gtest/gtest.h>
+#include <radiosity/process_memory.h>
 
 #include <cstdint>
 #include <fstream>

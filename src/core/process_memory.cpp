@@ -1,7 +1,6 @@
-#include "core/memory_usage.h"
-
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/process_memory.h>
 #include <sys/resource.h>
 
 #include <algorithm>
