@@ -17,8 +17,8 @@ namespace rad {
 /// The voxel sweep's speed on one grid (measureVoxelSweepRate).
 struct VoxelSweepRate {
   size_t voxels = 0, sides = 0;
-  size_t directions = 0;       ///< of the sphere of radius R
-  size_t directionsSwept = 0;  ///< of them, in each round
+  size_t directions = 0;             ///< of the sphere of radius R
+  size_t directionsSwept = 0;        ///< of them, in each round
   std::vector<double> roundSeconds;  ///< each round's time, fastest first
   double visitsPerRound = 0.0;       ///< voxel-direction visits a round
   double bytes = 0.0;  ///< what a solve of this grid holds (the grid, the solver's and the sweep's)
@@ -45,8 +45,7 @@ struct CubeProbeTiming {
 /// Captures a cube probe of `resolution` texels a face at `centre` in `radiance` (seen through
 /// `caster`), then evaluates its irradiance for every one of `normals` by each way.
 CubeProbeTiming measureCubeProbe(const RayCaster& caster, const SurfaceRadiance& radiance,
-                                 const Vec3& centre, int resolution,
-                                 std::span<const Vec3> normals);
+                                 const Vec3& centre, int resolution, std::span<const Vec3> normals);
 
 /// One pass of the lights' direct light over every patch (measurePatchDirectLight).
 struct DirectLightPassTiming {

@@ -29,13 +29,13 @@ std::filesystem::path voxelCheckpointFile(const Scene& scene, const VoxelGrid& g
   for (const int v : {s.sphereRadius, s.laterSphereRadius, s.iterations, s.directSamples})
     h.value(v);
   h.value(s.tolerance);
-  for (const bool b : {s.estimateTail, s.directFirstShot, s.normalize, s.jitterLines, s.keepDirect,
-                       s.sweep.tangentCorrection})
+  for (const bool b : {s.estimateTail, s.directFirstShot, s.normalize, s.jitterLines,
+                       s.keepsDirect(), s.tangentCorrection})
     h.value(uint8_t(b));
   h.value(uint64_t(s.emissionScales.size()));
   for (const Color& c : s.emissionScales) h.value(c);
   h.value(s.seed);
-  return s.checkpointDir / ("voxel-" + h.key().hex() + ".checkpoint");
+  return std::filesystem::path(s.checkpointDir) / ("voxel-" + h.key().hex() + ".checkpoint");
 }
 
 std::string saveVoxelCheckpoint(const std::filesystem::path& file, const VoxelCheckpoint& c) {

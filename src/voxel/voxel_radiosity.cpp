@@ -50,22 +50,9 @@ std::shared_ptr<VoxelModel::State> voxelizedState(const Scene& scene,
 }
 
 VoxelSolverSettings solverSettings(const VoxelRadiositySettings& settings) {
-  VoxelSolverSettings solver;
-  solver.sphereRadius = settings.sphereRadius;
-  solver.laterSphereRadius = settings.laterSphereRadius;
-  solver.iterations = settings.iterations;
-  solver.tolerance = settings.tolerance;
-  solver.estimateTail = settings.estimateTail;
-  solver.directFirstShot = settings.directFirstShot;
-  solver.directSamples = settings.directSamples;
-  solver.normalize = settings.normalize;
-  solver.jitterLines = settings.jitterLines;
-  solver.keepDirect = settings.keepDirectLight && settings.directFirstShot;
-  solver.sweep.tangentCorrection = settings.tangentCorrection;
-  solver.seed = settings.seed;
+  VoxelSolverSettings solver{settings, {}};
   // A split solve keeps no checkpoint: each process would keep its own part of one.
-  if (!settings.processes.split()) solver.checkpointDir = settings.checkpointDir;
-  solver.processes = settings.processes;
+  if (settings.processes.split()) solver.checkpointDir.clear();
   return solver;
 }
 
@@ -97,7 +84,7 @@ std::pair<VoxelSolution, std::vector<Color>> VoxelRadiosity::Impl::solve(
   VoxelSolution solved = solveVoxelRadiosity(
       *scene, grid, shadowCaster ? *shadowCaster : *model->caster, lights, settings, progress);
   std::vector<Color> h;
-  if (solver.keepDirect) {
+  if (solver.keepsDirect()) {
     h = solved.irradiance;
     for (size_t e = 0; e < h.size(); ++e) h[e] = glm::max(h[e] - solved.direct[e], Color(0.0f));
     releaseMemory(solved.direct);

@@ -424,7 +424,7 @@ uint64_t voxelSolverBytesPerSide(const VoxelSolverSettings& settings) {
          sizeof(Float24Color) +                         // irradiance so far
          sizeof(DiscreteLineSweep::SentLight) +         // light sent
          (settings.normalize ? sizeof(uint16_t) : 0) +  // normalization weights
-         (settings.keepDirect ? sizeof(Color) : 0);     // the first shot, kept apart
+         (settings.keepsDirect() ? sizeof(Color) : 0);  // the first shot, kept apart
 }
 
 uint64_t voxelSolveBytes(const VoxelGrid& grid, const VoxelSolverSettings& settings) {
@@ -501,7 +501,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
     const auto start = std::chrono::steady_clock::now();
     h = directIrradiance(scene, grid, caster, lights, settings, solution.shadowRays, progress);
     solution.directSeconds = secondsSince(start);
-    if (settings.keepDirect) solution.direct = h;
+    if (settings.keepsDirect()) solution.direct = h;
   }
   SideLight light(grid, settings, directions, std::move(h));
   kept.sourcePower = resumed ? resumed->sourcePower : light.totalPower();
@@ -511,7 +511,7 @@ VoxelSolution solveVoxelRadiosity(const Scene& scene, const VoxelGrid& grid,
   bool canResume = resumed.has_value();
   if (!resumed && settings.directFirstShot)
     canResume = keepCheckpoint(checkpoint, 0, light, kept, solution);
-  auto sweep = std::make_unique<DiscreteLineSweep>(grid, settings.sweep);
+  auto sweep = std::make_unique<DiscreteLineSweep>(grid, SweepSettings{settings.tangentCorrection});
   sweep->reserveLines(lines);
   std::vector<DiscreteLineSweep::SentLight> packed(grid.entryCount());
   const auto pairsOf = [&](const DirectionSet& d) {

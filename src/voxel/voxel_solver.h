@@ -14,6 +14,7 @@
 #include <radiosity/progress.h>
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
+#include <radiosity/voxel_radiosity.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -26,31 +27,17 @@
 
 namespace rad {
 
-struct VoxelSolverSettings {
-  int sphereRadius = 38;  ///< radius R of the digital sphere of directions
-  /// R for the sweeps after the first (the second bounce on, smoother); 0: sphereRadius.
-  int laterSphereRadius = 0;
-  int iterations = 100;  ///< sweeps over all directions (light bounces) at most
-  /// Stop once the light still bouncing, the power the last iteration added to B (which the
-  /// next would carry on), is below this share of the light put in (B's power before the
-  /// sweeps: E, plus the first shot reflected); 0: run every iteration.
-  double tolerance = 1e-3;
-  bool estimateTail = true;     ///< add the bounces after the last iteration, extrapolated
-  bool directFirstShot = true;  ///< direct light by shadow rays, then sweep the indirect bounces
-  int directSamples = 64;       ///< shadow-ray samples per voxel side for the first shot
-  bool normalize = true;        ///< divide each side's gathered light by its sum of cos * w
-  bool jitterLines = true;      ///< shift each direction's lines anew every iteration
-  bool keepDirect = false;      ///< return the first shot's direct irradiance too
+/// The solver's settings: the method's own (VoxelRadiositySettings, the one place of their
+/// defaults; its voxelization fields are the voxelizer's) and what a solve of one light group
+/// sets.
+struct VoxelSolverSettings : VoxelRadiositySettings {
   /// A factor on each scene material's emission (0 and 1 to solve one light group's emitters
   /// alone); empty: the scene's own.
   std::vector<Color> emissionScales;
-  SweepSettings sweep;
-  uint64_t seed = 1;
-  /// Where the solve keeps a checkpoint after every iteration and resumes from one
-  /// (voxel_checkpoint.h); empty: none.
-  std::filesystem::path checkpointDir;
-  /// The processes the solve is split among (process_share.h).
-  ProcessShare processes;
+
+  /// Whether the solution keeps the first shot's direct irradiance apart (there is none without
+  /// a first shot).
+  bool keepsDirect() const { return keepDirectLight && directFirstShot; }
 };
 
 struct VoxelSolution {
