@@ -12,6 +12,8 @@ namespace rad {
 /// W/sr per candela for light given in photometric units (IES files without a "scale", glTF's
 /// KHR_lights_punctual): 1/179, Radiance's luminous efficacy of uniform white light (179 lm/W).
 constexpr double kWattsPerSrPerCandela = 1.0 / 179.0;
+/// W per square metre per lux, at the same efficacy (glTF's directional lights, in lux).
+constexpr double kWattsPerSquareMetrePerLux = kWattsPerSrPerCandela;
 
 enum class PhotometricType { C = 1, B = 2, A = 3 };
 

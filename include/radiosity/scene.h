@@ -75,9 +75,9 @@ struct Face {
 
 /// Object: one axis lobe of the light a dynamic object reflects, leaving from the centroid of its
 /// faces that send it (lighting/dynamic_objects.h; made by the program, not read from scene
-/// files).
-enum class LightType { Point, Spot, Ies, Object };
-/// "point", "spot", "ies" or "object", as the scene file and the stats spell it.
+/// files). Directional: light from so far away that its rays are parallel (the sun).
+enum class LightType { Point, Spot, Ies, Object, Directional };
+/// "point", "spot", "ies", "object" or "directional", as the scene file and the stats spell it.
 const char* lightTypeName(LightType type);
 
 /// A light's state at a time of its animation: the fields it sets (the others follow the
@@ -95,15 +95,20 @@ inline float axisLobe(const Vec3& d, int k) {
   return std::max(0.0f, (k % 2 == 0 ? 1.0f : -1.0f) * d[k / 2]);
 }
 
-/// An analytic light at a point. Intensity is radiant intensity in W/sr (RGB): the irradiance
-/// at distance d on a surface tilted by theta is I cos(theta) / d^2.
+/// An analytic light. At a point (point, spot, IES, object), `intensity` is radiant intensity in
+/// W/sr (RGB): the irradiance at distance d on a surface tilted by theta is I cos(theta) / d^2.
+/// A directional light has no position: it travels along `direction`, and `intensity` is the
+/// irradiance E (W per square scene unit) on a plane facing it, E cos(theta) on one tilted by
+/// theta, wherever nothing shadows it.
 struct Light {
   LightType type = LightType::Point;
   Vec3 position{0.0f};
-  Vec3 direction{0.0f, -1.0f, 0.0f};  ///< unit; the axis of a spot or IES light
-  Color intensity{0.0f};              ///< W/sr on the axis (spot) or in every direction (point)
-  float innerAngleDeg = 0.0f;         ///< spot: full intensity inside this half-angle
-  float outerAngleDeg = 0.0f;         ///< spot: zero outside this half-angle, smooth between
+  /// Unit; the axis of a spot or IES light, the way a directional light's light travels.
+  Vec3 direction{0.0f, -1.0f, 0.0f};
+  /// W/sr on the axis (spot) or in every direction (point); directional: irradiance, W/unit^2.
+  Color intensity{0.0f};
+  float innerAngleDeg = 0.0f;  ///< spot: full intensity inside this half-angle
+  float outerAngleDeg = 0.0f;  ///< spot: zero outside this half-angle, smooth between
   /// Animation: the direction's angular velocity (degrees/s about the vector's axis, by the
   /// right-hand rule; a spot with [0, 90, 0] turns a quarter turn a second about +y).
   Vec3 spinDegPerS{0.0f};
@@ -126,8 +131,11 @@ struct Light {
 
   /// Radiant intensity (W/sr) toward the unit direction `toward` (from the light outward).
   Color intensityToward(const Vec3& toward) const;
-  /// Total radiant power (W) the light emits in all directions.
+  /// Total radiant power (W) the light emits in all directions; 0 for a directional light, whose
+  /// power is that of the scene it falls on (Scene::lightPower).
   Color power() const;
+  /// False for a directional light, which has no position.
+  bool positional() const { return type != LightType::Directional; }
   /// True if the light moves or changes with time (a spin or a path).
   bool animated() const { return !path.empty() || spinDegPerS != Vec3(0.0f); }
   /// The light at `seconds` into its animation (itself when it has none).
@@ -265,8 +273,12 @@ struct Scene {
                          uint32_t& triangle) const;
   Bounds bounds() const;
   /// Total emitted power (W): pi * Ke * area * mean coverage over emitting triangles plus every
-  /// light's power.
+  /// light's lightPower.
   Color emittedPower() const;
+  /// A light's power (W): Light::power(), and for a directional light the power it sends
+  /// through the scene's bounds (its irradiance times the area of the bounding box's shadow on
+  /// a plane facing it), what can fall on the scene.
+  Color lightPower(const Light& light) const;
   bool hasEmitters() const;
   /// The camera of the scene, or one that frames its bounds from the front (+z looking -z).
   Camera cameraOrDefault() const;

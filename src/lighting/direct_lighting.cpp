@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/constants.hpp>
+#include <limits>
 
 #include "geometry/sampling.h"
 
@@ -54,7 +55,22 @@ bool DirectLighting::visible(const Vec3& p, const Vec3& n, const Vec3& target,
   return !caster_->occluded(r);
 }
 
+bool DirectLighting::visibleToward(const Vec3& p, const Vec3& n, const Vec3& w) const {
+  Ray r;
+  r.origin = p + rayOffset(p) * n;
+  r.direction = w;
+  r.tFar = std::numeric_limits<float>::infinity();
+  return !caster_->occluded(r);
+}
+
 Color DirectLighting::fromLight(const Light& light, const Vec3& p, const Vec3& n) const {
+  if (!light.positional()) {  // parallel rays from beyond the scene: E cos(theta), unshadowed
+    const Vec3 w = -light.direction;
+    const float cosReceiver = glm::dot(n, w);
+    if (!(cosReceiver > 0.0f) || !(maxComponent(light.intensity) > 0.0f) || !visibleToward(p, n, w))
+      return Color(0.0f);
+    return light.intensity * cosReceiver;
+  }
   const Vec3 d = light.position - p;
   const float distance2 = glm::dot(d, d);
   if (!(distance2 > 0.0f)) return Color(0.0f);

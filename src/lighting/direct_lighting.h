@@ -33,7 +33,8 @@ class DirectLighting {
   bool hasEmitters() const { return !emitters_.empty(); }
 
   /// Irradiance at `p` on a surface with unit front normal `n` from the scene's analytic lights,
-  /// each seen through one shadow ray: sum of I(-w) cos(theta) / d^2 over the lights `p` sees.
+  /// each seen through one shadow ray: sum of I(-w) cos(theta) / d^2 over the lights `p` sees
+  /// (E cos(theta) for a directional light, whose shadow ray leaves the scene).
   Color fromLights(const Vec3& p, const Vec3& n) const;
   /// The same from one light.
   Color fromLight(const Light& light, const Vec3& p, const Vec3& n) const;
@@ -50,6 +51,9 @@ class DirectLighting {
   /// True if nothing lies between `p` (lifted along `n`) and `target`, or and the sphere of
   /// radius `stopShort` around it (an object light's own surface).
   bool visible(const Vec3& p, const Vec3& n, const Vec3& target, float stopShort = 0.0f) const;
+  /// True if nothing lies along the unit direction `w` from `p` (lifted along `n`): it sees out
+  /// of the scene.
+  bool visibleToward(const Vec3& p, const Vec3& n, const Vec3& w) const;
 
  private:
   const RayCaster* caster_;

@@ -54,7 +54,7 @@ Color scaledEmission(const Scene& scene, uint32_t material, std::span<const Colo
 
 Color groupPower(const Scene& scene, std::span<const Light> lights, const LightGroup& group) {
   Vec3d power(0.0);
-  for (uint32_t i : group.lights) power += Vec3d(lights[i].power());
+  for (uint32_t i : group.lights) power += Vec3d(scene.lightPower(lights[i]));
   for (const Face& f : scene.faces) {
     const Material& m = scene.materials[f.material];
     if (std::find(group.materials.begin(), group.materials.end(), f.material) !=

@@ -14,6 +14,7 @@ namespace {
 // `radius`) can get light: the light lies behind its plane, or the spot's cone clears the sphere.
 // What lets a moved spot cost the rays of its beam's patches only.
 bool mayReach(const Light& light, const Vec3& centre, const Vec3& normal, float radius) {
+  if (!light.positional()) return glm::dot(normal, light.direction) < 0.0f;
   const Vec3 v = centre - light.position;
   if (!(glm::dot(normal, -v) > 0.0f)) return false;
   if (light.type != LightType::Spot) return true;

@@ -14,9 +14,11 @@ const char* lightTypeName(LightType type) {
     case LightType::Ies:
       return "ies";
     case LightType::Object:
+      return "object";
+    case LightType::Directional:
       break;
   }
-  return "object";
+  return "directional";
 }
 
 namespace {
@@ -46,6 +48,7 @@ float spotFalloff(float cosTheta, float innerAngleDeg, float outerAngleDeg) {
 Color Light::intensityToward(const Vec3& toward) const {
   switch (type) {
     case LightType::Point:
+    case LightType::Directional:  // its irradiance, along its direction only
       return intensity;
     case LightType::Spot:
       return intensity * spotFalloff(glm::dot(toward, direction), innerAngleDeg, outerAngleDeg);
@@ -93,6 +96,8 @@ Color Light::power() const {
       for (const Color& lobe : lobes) sum += lobe;
       return intensity * sum * glm::pi<float>();
     }
+    case LightType::Directional:
+      break;
   }
   return Color(0.0f);
 }

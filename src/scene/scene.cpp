@@ -179,7 +179,8 @@ Bounds Scene::bounds() const {
   Bounds b;
   for (const UVec3& t : triangles)
     for (int k = 0; k < 3; ++k) b.extend(positions[t[k]]);
-  for (const Light& light : lights) b.extend(light.position);
+  for (const Light& light : lights)
+    if (light.positional()) b.extend(light.position);
   return b;
 }
 
@@ -194,15 +195,25 @@ Color Scene::emittedPower() const {
     const Color ke = emissionAt(t, Vec2(1.0f / 3.0f), size);
     power += Vec3d(ke) * (glm::pi<double>() * sides * triangleArea(t) * coverageMean(t));
   }
-  for (const Light& light : lights) power += Vec3d(light.power());
+  for (const Light& light : lights) power += Vec3d(lightPower(light));
   return Color(power);
+}
+
+Color Scene::lightPower(const Light& light) const {
+  if (light.positional()) return light.power();
+  Bounds b;
+  for (const Vec3& p : positions) b.extend(p);
+  if (b.empty()) return Color(0.0f);
+  // A box's shadow on the plane facing d: each face pair's area times |d . its normal|.
+  const Vec3d e = Vec3d(b.max - b.min), d = glm::abs(Vec3d(light.direction));
+  return Color(Vec3d(light.intensity) * (d.x * e.y * e.z + d.y * e.x * e.z + d.z * e.x * e.y));
 }
 
 bool Scene::hasEmitters() const {
   for (uint32_t t = 0; t < triangles.size(); ++t)
     if (materialOf(t).emits()) return true;
   for (const Light& light : lights)
-    if (maxComponent(light.power()) > 0.0f) return true;
+    if (maxComponent(lightPower(light)) > 0.0f) return true;
   return false;
 }
 

@@ -2,6 +2,7 @@
 // and spot lights, perspective cameras, placed by their nodes.
 
 #include <gtest/gtest.h>
+#include <radiosity/error.h>
 #include <radiosity/scene_loader.h>
 
 #include <cmath>
@@ -59,9 +60,9 @@ class GltfLightsAndCameras : public testing::Test {
   Json gltf_;
 };
 
-TEST_F(GltfLightsAndCameras, PointAndSpotLightsAreReadInWattsPerSteradian) {
+TEST_F(GltfLightsAndCameras, PointSpotAndDirectionalLightsAreReadInRadiometricUnits) {
   const Scene s = loadScene(write("lit.gltf", gltf_));
-  ASSERT_EQ(s.lights.size(), 2u);
+  ASSERT_EQ(s.lights.size(), 3u);
   // Candela to W/sr as for IES files: 179 cd of white light is 1 W/sr.
   const Light& point = s.lights[0];
   EXPECT_EQ(point.type, LightType::Point);
@@ -74,10 +75,23 @@ TEST_F(GltfLightsAndCameras, PointAndSpotLightsAreReadInWattsPerSteradian) {
   expectNear(spot.intensity, Vec3(2.0f));
   EXPECT_NEAR(spot.innerAngleDeg, 0.25 * 180 / std::numbers::pi, 1e-4);
   EXPECT_NEAR(spot.outerAngleDeg, 0.5 * 180 / std::numbers::pi, 1e-4);
-  size_t warned = 0;
-  for (const std::string& w : s.warnings)
-    warned += w.find("1 directional light") != std::string::npos;
-  EXPECT_EQ(warned, 1u);
+  // Lux to W/m^2 at the same 179 lm/W; glTF lengths are metres, so W per square scene unit.
+  const Light& sun = s.lights[2];
+  EXPECT_EQ(sun.type, LightType::Directional);
+  expectNear(sun.direction, Vec3(0, 0, -1));  // the node's -z
+  expectNear(sun.intensity, Vec3(3.0f / 179.0f));
+  for (const std::string& w : s.warnings) EXPECT_EQ(w.find("light"), std::string::npos) << w;
+}
+
+TEST_F(GltfLightsAndCameras, AnUnknownLightTypeIsAnErrorNamingIt) {
+  gltf_["extensions"]["KHR_lights_punctual"]["lights"][2]["type"] = "area";
+  try {
+    loadScene(write("area.gltf", gltf_));
+    FAIL() << "loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lights/2/type"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'area'"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(GltfLightsAndCameras, CamerasAreReadAndTheFirstIsTheScenes) {

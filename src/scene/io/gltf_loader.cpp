@@ -131,7 +131,7 @@ class GltfReader {
   std::vector<int64_t> materials_;
   std::vector<bool> visited_;
   int64_t defaultMaterial_ = -1;
-  size_t skippedPrimitives_ = 0, skippedLights_ = 0;
+  size_t skippedPrimitives_ = 0;
   TextureFiles textures_{builder_};
 };
 
@@ -512,7 +512,8 @@ void GltfReader::addCamera(int cameraIndex, const glm::mat4& world, const std::s
 
 // KHR_lights_punctual: point and spot lights at their node, shining down its -z; intensity in
 // candela, converted to W/sr as IES files are (kWattsPerSrPerCandela), colour linear RGB.
-// Directional lights have no counterpart here.
+// Directional lights shine down their node's -z too, their intensity an illuminance in lux (lm/m^2:
+// glTF's unit is the metre), converted at the same efficacy.
 void GltfReader::addLight(const tinygltf::Node& node, const glm::mat4& world,
                           const std::string& where) {
   const auto ext = node.extensions.find("KHR_lights_punctual");
@@ -532,13 +533,17 @@ void GltfReader::addLight(const tinygltf::Node& node, const glm::mat4& world,
           light.outerAngleDeg > 0.0f && light.outerAngleDeg <= 90.0f))
       throw InputError(at(fmt::format("/extensions/KHR_lights_punctual/lights/{}/spot", index)),
                        "cone angles must satisfy 0 <= inner <= outer <= pi/2");
+  } else if (l.type == "directional") {
+    light.type = LightType::Directional;
   } else {
-    ++skippedLights_;
-    return;
+    throw InputError(at(fmt::format("/extensions/KHR_lights_punctual/lights/{}/type", index)),
+                     fmt::format("unknown light type {} (expected point, spot or directional)",
+                                 quotedToken(l.type)));
   }
   Color color(1.0f);
   for (int k = 0; k < 3 && l.color.size() == 3; ++k) color[k] = float(l.color[size_t(k)]);
-  light.intensity = color * float(l.intensity * kWattsPerSrPerCandela);
+  light.intensity = color * float(l.intensity * (light.positional() ? kWattsPerSrPerCandela
+                                                                    : kWattsPerSquareMetrePerLux));
   if (!(minComponent(light.intensity) >= 0.0f) || !std::isfinite(maxComponent(light.intensity)))
     throw InputError(at(fmt::format("/extensions/KHR_lights_punctual/lights/{}", index)),
                      "intensity and colour must be finite and >= 0");
@@ -548,10 +553,6 @@ void GltfReader::addLight(const tinygltf::Node& node, const glm::mat4& world,
 }
 
 void GltfReader::finish() {
-  if (skippedLights_ > 0)
-    builder_.warn(path_, fmt::format("skipped {} directional light{} (not supported: use a distant "
-                                     "spot or an emitting surface)",
-                                     skippedLights_, skippedLights_ == 1 ? "" : "s"));
   if (skippedPrimitives_ > 0)
     builder_.warn(path_, fmt::format("skipped {} non-triangle primitive{} (points or lines)",
                                      skippedPrimitives_, skippedPrimitives_ == 1 ? "" : "s"));

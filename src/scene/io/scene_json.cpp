@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <glm/gtx/component_wise.hpp>
 #include <glm/gtx/transform.hpp>
 #include <initializer_list>
@@ -22,6 +23,7 @@
 #include "scene/io/gltf_loader.h"
 #include "scene/io/obj_loader.h"
 #include "scene/io/text_file.h"
+#include "scene/sun_position.h"
 
 namespace rad {
 
@@ -340,6 +342,8 @@ std::vector<LightKeyframe> readPath(const JsonReader& r, const Json& j, const st
     const Json& k = j[i];
     if (type == LightType::Point)
       r.checkKeys(k, at, {"t", "position", "intensity"});
+    else if (type == LightType::Directional)
+      r.checkKeys(k, at, {"t", "direction", "irradiance"});
     else if (type == LightType::Spot)
       r.checkKeys(k, at, {"t", "position", "direction", "intensity"});
     else
@@ -357,17 +361,32 @@ std::vector<LightKeyframe> readPath(const JsonReader& r, const Json& j, const st
       key.direction = readDirection(r, k["direction"], at + "/direction");
     if (k.contains("intensity"))
       key.intensity = r.color(k["intensity"], at + "/intensity", "intensity", 0.0, kMaxLight);
+    if (k.contains("irradiance"))
+      key.intensity = r.color(k["irradiance"], at + "/irradiance", "irradiance", 0.0, kMaxLight);
     path.push_back(key);
   }
   return path;
 }
 
+// A light's "group": a name that --group NAME=SCALE can give.
+std::string readGroupName(const JsonReader& r, const Json& j, const std::string& ptr) {
+  std::string group = r.string(j, ptr);
+  if (group.empty() || group.find_first_of("=,") != std::string::npos)
+    r.fail(ptr,
+           fmt::format("group name {} must be non-empty, without '=' or ','", quotedToken(group)));
+  return group;
+}
+
 Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
   r.requireObject(j, ptr);
-  if (!j.contains("type")) r.fail(ptr, "missing key \"type\" (point, spot or ies)");
+  if (!j.contains("type"))
+    r.fail(ptr, "missing key \"type\" (point, spot, ies, directional or sun)");
   const std::string type = r.string(j["type"], ptr + "/type");
   Light light;
-  if (type == "point") {
+  if (type == "directional") {
+    r.checkKeys(j, ptr, {"type", "direction", "irradiance", "spin_deg_per_s", "path", "group"});
+    light.type = LightType::Directional;
+  } else if (type == "point") {
     r.checkKeys(j, ptr, {"type", "position", "intensity", "path", "group"});
     light.type = LightType::Point;
   } else if (type == "spot") {
@@ -381,26 +400,27 @@ Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
                  "path", "group"});
     light.type = LightType::Ies;
   } else {
-    r.fail(ptr + "/type",
-           fmt::format("unknown light type {} (expected point, spot or ies)", quotedToken(type)));
+    r.fail(ptr + "/type", fmt::format("unknown light type {} (expected point, spot, ies, "
+                                      "directional or sun)",
+                                      quotedToken(type)));
   }
   auto required = [&](const char* key) -> const Json& {
     if (!j.contains(key)) r.fail(ptr, fmt::format("missing key \"{}\" for a {} light", key, type));
     return j[key];
   };
-  light.position = r.point(required("position"), ptr + "/position");
+  if (light.positional()) light.position = r.point(required("position"), ptr + "/position");
+  if (!light.positional())
+    light.direction = readDirection(r, required("direction"), ptr + "/direction");
   if (j.contains("direction"))
     light.direction = readDirection(r, j["direction"], ptr + "/direction");
   if (j.contains("spin_deg_per_s"))
     light.spinDegPerS = r.vec3(j["spin_deg_per_s"], ptr + "/spin_deg_per_s");
   if (j.contains("path")) light.path = readPath(r, j["path"], ptr + "/path", light.type);
-  if (j.contains("group")) {
-    light.group = r.string(j["group"], ptr + "/group");
-    if (light.group.empty() || light.group.find_first_of("=,") != std::string::npos)
-      r.fail(ptr + "/group", fmt::format("group name {} must be non-empty, without '=' or ','",
-                                         quotedToken(light.group)));
-  }
-  if (light.type != LightType::Ies)
+  if (j.contains("group")) light.group = readGroupName(r, j["group"], ptr + "/group");
+  if (light.type == LightType::Directional)
+    light.intensity =
+        r.color(required("irradiance"), ptr + "/irradiance", "irradiance", 0.0, kMaxLight);
+  else if (light.type != LightType::Ies)
     light.intensity =
         r.color(required("intensity"), ptr + "/intensity", "intensity", 0.0, kMaxLight);
   if (light.type == LightType::Spot) {
@@ -501,6 +521,60 @@ Json parseJson(const std::string& text, const std::string& path) {
   }
 }
 
+// The sun at a place and time (sun_position.h): a directional light coming from where the sun
+// stands, with the clear-sky direct light of that elevation unless "irradiance" or
+// "illuminance_lux" says how much. "north" and "up" are the scene's axes (up +y by default).
+Light readSun(const JsonReader& r, const Json& j, const std::string& ptr, const LengthUnit& unit,
+              SceneBuilder& builder) {
+  r.checkKeys(j, ptr,
+              {"type", "latitude", "longitude", "datetime", "north", "up", "irradiance",
+               "illuminance_lux", "group"});
+  auto required = [&](const char* key) -> const Json& {
+    if (!j.contains(key)) r.fail(ptr, fmt::format("missing key \"{}\" for the sun", key));
+    return j[key];
+  };
+  const double latitude = r.number(required("latitude"), ptr + "/latitude");
+  const double longitude = r.number(required("longitude"), ptr + "/longitude");
+  if (!(std::abs(latitude) <= 90.0)) r.fail(ptr + "/latitude", "expected degrees in [-90, 90]");
+  if (!(std::abs(longitude) <= 180.0))
+    r.fail(ptr + "/longitude", "expected degrees in [-180, 180] (east positive)");
+  UtcTime time;
+  std::string why;
+  if (!parseIsoTime(r.string(required("datetime"), ptr + "/datetime"), time, why))
+    r.fail(ptr + "/datetime", why);
+  const Vec3 up = j.contains("up") ? readDirection(r, j["up"], ptr + "/up") : Vec3(0, 1, 0);
+  Vec3 north = readDirection(r, required("north"), ptr + "/north");
+  north -= glm::dot(north, up) * up;  // its horizontal part
+  if (!(glm::length(north) > 1e-3f)) r.fail(ptr + "/north", "must not point along \"up\"");
+  north = glm::normalize(north);
+
+  const SunPosition sun = sunPosition(time, latitude, longitude);
+  Light light;
+  light.type = LightType::Directional;
+  light.direction = -towardSun(sun, up, north);
+  if (j.contains("group")) light.group = readGroupName(r, j["group"], ptr + "/group");
+  if (j.contains("irradiance")) {
+    light.intensity = r.color(j["irradiance"], ptr + "/irradiance", "irradiance", 0.0, kMaxLight);
+  } else {
+    const double lux = j.contains("illuminance_lux")
+                           ? r.number(j["illuminance_lux"], ptr + "/illuminance_lux")
+                           : clearSkySunIlluminanceLux(sun.elevationDeg);
+    if (!(lux >= 0.0)) r.fail(ptr + "/illuminance_lux", "must be >= 0");
+    if (!unit.known())
+      r.fail(ptr,
+             "the sun's light is in lux (per square metre): the scene needs its \"unit\", "
+             "or give \"irradiance\" in W per square scene unit");
+    light.intensity = Color(float(lux * kWattsPerSquareMetrePerLux * unit.metres * unit.metres));
+  }
+  if (sun.elevationDeg <= 0.0) {
+    builder.warn(r.path(), fmt::format("{}: the sun is {:.1f} degrees below the horizon then; it "
+                                       "lights nothing",
+                                       ptr, -sun.elevationDeg));
+    light.intensity = Color(0.0f);
+  }
+  return light;
+}
+
 // "unit": the length unit of the scene's coordinates (after the geometry's transforms).
 LengthUnit readUnit(const JsonReader& r, const Json& j) {
   const std::string name = r.string(j, "/unit");
@@ -532,8 +606,13 @@ Scene loadSceneJson(const std::string& path) {
     const Json& lights = root["lights"];
     if (!lights.is_array())
       r.fail("/lights", fmt::format("expected an array, got {}", lights.type_name()));
-    for (size_t i = 0; i < lights.size(); ++i)
-      scene.lights.push_back(readLight(r, lights[i], fmt::format("/lights/{}", i)));
+    for (size_t i = 0; i < lights.size(); ++i) {
+      const std::string at = fmt::format("/lights/{}", i);
+      const Json& light = lights[i];
+      const bool sun = light.is_object() && light.value("type", Json()) == "sun";
+      scene.lights.push_back(sun ? readSun(r, light, at, scene.unit, builder)
+                                 : readLight(r, light, at));
+    }
   }
   if (root.contains("camera")) scene.camera = readCamera(r, root["camera"]);
   if (root.contains("solver")) scene.solver = readSolver(r, root["solver"]);
