@@ -6,6 +6,7 @@
 #include <radiosity/error.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <nlohmann/json.hpp>
@@ -96,6 +97,13 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
   http.set_socket_options(exclusivePort);
   http.set_pre_routing_handler(
       [this](const httplib::Request& request, httplib::Response& response) {
+        // The path as decoded: a NUL ends it for the file system, so "/index.html%00.js" would
+        // serve index.html typed by its ".js" (and no file's name holds a control character).
+        if (std::any_of(request.path.begin(), request.path.end(),
+                        [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; })) {
+          badRequest(response, "the path holds a control character (a NUL or below a space)");
+          return httplib::Server::HandlerResponse::Handled;
+        }
         const std::string why = refusal(request);
         if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
         forbidden(response, why);

@@ -347,6 +347,15 @@ TEST_F(ViewerServerTest, ServesThePageButNothingOutsideItsFolder) {
     EXPECT_NE(r->status, 200) << path;
     EXPECT_EQ(r->body.find("secret"), std::string::npos) << path;
   }
+  // A NUL (or another control character) in the decoded path: the file system would read
+  // index.html, typed as the ".js" after the NUL says.
+  for (const std::string path : {"/index.html%00.js", "/index.html%00", "/index.html%0a.js"}) {
+    const auto r = client_->Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 400) << path;
+    EXPECT_EQ(r->body.find("<title>viewer"), std::string::npos) << path;
+    EXPECT_NE(r->get_header_value("Content-Type"), "text/javascript") << path;
+  }
 }
 
 }  // namespace
