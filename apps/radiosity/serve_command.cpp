@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <memory>
 #include <thread>
 
@@ -36,6 +37,21 @@ struct ServeOptions {
   int port = 8080;
   double time = 0.0;
   float displayEdge = 0.0f;
+};
+
+// SIGTERM (a service manager's stop, `kill PID`) is taken as Ctrl-C for the guard's lifetime:
+// the solve stops, or the server stops listening, answers the requests it has read and exits 0
+// (by default SIGTERM killed it mid-answer).
+extern "C" void takeTerminateAsInterrupt(int) {
+  std::raise(SIGINT);  // async-signal-safe; InterruptGuard's handler takes it from there
+}
+
+class TerminateAsInterrupt {
+ public:
+  TerminateAsInterrupt() { std::signal(SIGTERM, takeTerminateAsInterrupt); }
+  ~TerminateAsInterrupt() { std::signal(SIGTERM, SIG_DFL); }
+  TerminateAsInterrupt(const TerminateAsInterrupt&) = delete;
+  TerminateAsInterrupt& operator=(const TerminateAsInterrupt&) = delete;
 };
 
 // The session: the method's relighting, or a solution shown and dimmed by group.
@@ -87,6 +103,7 @@ int runServe(ServeOptions& o, Console& console) {
         "move and dim its lights (requests must name it in their Host as {} or localhost)",
         o.host, o.host, port, o.host));
   InterruptGuard interruptible;
+  const TerminateAsInterrupt terminable;  // after the guard: its SIGINT handler must be there
   std::thread listener([&] { server.run(); });
   server.waitUntilRunning();
   std::atomic<bool> done = false;

@@ -3,6 +3,7 @@
 // and nothing changed; no file served from outside the page's folder.
 #include "server/viewer_server.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
 #include <radiosity/error.h>
@@ -14,6 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cmath>
 #include <csignal>
 #include <cstring>
@@ -364,17 +366,15 @@ TEST_F(ViewerServerTest, ServesThePageButNothingOutsideItsFolder) {
 namespace rad {
 namespace {
 
-// `radiosity serve` itself: it prints where it listens, answers there, and Ctrl-C (SIGINT) stops
-// it cleanly (status 0).
-TEST(Serve, ListensWhereItSaysAndStopsOnCtrlC) {
-  const fs::path log = fs::path(::testing::TempDir()) / "serve.log";
+// `radiosity serve cornell-spot` started by fork and exec, its output into `log`; waits until
+// it answers (its URL printed, /api/progress ready) and returns its pid and port.
+std::pair<pid_t, int> startServe(const fs::path& log) {
   fs::remove(log);
   const std::string command = std::string(RADIOSITY_BINARY_DIR) +
                               "/radiosity serve cornell-spot --port 0 --patches 300 "
                               "--cache-dir none > " +
                               log.string() + " 2>&1";
   const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
   if (pid == 0) {
     ::execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), nullptr);
     ::_exit(127);
@@ -387,23 +387,82 @@ TEST(Serve, ListensWhereItSaysAndStopsOnCtrlC) {
     const size_t at = text.find("http://127.0.0.1:");
     if (at != std::string::npos) port = std::atoi(text.c_str() + at + 17);
   }
-  ASSERT_GT(port, 0) << "no URL printed";
+  if (port == 0) return {pid, 0};
   httplib::Client client("127.0.0.1", port);
   // It listens while it solves: the API answers once /api/progress says ready.
   for (int tries = 0; tries < 600; ++tries) {
     const auto progress = client.Get("/api/progress");
-    ASSERT_TRUE(progress);
-    if (nlohmann::json::parse(progress->body)["ready"].get<bool>()) break;
+    if (progress && nlohmann::json::parse(progress->body)["ready"].get<bool>()) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
+  return {pid, port};
+}
+
+// The exit status after `signal`, or -1 when it did not exit by itself within 20 s.
+int exitStatusAfter(pid_t pid, int signal) {
+  ::kill(pid, signal);
+  int status = 0;
+  for (int tries = 0; tries < 2000; ++tries) {
+    if (::waitpid(pid, &status, WNOHANG) == pid)
+      return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, &status, 0);
+  return -1;
+}
+
+// `radiosity serve` itself: it prints where it listens, answers there, and Ctrl-C (SIGINT) stops
+// it cleanly (status 0).
+TEST(Serve, ListensWhereItSaysAndStopsOnCtrlC) {
+  const auto [pid, port] = startServe(fs::path(::testing::TempDir()) / "serve.log");
+  ASSERT_GT(pid, 0);
+  ASSERT_GT(port, 0) << "no URL printed";
+  httplib::Client client("127.0.0.1", port);
   const auto scene = client.Get("/api/scene");
   ASSERT_TRUE(scene);
   EXPECT_EQ(scene->status, 200);
-  ::kill(pid, SIGINT);
-  int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(exitStatusAfter(pid, SIGINT), 0);
+}
+
+// SIGTERM (a service manager's stop) is Ctrl-C: relights in flight when it comes are answered
+// whole or not at all (no connection cut mid-answer), and it exits 0 saying it stopped. Before,
+// SIGTERM killed it where it stood.
+TEST(Serve, SigtermStopsItAsCtrlCDoes) {
+  const fs::path log = fs::path(::testing::TempDir()) / "serve_sigterm.log";
+  const auto [pid, port] = startServe(log);
+  ASSERT_GT(pid, 0);
+  ASSERT_GT(port, 0) << "no URL printed";
+  const size_t colorBytes = [&] {
+    httplib::Client client("127.0.0.1", port);
+    const auto colors = client.Get("/api/colors");
+    return colors ? colors->body.size() : 0;
+  }();
+  ASSERT_GT(colorBytes, 0u);
+  std::atomic<int> answered = 0, partial = 0;
+  std::atomic<bool> stopping = false;
+  std::thread relights([&] {
+    httplib::Client client("127.0.0.1", port);
+    for (int k = 0; !stopping || k < 3; ++k) {
+      const std::string body =
+          fmt::format(R"({{"lights": [{{"id": 0, "position": [{}, 500, 250]}}]}})", 100 + k % 50);
+      const auto r = client.Post("/api/lights", body, "application/json");
+      if (!r) break;  // it stopped listening
+      if (r->status == 200 && r->body.size() == colorBytes)
+        ++answered;
+      else
+        ++partial;
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  stopping = true;
+  EXPECT_EQ(exitStatusAfter(pid, SIGTERM), 0);
+  relights.join();
+  EXPECT_GT(answered.load(), 0);
+  EXPECT_EQ(partial.load(), 0);
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(text.find("stopped"), std::string::npos) << text;
 }
 
 }  // namespace
