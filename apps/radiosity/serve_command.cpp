@@ -33,10 +33,11 @@ struct ServeOptions {
       : method(command,
                {&MethodCapabilities::surfaceSolution, "patch", {"spp", "light_groups"}, false}) {}
   MethodOptions method;
-  std::string scene, solution, host = "127.0.0.1", webDir = RADIOSITY_WEB_DIR;
+  std::string scene, solution, host = "127.0.0.1", webDir = RADIOSITY_WEB_DIR, allowOrigin;
   int port = 8080;
   double time = 0.0;
   float displayEdge = 0.0f;
+  CLI::Option* allowOriginOption = nullptr;  ///< given, even as "" (refused then)
 };
 
 // SIGTERM (a service manager's stop, `kill PID`) is taken as Ctrl-C for the guard's lifetime:
@@ -94,13 +95,15 @@ int runServe(ServeOptions& o, Console& console) {
   o.method.resolve(scene, o.solution, console);
   // Listening from the start: the page shows the solve's progress until the session is there.
   ViewerServer server(o.webDir);
+  if (o.allowOriginOption->count() > 0) server.allowOrigin(o.allowOrigin);
   const int port = server.bind(o.host, o.port);
   console.info(fmt::format("serving {} at http://{}:{}/ (solving first; Ctrl-C stops)", o.scene,
                            o.host, port));
   if (o.host != "127.0.0.1" && o.host != "localhost" && o.host != "::1")
     console.warn(fmt::format(
         "--host {}: the viewer listens beyond this machine, and anyone who reaches {}:{} can "
-        "move and dim its lights (requests must name it in their Host as {} or localhost)",
+        "move and dim its lights (requests must name it in their Host as {} or localhost); a "
+        "page served from elsewhere drives it only with --allow-origin and that page's origin",
         o.host, o.host, port, o.host));
   InterruptGuard interruptible;
   const TerminateAsInterrupt terminable;  // after the guard: its SIGINT handler must be there
@@ -140,6 +143,12 @@ void addServeCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--port", o->port, "TCP port (default 8080; 0: any free one)")
       ->check(CLI::Range(0, 65535));
   sub->add_option("--host", o->host, "Address to listen on (default 127.0.0.1: this machine only)");
+  o->allowOriginOption =
+      sub->add_option(
+             "--allow-origin", o->allowOrigin,
+             "Let the page served from ORIGIN (e.g. http://localhost:5173) drive the server "
+             "too: CORS headers for it alone (default: none, only the server's own page)")
+          ->type_name("ORIGIN");
   sub->add_option("--solution", o->solution,
                   "Start from the solution a .rad file keeps (solve --save) instead of solving");
   sub->add_option("--display-edge", o->displayEdge,

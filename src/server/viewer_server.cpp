@@ -10,6 +10,7 @@
 #include <charconv>
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <stdexcept>
 #include <thread>
 
@@ -57,6 +58,12 @@ httplib::Server::Handler methodNotAllowed(const std::string& allowed) {
             .dump(),
         "application/json");
   };
+}
+
+// An origin as a browser sends it: http or https, a host, an optional port, nothing after.
+bool isOrigin(const std::string& origin) {
+  static const std::regex form(R"(https?://([A-Za-z0-9.-]+|\[[0-9A-Fa-f:.]+\])(:[0-9]{1,5})?)");
+  return std::regex_match(origin, form);
 }
 
 void binary(httplib::Response& response, const std::string& bytes) {
@@ -109,6 +116,18 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
         forbidden(response, why);
         return httplib::Server::HandlerResponse::Handled;
       });
+  http.set_post_routing_handler(
+      [this](const httplib::Request& request, httplib::Response& response) {
+        addCorsHeaders(request, response);
+      });
+  // A preflight the allowed origin's page sends before its JSON POST (refusal() turns away any
+  // other): what the API takes, for 10 minutes.
+  http.Options(R"(/api/.*)", [](const httplib::Request&, httplib::Response& response) {
+    response.status = 204;
+    response.set_header("Access-Control-Allow-Methods", "GET, POST");
+    response.set_header("Access-Control-Allow-Headers", "Content-Type");
+    response.set_header("Access-Control-Max-Age", "600");
+  });
   http.Get("/api/progress", [this](const httplib::Request&, httplib::Response& response) {
     response.set_content(
         nlohmann::json{{"ready", session_.load() != nullptr}, {"progress", progress_.load()}}
@@ -197,6 +216,23 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
 
 ViewerServer::~ViewerServer() = default;
 
+void ViewerServer::allowOrigin(const std::string& origin) {
+  if (!isOrigin(origin))
+    throw InputError("--allow-origin " + origin,
+                     "expected an origin as a browser sends it: http:// or https://, a host and "
+                     "an optional port, nothing after (e.g. http://localhost:5173)");
+  allowedOrigin_ = origin;
+}
+
+void ViewerServer::addCorsHeaders(const httplib::Request& request,
+                                  httplib::Response& response) const {
+  if (allowedOrigin_.empty()) return;
+  response.set_header("Vary", "Origin");  // a cache must not give one origin's answer to another
+  if (request.get_header_value("Origin") != allowedOrigin_) return;
+  response.set_header("Access-Control-Allow-Origin", allowedOrigin_);
+  response.set_header("Access-Control-Expose-Headers", "X-Relight-Ms");
+}
+
 std::string ViewerServer::refusal(const httplib::Request& request) const {
   const std::string host = request.get_header_value("Host");
   const std::string name = hostOf(host);
@@ -204,9 +240,15 @@ std::string ViewerServer::refusal(const httplib::Request& request) const {
     return fmt::format("Host '{}' is not this server (expected localhost, 127.0.0.1, [::1]{})",
                        host, host_.empty() ? "" : " or " + host_);
   if (request.method == "GET" || request.method == "HEAD") return "";
-  if (request.has_header("Origin") && request.get_header_value("Origin") != "http://" + host)
-    return fmt::format("a request from origin '{}': only this server's own page changes it",
-                       request.get_header_value("Origin"));
+  const std::string origin = request.get_header_value("Origin");
+  const bool allowed = !allowedOrigin_.empty() && origin == allowedOrigin_;
+  const std::string others = allowedOrigin_.empty()
+                                 ? "no other page drives this server (serve --allow-origin ORIGIN)"
+                                 : "only this server's own page and " + allowedOrigin_ + " do";
+  if (request.method == "OPTIONS")
+    return allowed ? "" : fmt::format("a preflight from origin '{}': {}", origin, others);
+  if (request.has_header("Origin") && origin != "http://" + host && !allowed)
+    return fmt::format("a request from origin '{}': {}", origin, others);
   const std::string type = request.get_header_value("Content-Type");
   if (type.substr(0, type.find(';')) != "application/json")
     return fmt::format("Content-Type '{}': expected application/json", type);

@@ -16,7 +16,8 @@
 // request must name the server in its Host (localhost, 127.0.0.1, [::1] or the address it was
 // bound to: no DNS rebinding), and a POST must come from the same origin (or carry no Origin, as
 // command-line clients send) with Content-Type application/json (no cross-site "simple"
-// request); else 403. No CORS headers are sent. A port another server holds is refused.
+// request); else 403. No CORS headers are sent unless allowOrigin() names one other page's origin.
+// A port another server holds is refused.
 
 #include <atomic>
 #include <filesystem>
@@ -46,6 +47,13 @@ class ViewerServer {
   void setProgress(double fraction);
   ~ViewerServer();
 
+  /// Lets the page served from `origin` ("http://host:port", as a browser sends it in Origin)
+  /// drive the server too: its requests are answered with CORS headers (Access-Control-Allow-
+  /// Origin: origin, Vary: Origin) and its preflights (OPTIONS) with the methods and headers the
+  /// API takes. Throws InputError naming --allow-origin for anything but a scheme, a host and an
+  /// optional port ("*" included: every site would drive it).
+  void allowOrigin(const std::string& origin);
+
   /// Binds `host`:`port` (0: a free port) and returns the port; throws InputError naming the
   /// address if it cannot (the port is taken: no other server shares it).
   int bind(const std::string& host, int port);
@@ -68,7 +76,11 @@ class ViewerServer {
   std::string refusal(const httplib::Request& request) const;
 
   std::unique_ptr<httplib::Server> http_;
-  std::string host_;  ///< the address bound to; a request's Host may name it
+  /// The CORS headers for a request from the allowed origin (none for any other).
+  void addCorsHeaders(const httplib::Request& request, httplib::Response& response) const;
+
+  std::string host_;           ///< the address bound to; a request's Host may name it
+  std::string allowedOrigin_;  ///< another page's origin that may drive it; "" for none
   std::atomic<ViewerSession*> session_{nullptr};
   std::atomic<double> progress_{0.0};
 };

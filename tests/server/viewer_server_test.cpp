@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "cli/cli_run.h"
 #include "lit_mesh/baked_mesh.h"
 #include "output/gltf_export.h"
 #include "scene/builtin/builtin_shapes.h"
@@ -275,6 +276,77 @@ TEST_F(ViewerServerTest, RequestsFromOtherSitesAre403) {
   const auto own = client_->Post("/api/lights", {{"Origin", self}}, move, "application/json");
   ASSERT_TRUE(own);
   EXPECT_EQ(own->status, 200) << own->body;
+}
+
+// Without --allow-origin no CORS header is sent, whatever the Origin, and a preflight is 403.
+TEST_F(ViewerServerTest, NoCorsHeadersUnlessAnOriginIsAllowed) {
+  const auto read = client_->Get("/api/scene", {{"Origin", "http://localhost:5173"}});
+  ASSERT_TRUE(read);
+  EXPECT_EQ(read->status, 200);
+  EXPECT_FALSE(read->has_header("Access-Control-Allow-Origin"));
+  EXPECT_FALSE(read->has_header("Vary"));
+  const auto preflight = client_->Options(
+      "/api/lights",
+      {{"Origin", "http://localhost:5173"}, {"Access-Control-Request-Method", "POST"}});
+  ASSERT_TRUE(preflight);
+  EXPECT_EQ(preflight->status, 403);
+  EXPECT_FALSE(preflight->has_header("Access-Control-Allow-Origin"));
+  EXPECT_NE(preflight->body.find("--allow-origin"), std::string::npos) << preflight->body;
+}
+
+// serve --allow-origin: the page of that origin drives the server as its own page does, with
+// CORS headers; its preflight names what the API takes; any other origin is still refused, with
+// no CORS header.
+TEST_F(ViewerServerTest, TheAllowedOriginGetsCorsHeaders) {
+  const std::string page = "http://localhost:5173";
+  server_->allowOrigin(page);
+  const auto preflight =
+      client_->Options("/api/lights", {{"Origin", page},
+                                       {"Access-Control-Request-Method", "POST"},
+                                       {"Access-Control-Request-Headers", "content-type"}});
+  ASSERT_TRUE(preflight);
+  EXPECT_EQ(preflight->status, 204);
+  EXPECT_EQ(preflight->get_header_value("Access-Control-Allow-Origin"), page);
+  EXPECT_EQ(preflight->get_header_value("Access-Control-Allow-Methods"), "GET, POST");
+  EXPECT_EQ(preflight->get_header_value("Access-Control-Allow-Headers"), "Content-Type");
+  const std::string move = R"({"lights": [{"id": 0, "position": [100, 400, 100]}]})";
+  const auto moved = client_->Post("/api/lights", {{"Origin", page}}, move, "application/json");
+  ASSERT_TRUE(moved);
+  EXPECT_EQ(moved->status, 200) << moved->body;
+  EXPECT_EQ(moved->get_header_value("Access-Control-Allow-Origin"), page);
+  EXPECT_EQ(moved->get_header_value("Vary"), "Origin");
+  EXPECT_EQ(moved->get_header_value("Access-Control-Expose-Headers"), "X-Relight-Ms");
+  const auto read = client_->Get("/api/scene", {{"Origin", page}});
+  ASSERT_TRUE(read);
+  EXPECT_EQ(read->get_header_value("Access-Control-Allow-Origin"), page);
+  // Another origin, and the allowed one's look-alikes: refused, no CORS header.
+  const std::string colors = client_->Get("/api/colors")->body;
+  for (const std::string other : {"http://evil.example", "http://localhost:5174",
+                                  "https://localhost:5173", "http://localhost:5173.evil.example"}) {
+    const auto r = client_->Post("/api/lights", {{"Origin", other}},
+                                 R"({"groups": {"light0": 0.5}})", "application/json");
+    ASSERT_TRUE(r) << other;
+    EXPECT_EQ(r->status, 403) << other;
+    EXPECT_FALSE(r->has_header("Access-Control-Allow-Origin")) << other;
+    const auto p = client_->Options("/api/lights", {{"Origin", other}});
+    ASSERT_TRUE(p) << other;
+    EXPECT_EQ(p->status, 403) << other;
+    EXPECT_FALSE(p->has_header("Access-Control-Allow-Origin")) << other;
+  }
+  EXPECT_TRUE(client_->Get("/api/colors")->body == colors);
+}
+
+TEST(ViewerServer, AnAllowedOriginIsAnOriginAlone) {
+  ViewerServer server(fs::path(::testing::TempDir()) / "no_page_here");
+  for (const std::string bad : {"", "*", "localhost:5173", "http://localhost:5173/",
+                                "http://localhost:5173/page", "null", "ftp://example.org"})
+    EXPECT_THROW(server.allowOrigin(bad), InputError) << bad;
+  for (const std::string good : {"http://localhost:5173", "https://example.org", "http://[::1]:80"})
+    EXPECT_NO_THROW(server.allowOrigin(good)) << good;
+  // The command refuses it before listening, as bad input: exit 2.
+  const test::CliResult r = test::run({"serve", "cornell-spot", "--allow-origin", "*"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--allow-origin"), std::string::npos) << r.err;
 }
 
 // A known path asked with a method it does not take is 405 with Allow; a body with a NUL byte
