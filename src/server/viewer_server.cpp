@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "server/bounded_http_server.h"
 #include "server/viewer_session.h"
 
 namespace rad {
@@ -97,10 +98,8 @@ void ViewerServer::withSession(httplib::Response& response, F&& f) const {
 }
 
 ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
-    : http_(std::make_unique<httplib::Server>()) {
+    : http_(std::make_unique<BoundedHttpServer>(HttpLimits{.maxBodyBytes = kMaxBody})) {
   httplib::Server& http = *http_;
-  // Above the limit httplib itself answers 413 without reading it; up to it, a 400 below.
-  http.set_payload_max_length(4 * kMaxBody);
   http.set_socket_options(exclusivePort);
   http.set_pre_routing_handler(
       [this](const httplib::Request& request, httplib::Response& response) {
@@ -171,9 +170,6 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
     });
   });
   http.Post("/api/lights", [this](const httplib::Request& request, httplib::Response& response) {
-    if (request.body.size() > kMaxBody)
-      return badRequest(response,
-                        fmt::format("body of {} bytes; at most {}", request.body.size(), kMaxBody));
     // A NUL byte ends the JSON text for the parser, and what follows would pass unread.
     if (request.body.find('\0') != std::string::npos)
       return badRequest(response, "the body holds a NUL byte");
@@ -264,6 +260,7 @@ int ViewerServer::bind(const std::string& host, int port) {
     throw InputError(fmt::format("--host {} --port {}", host, port),
                      "cannot listen there: the port is taken (another server holds it) or the "
                      "address is not this machine's");
+  http_->widenBacklog();
   return bound;
 }
 

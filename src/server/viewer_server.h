@@ -32,6 +32,7 @@ struct Response;
 
 namespace rad {
 
+class BoundedHttpServer;
 class ViewerSession;
 
 class ViewerServer {
@@ -64,7 +65,7 @@ class ViewerServer {
   /// Ends run() (from any thread).
   void stop();
 
-  /// The largest request body accepted (bytes): more is a 400.
+  /// The largest request body accepted (bytes): more is a 413, refused before it is read.
   static constexpr size_t kMaxBody = 1 << 20;
 
  private:
@@ -75,7 +76,7 @@ class ViewerServer {
   /// a state change from another origin or not as JSON; "" when it is not.
   std::string refusal(const httplib::Request& request) const;
 
-  std::unique_ptr<httplib::Server> http_;
+  std::unique_ptr<BoundedHttpServer> http_;
   /// The CORS headers for a request from the allowed origin (none for any other).
   void addCorsHeaders(const httplib::Request& request, httplib::Response& response) const;
 

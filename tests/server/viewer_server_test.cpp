@@ -6,12 +6,14 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
+#include <netinet/in.h>
 #include <radiosity/error.h>
 #include <radiosity/radiosity_engine.h>
 #include <radiosity/relighter.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
 #include <radiosity/voxel_radiosity.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -210,9 +212,12 @@ TEST_F(ViewerServerTest, BadRequestsAre400AndChangeNothing) {
     EXPECT_EQ(r->status, 400) << bad;
     EXPECT_NE(nlohmann::json::parse(r->body)["error"].get<std::string>(), "") << bad;
   }
+  // A body beyond 1 MiB is refused by its Content-Length, before it is read.
   const auto big = post(std::string(ViewerServer::kMaxBody + 1, ' '));
   ASSERT_TRUE(big);
-  EXPECT_EQ(big->status, 400);
+  EXPECT_EQ(big->status, 413);
+  EXPECT_NE(nlohmann::json::parse(big->body)["error"].get<std::string>().find("1048576"),
+            std::string::npos);
   EXPECT_EQ(client_->Get("/api/scene")->body, before);
   EXPECT_TRUE(client_->Get("/api/colors")->body == colorsBefore);
 }
@@ -367,6 +372,119 @@ TEST_F(ViewerServerTest, WrongMethodsAre405AndNulBytes400) {
   ASSERT_TRUE(nul);
   EXPECT_EQ(nul->status, 400);
   EXPECT_TRUE(client_->Get("/api/colors")->body == colorsBefore);
+}
+
+// A client's own socket to the server: what it sends, as it sends it.
+class RawConnection {
+ public:
+  explicit RawConnection(int port) : socket_(::socket(AF_INET, SOCK_STREAM, 0)) {
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(uint16_t(port));
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    connected_ = ::connect(socket_, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0;
+    timeval wait{5, 0};
+    ::setsockopt(socket_, SOL_SOCKET, SO_RCVTIMEO, &wait, sizeof wait);
+  }
+  ~RawConnection() { ::close(socket_); }
+  RawConnection(const RawConnection&) = delete;
+  RawConnection& operator=(const RawConnection&) = delete;
+  bool connected() const { return connected_; }
+  /// False once the server has closed the connection (or reset it).
+  bool send(const std::string& bytes) {
+    return ::send(socket_, bytes.data(), bytes.size(), MSG_NOSIGNAL) == ssize_t(bytes.size());
+  }
+  /// What the server answers until it closes the connection (or 5 s pass).
+  std::string answer() {
+    std::string text;
+    char buffer[4096];
+    for (ssize_t n; (n = ::recv(socket_, buffer, sizeof buffer, 0)) > 0;)
+      text.append(buffer, size_t(n));
+    return text;
+  }
+
+ private:
+  int socket_;
+  bool connected_ = false;
+};
+
+// The resident memory of this process (the server runs in it), bytes.
+size_t residentBytes() {
+  std::ifstream statm("/proc/self/statm");
+  size_t pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return resident * size_t(::sysconf(_SC_PAGESIZE));
+}
+
+// Slow clients hold no worker: with 16 connections sending a request a byte every 50 ms, 8
+// connected and silent, and 100 more idle ones than the server keeps (the oldest closed for the
+// newest), a plain GET is answered at once. Before (a worker per connection, 8 workers), 12
+// dribbling clients kept a GET waiting 25 s and 8 silent ones delayed it 4.7 s.
+TEST_F(ViewerServerTest, SlowClientsDoNotStarveAGet) {
+  const auto tc = std::chrono::steady_clock::now();
+  std::vector<std::unique_ptr<RawConnection>> silent, dribbling;
+  for (int k = 0; k < 108; ++k) silent.push_back(std::make_unique<RawConnection>(port_));
+  for (int k = 0; k < 16; ++k) dribbling.push_back(std::make_unique<RawConnection>(port_));
+  // Connected at once: the kernel keeps more than httplib's 5 waiting to be accepted.
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - tc).count(), 0.5);
+  std::atomic<bool> done = false;
+  std::thread dribble([&] {
+    const std::string request = "GET /api/scene HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ";
+    for (size_t at = 0; !done; at = (at + 1) % request.size()) {
+      for (auto& c : dribbling) c->send(request.substr(std::min(at, request.size() - 1), 1));
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  for (int k = 0; k < 5; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto scene = client_->Get("/api/scene");
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ASSERT_TRUE(scene);
+    EXPECT_EQ(scene->status, 200);
+    EXPECT_LT(seconds, 1.0) << "GET " << k;
+  }
+  done = true;
+  dribble.join();
+}
+
+// A request's head is bounded: more than 100 headers or 32 KiB is a 431 and the connection is
+// closed; 400,000 headers are not read into memory (before: all of them, +44 MB).
+TEST_F(ViewerServerTest, TooManyOrTooLargeHeadersAre431) {
+  const std::string start = "GET /api/scene HTTP/1.1\r\nHost: 127.0.0.1\r\n";
+  std::string many = start;
+  for (int k = 0; k < 101; ++k) many += fmt::format("X-{}: {}\r\n", k, k);
+  for (const std::string& head :
+       {many + "\r\n", start + "X-Large: " + std::string(40000, 'a') + "\r\n\r\n"}) {
+    RawConnection c(port_);
+    ASSERT_TRUE(c.connected());
+    c.send(head);
+    const std::string answer = c.answer();
+    EXPECT_EQ(answer.rfind("HTTP/1.1 431 ", 0), 0u) << answer.substr(0, 200);
+  }
+  // Host, 98 more and Connection: 100 headers pass; one more does not.
+  std::string hundred = start;
+  for (int k = 0; k < 98; ++k) hundred += fmt::format("X-{}: {}\r\n", k, k);
+  hundred += "Connection: close\r\n";
+  RawConnection passes(port_);
+  passes.send(hundred + "\r\n");
+  EXPECT_EQ(passes.answer().rfind("HTTP/1.1 200 ", 0), 0u);
+  RawConnection refused(port_);
+  refused.send(hundred + "X-One-More: 1\r\n\r\n");
+  EXPECT_EQ(refused.answer().rfind("HTTP/1.1 431 ", 0), 0u);
+  // 400,000 headers in 4 MiB pieces: refused after the first 32 KiB, the rest never kept.
+  const size_t before = residentBytes();
+  RawConnection flood(port_);
+  flood.send(start);
+  std::string piece;
+  while (piece.size() < (4 << 20)) piece += "X-Flood: 1\r\n";
+  for (int k = 0; k < 4 && flood.send(piece); ++k) {
+  }
+  const std::string answer = flood.answer();
+  EXPECT_TRUE(answer.empty() || answer.rfind("HTTP/1.1 431 ", 0) == 0) << answer.substr(0, 200);
+  EXPECT_LT(residentBytes(), before + (8 << 20));
+  EXPECT_EQ(client_->Get("/api/scene")->status, 200);
 }
 
 // A port another server listens on is refused, not shared (no SO_REUSEPORT).
