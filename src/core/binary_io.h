@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -101,6 +102,15 @@ class ByteReader {
   const std::string& bytes_;
   size_t at_, end_;
 };
+
+/// Whether every value is finite and not negative: what the form factors, irradiances and
+/// radiosities a file holds must be (a forged NaN, infinity or negative value would spread
+/// through every solve, relight and picture made from it).
+inline bool allFiniteNonNegative(std::span<const float> values) {
+  for (float v : values)
+    if (!(v >= 0.0f && v <= std::numeric_limits<float>::max())) return false;
+  return true;
+}
 
 inline void putText(std::string& out, const std::string& s) {
   put(out, uint64_t(s.size()));

@@ -72,8 +72,7 @@ std::string checkTable(const std::vector<uint64_t>& offsets, const std::vector<u
     if (c >= patches) return "column out of range";
   // Not v <= 1: a thresholded table gathers light redirected to small patches from large ones
   // (FormFactorTable::applyThreshold), which can exceed 1 where the table does not lose light.
-  for (float v : values)
-    if (!(v >= 0.0f && std::isfinite(v))) return "form factor negative or not finite";
+  if (!allFiniteNonNegative(values)) return "form factor negative or not finite";
   // A row's sum is the fraction of the patch's light that reaches other patches: a forged row
   // far above 1 makes the solver diverge (a residual of NaN after its last sweep).
   for (size_t i = 0; i + 1 < offsets.size(); ++i) {

@@ -55,8 +55,8 @@ void PatchRadiosity::Impl::readSolution(const SolutionFile& file, ByteReader in)
   if (groups != (apart ? m.mix.groups().size() : 1))
     file.refuse("it has another number of light groups");
   for (uint64_t g = 0; g < groups; ++g) {
-    m.groupIrradiance.push_back(in.array<Color>(n));
-    m.groupIndirect.push_back(in.array<Color>(n));
+    m.groupIrradiance.push_back(file.radiometry(in, n, "irradiance"));
+    m.groupIndirect.push_back(file.radiometry(in, n, "indirect irradiance"));
   }
   if (apart) {
     m.mix.setScales(in.array<Color>(groups));
@@ -66,14 +66,14 @@ void PatchRadiosity::Impl::readSolution(const SolutionFile& file, ByteReader in)
     m.indirect = std::move(m.groupIndirect[0]);
     m.groupIrradiance.clear();
     m.groupIndirect.clear();
-    m.solution.radiosity = in.array<Color>(n);
+    m.solution.radiosity = file.radiometry(in, n, "radiosity");
     for (const Patch& p : m.mesh->patches())
       m.solution.emitted.push_back(glm::pi<float>() * m.scene->materials[p.material].emission *
                                    p.emissionTint);
   }
   const uint64_t direct = in.get<uint64_t>();
   if (direct != 0 && direct != n) file.refuse("its direct light is not one value per patch");
-  m.lightDirect = in.array<Color>(direct);
+  m.lightDirect = file.radiometry(in, direct, "direct light");
   if (!in.atEnd()) file.refuse("trailing bytes after its arrays");
 }
 

@@ -119,6 +119,15 @@ void SolutionFile::checkFor(const std::string& method, const Scene& scene,
                                        scene.name));
 }
 
+std::vector<Color> SolutionFile::radiometry(ByteReader& in, uint64_t count,
+                                            const char* what) const {
+  std::vector<Color> colors = in.array<Color>(count);
+  static_assert(sizeof(Color) == 3 * sizeof(float));
+  if (!allFiniteNonNegative({reinterpret_cast<const float*>(colors.data()), 3 * colors.size()}))
+    refuse(fmt::format("its {} holds a value that is negative or not finite", what));
+  return colors;
+}
+
 void SolutionFile::refuse(const std::string& why) const {
   throw InputError(path, fmt::format("does not fit the scene: {}", why));
 }

@@ -41,6 +41,10 @@ struct SolutionFile {
       refuse(e.what());
     }
   }
+  /// The next `count` colours of an irradiance or radiosity array (`what` names it), refused
+  /// (InputError naming it) unless every component is finite and not negative
+  /// (allFiniteNonNegative, the check the form-factor cache's values get).
+  std::vector<Color> radiometry(ByteReader& in, uint64_t count, const char* what) const;
   /// Throws InputError(path, "<what>: " + why): the payload does not fit the scene.
   [[noreturn]] void refuse(const std::string& why) const;
 };

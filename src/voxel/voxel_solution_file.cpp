@@ -43,8 +43,8 @@ void VoxelRadiosity::Impl::readSolution(const SolutionFile& file, ByteReader in)
   if (groups != (apart ? mix.groups().size() : 1))
     file.refuse("it has another number of light groups");
   for (uint64_t g = 0; g < groups; ++g) {
-    groupIrradiance.push_back(in.array<Color>(n));
-    if (hasIndirect) groupIndirect.push_back(in.array<Color>(n));
+    groupIrradiance.push_back(file.radiometry(in, n, "irradiance"));
+    if (hasIndirect) groupIndirect.push_back(file.radiometry(in, n, "indirect irradiance"));
   }
   if (apart) {
     mix.setScales(in.array<Color>(groups));
@@ -54,7 +54,7 @@ void VoxelRadiosity::Impl::readSolution(const SolutionFile& file, ByteReader in)
     if (hasIndirect) indirect = std::move(groupIndirect[0]);
     groupIrradiance.clear();
     groupIndirect.clear();
-    solution.radiosity = in.array<Color>(n);
+    solution.radiosity = file.radiometry(in, n, "radiosity");
   }
   if (!in.atEnd()) file.refuse("trailing bytes after its arrays");
 }

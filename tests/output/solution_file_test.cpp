@@ -9,10 +9,13 @@
 #include <radiosity/surface_radiance.h>
 #include <radiosity/voxel_radiosity.h>
 
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
+#include "core/binary_io.h"
 #include "lighting/light_test_scenes.h"
 
 namespace rad {
@@ -171,6 +174,72 @@ TEST(SolutionFile, CutCorruptOldForeignAndOtherFilesAreRefused) {
   finer.targetPatches = 1600;
   EXPECT_NE(refusal(good, PatchModel(scene, finer), scene.lights).find("does not fit"),
             std::string::npos);
+}
+
+// `bytes` with the float at `at` set to `value` and the checksum made anew, as a forger would.
+std::string forged(std::string bytes, size_t at, float value) {
+  std::memcpy(bytes.data() + at, &value, sizeof value);
+  const uint64_t sum = checksum(bytes.data(), bytes.size() - 8);
+  std::memcpy(bytes.data() + bytes.size() - 8, &sum, 8);
+  return bytes;
+}
+
+// A radiosity or irradiance that is NaN, infinite or negative is refused as the form-factor
+// cache's form factors are (one check), even under a valid checksum: loaded, it would spread
+// through every relight and picture. A forged finite positive value still loads (the place is a
+// value, not the file's structure).
+TEST(SolutionFile, ForgedRadiosityNotFiniteOrNegativeIsRefused) {
+  const Scene scene = loadScene("cornell");
+  PatchRadiositySettings settings = patchSettings();
+  settings.lightGroups = false;
+  const PatchModel patch(scene, settings);
+  const fs::path patchFile = tempFile("forge_patch.rad");
+  const PatchRadiosity solved = patch.solve(scene.lights);
+  solved.save(patchFile.string(), someSettings());
+  const std::string patchBytes = bytesOf(patchFile);
+  // The payload ends: the radiosity (n colours), the direct light's count d and d colours.
+  const uint64_t n = solved.elementCount();
+  size_t patchAt = 0;
+  for (uint64_t d : {uint64_t(0), n}) {
+    const size_t count = patchBytes.size() - 8 - 12 * d - 8;
+    uint64_t stored = 0;
+    std::memcpy(&stored, patchBytes.data() + count, 8);
+    if (stored == d) patchAt = count - 12;
+  }
+  ASSERT_GT(patchAt, 0u);
+  VoxelRadiositySettings voxels;
+  voxels.targetVoxels = 2000;
+  voxels.iterations = 2;
+  const VoxelModel voxel(scene, voxels);
+  const fs::path voxelFile = tempFile("forge_voxel.rad");
+  voxel.solve(scene.lights).save(voxelFile.string(), someSettings());
+  const std::string voxelBytes = bytesOf(voxelFile);
+  const size_t voxelAt = voxelBytes.size() - 8 - 12;  // its last radiosity, before the checksum
+
+  auto refusedAs = [&](const std::string& bytes, size_t at, float value, bool isPatch) {
+    const fs::path path = tempFile("forged.rad");
+    writeBytes(path, forged(bytes, at, value));
+    try {
+      if (isPatch)
+        patch.load(path.string(), scene.lights);
+      else
+        voxel.load(path.string(), scene.lights);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  for (const bool isPatch : {true, false}) {
+    const std::string& bytes = isPatch ? patchBytes : voxelBytes;
+    const size_t at = isPatch ? patchAt : voxelAt;
+    for (const float bad : {std::nanf(""), INFINITY, -1.0f, -1e-30f}) {
+      const std::string why = refusedAs(bytes, at, bad, isPatch);
+      EXPECT_NE(why.find("radiosity holds a value that is negative or not finite"),
+                std::string::npos)
+          << (isPatch ? "patch " : "voxel ") << bad << ": " << why;
+    }
+    EXPECT_EQ(refusedAs(bytes, at, 0.5f, isPatch), "") << (isPatch ? "patch" : "voxel");
+  }
 }
 
 }  // namespace
