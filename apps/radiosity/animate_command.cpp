@@ -175,7 +175,8 @@ void addAnimateCommand(CLI::App& app, Console& console, CommandAction& action) {
                   "ffmpeg, which must be installed)");
   sub->add_option("--solution", o->solution,
                   "Start from the solution a .rad file keeps (solve --save at --start) instead "
-                  "of solving");
+                  "of solving")
+      ->check(nonEmptyPath());
   sub->add_option("--probe-move-threshold", o->picture.probeMoveThreshold,
                   "Capture a dynamic object's probes again once it moved more than this (scene "
                   "units; default 0: whenever it moved) or the lights changed")

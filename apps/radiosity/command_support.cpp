@@ -41,6 +41,15 @@ const CLI::Validator& nonNegativeNumber() {
   return check;
 }
 
+const CLI::Validator& nonEmptyPath() {
+  static const CLI::Validator check(
+      [](std::string& input) -> std::string {
+        return input.empty() ? "an empty path (leave the option out for none)" : "";
+      },
+      "PATH");
+  return check;
+}
+
 CLI::Validator finiteNumberIn(double lo, double hi) {
   return CLI::Validator(
       [lo, hi](std::string& input) -> std::string {

@@ -30,6 +30,9 @@ const CLI::Validator& nonNegativeNumber();
 /// The same for a finite number in [lo, hi] (CLI11's Range lets "nan" through: every comparison
 /// with it is false).
 CLI::Validator finiteNumberIn(double lo, double hi);
+/// A check that a path's value is not empty: `--solution ""` is a mistake (a variable left
+/// unset), not "no solution" (render then path-traced without a word).
+const CLI::Validator& nonEmptyPath();
 
 /// Loads the scene with its lights as they are `seconds` into their animation, prints its
 /// warnings, refuses a scene with nothing that emits (a black result), and records the load time

@@ -138,7 +138,8 @@ void addRenderCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("--solution", o->solution,
                   "Render the solution a .rad file keeps (solve --save) instead of solving: its "
                   "method and settings; the scene and its lights at --time must be those it was "
-                  "solved for");
+                  "solved for")
+      ->check(nonEmptyPath());
   sub->add_option("--object-points", o->objectPoints,
                   "pathtrace: surface points per object for the stats' per-object means (0: skip)")
       ->check(nonNegativeNumber());

@@ -150,7 +150,8 @@ void addServeCommand(CLI::App& app, Console& console, CommandAction& action) {
              "too: CORS headers for it alone (default: none, only the server's own page)")
           ->type_name("ORIGIN");
   sub->add_option("--solution", o->solution,
-                  "Start from the solution a .rad file keeps (solve --save) instead of solving");
+                  "Start from the solution a .rad file keeps (solve --save) instead of solving")
+      ->check(nonEmptyPath());
   sub->add_option("--display-edge", o->displayEdge,
                   "Longest edge of the displayed triangles (default: half the patch size)")
       ->check(finiteNumberIn(1e-30, HUGE_VAL));

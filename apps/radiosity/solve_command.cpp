@@ -126,7 +126,7 @@ void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
          "to [0, 1] (the .glb says which in its extras)")
       ->check(finiteNumberIn(-64.0, 64.0));
   sub->add_option("--save", o->save,
-                  "Save the solution (.rad) for render, solve and animate --solution: no solve "
+                  "Save the solution (.rad) for render, animate and serve --solution: no solve "
                   "again; its light groups too (--light-groups)");
   sub->add_option("--lightmap", o->lightmap,
                   "With a .glb export: the scene's own triangles under a lightmap atlas of SIZE x "

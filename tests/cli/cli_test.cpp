@@ -780,6 +780,16 @@ TEST(Cli, RenderFromASavedSolutionWithoutSolving) {
   const CliResult foreign = run({"render", "cornell", "--solution", rad});
   EXPECT_EQ(foreign.status, 2);
   EXPECT_NE(foreign.err.find("another scene"), std::string::npos) << foreign.err;
+  // An empty path is a mistake (before: render path-traced without a word), for every command
+  // that takes a solution; and solve takes none (its --save help says which do).
+  for (const std::string command : {"render", "animate", "serve"}) {
+    const CliResult empty = run({command, "cornell-spot", "--solution", ""});
+    EXPECT_EQ(empty.status, 2) << command;
+    EXPECT_NE(empty.err.find("--solution"), std::string::npos) << command << ": " << empty.err;
+  }
+  EXPECT_EQ(run({"solve", "cornell-spot", "--solution", rad}).status, 2);
+  const CliResult help = run({"solve", "--help"});
+  EXPECT_NE(help.out.find("render, animate and serve --solution"), std::string::npos) << help.out;
 }
 
 // A dynamic object moves along its path between --time values, lit by a probe in patch pictures
