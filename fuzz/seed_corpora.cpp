@@ -66,6 +66,23 @@ void binarySeeds(const fs::path& out) {
   voxel.solve(cornell.lights).save((out / "solution_file" / "voxel.rad").string(), {});
 }
 
+// Bodies of the viewer's POST /api/lights (cornell-spot: light 0 in group "light0"), as the
+// page and the API's documentation send them.
+void lightsBodySeeds(const fs::path& out) {
+  const char* bodies[] = {
+      R"({"lights": [{"id": 0, "position": [278, 540, 280], "direction": [0.4, -1, 0]}]})",
+      R"({"lights": [{"id": 0, "intensity": [1e5, 8e4, 6e4]}]})",
+      R"({"groups": {"light0": 0.5}})",
+      R"({"groups": {"light0": [1, 0.5, 0.25]}})",
+      (R"({"lights": [{"id": 0, "position": [1, 2, 3], "direction": [0, -1, 0], )"
+       R"("intensity": 2e5}], "groups": {"light0": 0}})"),
+      R"({"lights": []})",
+  };
+  int k = 0;
+  for (const char* body : bodies)
+    write(out / "lights_body" / ("body" + std::to_string(k++) + ".json"), body);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -81,6 +98,7 @@ int main(int argc, char** argv) {
   copySeeds(out, "glb", {"small/small.glb", "small/truncated.glb"});
   copySeeds(out, "scene_json", {"small/scene.json"});
   copySeeds(out, "ies", {"ies/photompy_tilt_include_v19.ies", "ies/photompy_type_b_symmetric.ies"});
+  lightsBodySeeds(out);
   binarySeeds(out);
   return 0;
 }

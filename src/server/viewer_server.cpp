@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "server/bounded_http_server.h"
+#include "server/light_request.h"
 #include "server/viewer_session.h"
 
 namespace rad {
@@ -170,15 +171,10 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
     });
   });
   http.Post("/api/lights", [this](const httplib::Request& request, httplib::Response& response) {
-    // A NUL byte ends the JSON text for the parser, and what follows would pass unread.
-    if (request.body.find('\0') != std::string::npos)
-      return badRequest(response, "the body holds a NUL byte");
-    const nlohmann::json body = nlohmann::json::parse(request.body, nullptr, false);
-    if (body.is_discarded()) return badRequest(response, "the body is not valid JSON");
     withSession(response, [&](ViewerSession& session) {
       try {
         double ms = 0.0;
-        binary(response, session.applyLights(body, &ms));
+        binary(response, session.applyLights(lightRequestJson(request.body), &ms));
         response.set_header("X-Relight-Ms", fmt::format("{:.3f}", ms));
       } catch (const InputError& e) {
         badRequest(response, e.what());

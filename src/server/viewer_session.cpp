@@ -6,13 +6,11 @@
 #include <radiosity/error.h>
 #include <radiosity/ies_profile.h>
 #include <radiosity/radiosity_method.h>
-#include <radiosity/scene_builder.h>
 #include <tbb/parallel_for.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <glm/gtx/component_wise.hpp>
 #include <span>
 
 #include "output/gltf_export.h"
@@ -23,47 +21,6 @@ namespace rad {
 namespace {
 
 using Json = nlohmann::json;
-
-[[noreturn]] void refuse(const std::string& where, const std::string& what) {
-  throw InputError("request " + where, what);
-}
-
-Vec3 vec3(const Json& j, const std::string& where) {
-  if (!j.is_array() || j.size() != 3) refuse(where, "expected an array of 3 numbers");
-  Vec3 v;
-  for (int k = 0; k < 3; ++k) {
-    if (!j[size_t(k)].is_number()) refuse(where, "expected an array of 3 numbers");
-    v[k] = j[size_t(k)].get<float>();
-    if (!std::isfinite(v[k])) refuse(where, "expected finite numbers");
-  }
-  return v;
-}
-
-// A light's intensity or a group's scale: as a scene file may hold them, in [0, kMaxLight].
-Color nonNegative(const Json& j, const std::string& where) {
-  if (j.is_number() && !std::isfinite(j.get<double>())) refuse(where, "expected finite numbers");
-  const Color c = j.is_number() ? Color(j.get<float>()) : vec3(j, where);
-  if (!(minComponent(c) >= 0.0f) || !(maxComponent(c) <= kMaxLight))
-    refuse(where, fmt::format("expected numbers in [0, {:g}]", kMaxLight));
-  return c;
-}
-
-// Why the lights at these group scales would be more light than a scene may hold (an intensity
-// or an emission times its group's scale beyond kMaxLight), or "".
-std::string tooMuchLight(const Scene& scene, std::span<const Light> lights,
-                         std::span<const LightGroup> groups, std::span<const Color> scales) {
-  for (size_t g = 0; g < groups.size(); ++g) {
-    for (uint32_t i : groups[g].lights)
-      if (!(maxComponent(lights[i].intensity * scales[g]) <= kMaxLight))
-        return fmt::format("light {}'s intensity times group '{}''s scale is beyond {:g} W/sr", i,
-                           groups[g].name, kMaxLight);
-    for (uint32_t m : groups[g].materials)
-      if (!(maxComponent(scene.materials[m].emission * scales[g]) <= kMaxLight))
-        return fmt::format("material '{}''s emission times group '{}''s scale is beyond {:g}",
-                           scene.materials[m].name, groups[g].name, kMaxLight);
-  }
-  return "";
-}
 
 // The floats as the API sends them: their bytes (little-endian float32 on every supported machine).
 std::string bytesOf(const std::vector<float>& values) {
@@ -187,7 +144,8 @@ double ViewerSession::pathsEnd() const {
 
 Json ViewerSession::objectsAt(double seconds) const {
   if (!std::isfinite(seconds) || seconds < 0.0 || seconds > kMaxViewerSeconds)
-    refuse("/t", fmt::format("expected a time in [0, {:g}] s", kMaxViewerSeconds));
+    throw InputError("request /t",
+                     fmt::format("expected a time in [0, {:g}] s", kMaxViewerSeconds));
   Json objects = Json::array();
   if (scene_.dynamicObjects.empty()) return {{"t", seconds}, {"objects", objects}};
   LitMesh mesh;
@@ -231,70 +189,25 @@ std::vector<Light> ViewerSession::effectiveLights() const {
   return lights;
 }
 
+LightRequestRules ViewerSession::requestRules() const {
+  LightRequestRules rules{scene_, groups_, "", ""};
+  if (!fixed_) return rules;
+  rules.noLights = fmt::format("a {} solution cannot be relit (serve --method {} moves lights)",
+                               engine_->method().name(),
+                               fmt::join(methodsWith(&MethodCapabilities::relight), "|"));
+  if (fixed_->lightGroups().empty())
+    rules.noGroups =
+        fmt::format("this {} solution solved its light groups together", engine_->method().name());
+  return rules;
+}
+
 std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
-  if (!request.is_object()) refuse("", "expected a JSON object with \"lights\" and/or \"groups\"");
-  for (const auto& [key, value] : request.items())
-    if (key != "lights" && key != "groups")
-      refuse("/" + key, "unknown key (expected \"lights\" or \"groups\")");
   uint64_t mine = 0;
   {
     std::lock_guard state(stateMutex_);
-    std::vector<Light> lights = lights_;
-    std::vector<Color> scales = scales_;
-    if (request.contains("lights") && fixed_)
-      refuse("/lights", fmt::format("a {} solution cannot be relit (serve --method {} moves "
-                                    "lights)",
-                                    engine_->method().name(),
-                                    fmt::join(methodsWith(&MethodCapabilities::relight), "|")));
-    if (request.contains("groups") && fixed_ && fixed_->lightGroups().empty())
-      refuse("/groups", fmt::format("this {} solution solved its light groups together",
-                                    engine_->method().name()));
-    if (request.contains("lights")) {
-      const Json& list = request["lights"];
-      if (!list.is_array()) refuse("/lights", "expected an array");
-      for (size_t k = 0; k < list.size(); ++k) {
-        const std::string at = fmt::format("/lights/{}", k);
-        const Json& edit = list[k];
-        if (!edit.is_object() || !edit.contains("id") || !edit["id"].is_number_integer())
-          refuse(at, "expected an object with an integer \"id\"");
-        const int64_t id = edit["id"].get<int64_t>();
-        if (id < 0 || size_t(id) >= lights.size())
-          refuse(at + "/id", fmt::format("no light {} (ids 0 to {})", id, lights.size() - 1));
-        Light& light = lights[size_t(id)];
-        for (const auto& [key, value] : edit.items()) {
-          if (key == "id") continue;
-          if (key == "position") {
-            light.position = vec3(value, at + "/position");
-            if (glm::compMax(glm::abs(light.position)) > kMaxSceneCoordinate)
-              refuse(at + "/position", fmt::format("beyond {:g} scene units", kMaxSceneCoordinate));
-          } else if (key == "direction") {
-            const Vec3 d = vec3(value, at + "/direction");
-            // Scaled to a largest component of 1 first: the length of [1e20, 0, 0] overflows.
-            const float largest = glm::compMax(glm::abs(d));
-            if (!(largest > 0.0f)) refuse(at + "/direction", "zero length");
-            light.direction = glm::normalize(d / largest);
-          } else if (key == "intensity") {
-            light.intensity = nonNegative(value, at + "/intensity");
-          } else {
-            refuse(at + "/" + key, "unknown key (expected id, position, direction, intensity)");
-          }
-        }
-      }
-    }
-    if (request.contains("groups")) {
-      const Json& map = request["groups"];
-      if (!map.is_object()) refuse("/groups", "expected an object of group name: scale");
-      for (const auto& [name, value] : map.items()) {
-        size_t g = 0;
-        while (g < groups_.size() && groups_[g].name != name) ++g;
-        if (g == groups_.size()) refuse("/groups/" + name, "no such light group");
-        scales[g] = nonNegative(value, "/groups/" + name);
-      }
-    }
-    if (const std::string why = tooMuchLight(scene_, lights, groups_, scales); !why.empty())
-      refuse(request.contains("groups") ? "/groups" : "/lights", why);
-    lights_ = std::move(lights);
-    scales_ = std::move(scales);
+    LightState next = lightStateAfter(request, {lights_, scales_}, requestRules());
+    lights_ = std::move(next.lights);
+    scales_ = std::move(next.scales);
     mine = ++asked_;
   }
   std::lock_guard relight(relightMutex_);

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "lit_mesh/baked_mesh.h"
+#include "server/light_request.h"
 
 namespace rad {
 
@@ -70,6 +71,7 @@ class ViewerSession {
 
  private:
   std::vector<Light> effectiveLights() const;  // with the groups' scales; under stateMutex_
+  LightRequestRules requestRules() const;      // what a request may change here
   void shade();                                // under relightMutex_
 
   std::unique_ptr<const RadiosityEngine> engine_;
