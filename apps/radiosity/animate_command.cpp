@@ -40,10 +40,8 @@ struct AnimateOptions {
 // for all lights, so a group is scaled in the lights it is given).
 std::vector<Light> lightsAt(const Scene& scene, double seconds, std::span<const LightGroup> groups,
                             std::span<const Color> scales) {
-  std::vector<Light> lights = scene.lightsAt(seconds);
-  for (size_t g = 0; g < groups.size(); ++g)
-    for (uint32_t i : groups[g].lights) lights[i].intensity *= scales[g];
-  return lights;
+  return LightState{scene.lightsAt(seconds), {scales.begin(), scales.end()}}.effectiveLights(
+      groups);
 }
 
 double median(std::vector<double> values) {
@@ -76,6 +74,9 @@ int runAnimate(AnimateOptions& o, Console& console) {
   const FrameFiles frameFiles(o.output);
   if (!o.video.empty()) checkVideoOutput(o.video, frameFiles);
   checkOutputPath("--stats", o.stats);
+  const std::pair<std::string, std::string> outputs[] = {{"--video", o.video},
+                                                         {"--stats", o.stats}};
+  checkDistinctOutputs(outputs);
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.start, console, stats);
   o.method.resolve(scene, o.solution, console);

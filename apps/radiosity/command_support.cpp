@@ -95,6 +95,22 @@ void checkOutputPath(const std::string& option, const std::string& path) {
                                         std::strerror(errno)));
 }
 
+void checkDistinctOutputs(std::span<const std::pair<std::string, std::string>> outputs) {
+  namespace fs = std::filesystem;
+  std::vector<std::pair<fs::path, const std::string*>> seen;
+  for (const auto& [option, path] : outputs) {
+    if (path.empty()) continue;
+    std::error_code ec;
+    const fs::path file = fs::weakly_canonical(path, ec);
+    for (const auto& [other, otherOption] : seen)
+      if (other == file)
+        throw InputError(
+            option + " " + path,
+            fmt::format("is the file {} writes too; give each output its own file", *otherOption));
+    seen.emplace_back(file, &option);
+  }
+}
+
 void checkSolutionOutput(const std::string& path) {
   if (std::filesystem::path(path).extension() != ".rad")
     throw InputError("--save " + path, "expected a .rad file");

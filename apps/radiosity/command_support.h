@@ -4,7 +4,9 @@
 #include <radiosity/run_stats.h>
 #include <radiosity/scene.h>
 
+#include <span>
 #include <string>
+#include <utility>
 
 #include "console.h"
 
@@ -45,6 +47,9 @@ Scene loadSceneForCommand(const std::string& name, double seconds, Console& cons
 /// not end in "cannot write". Empty paths (the output not asked for) pass.
 void checkOutputPath(const std::string& option, const std::string& path);
 
+/// Refuses two outputs of one run that name the same file (one would overwrite the other):
+/// throws InputError naming both options. Pairs of option and path; empty paths are skipped.
+void checkDistinctOutputs(std::span<const std::pair<std::string, std::string>> outputs);
 /// checkOutputPath for a solution file name (--save), which must also be .rad.
 void checkSolutionOutput(const std::string& path);
 

@@ -93,6 +93,8 @@ int runRender(RenderOptions& o, Console& console) {
     throw InputError("-o " + o.output, "unsupported image format (supported: .png, .exr, .pfm)");
   checkOutputPath("-o", o.output);
   checkOutputPath("--stats", o.stats);
+  const std::pair<std::string, std::string> outputs[] = {{"-o", o.output}, {"--stats", o.stats}};
+  checkDistinctOutputs(outputs);
 
   const Camera camera = o.picture.camera(scene);
   InterruptGuard interruptible;

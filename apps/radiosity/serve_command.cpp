@@ -4,6 +4,8 @@
 // light groups dimmed, not relit.
 #include <fmt/format.h>
 #include <radiosity/radiosity_method.h>
+#include <radiosity/viewer_server.h>
+#include <radiosity/viewer_session.h>
 
 #include <CLI/CLI.hpp>
 #include <atomic>
@@ -16,8 +18,6 @@
 #include "command_support.h"
 #include "commands.h"
 #include "method_options.h"
-#include "server/viewer_server.h"
-#include "server/viewer_session.h"
 
 #ifndef RADIOSITY_WEB_DIR
 #define RADIOSITY_WEB_DIR "web"

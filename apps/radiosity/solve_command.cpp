@@ -89,6 +89,12 @@ int runSolve(SolveOptions& o, Console& console) {
   if (o.lightmap > 0 && ext != ".glb")
     throw InputError("--lightmap", "a lightmap atlas goes with a .glb export (--export FILE.glb)");
   if (o.lightmap > 0) checkOutputPath("--lightmap", lightmapIrradiancePath(o.exportPath));
+  const std::pair<std::string, std::string> outputs[] = {
+      {"--export", o.exportPath},
+      {"--stats", o.stats},
+      {"--save", o.save},
+      {"--lightmap", o.lightmap > 0 ? lightmapIrradiancePath(o.exportPath) : ""}};
+  checkDistinctOutputs(outputs);
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
   // Before the solve: an atlas too small for the scene's charts is refused before any work.

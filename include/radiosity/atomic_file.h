@@ -14,8 +14,10 @@ namespace rad {
 /// Calls `write` with a fresh temporary path in target's directory (".<name>.tmp-<pid>-<n>"),
 /// flushes the file it wrote to disk and renames it over `target`. If `write` throws, or the
 /// rename fails, the temporary is removed, `target` is left as it was and the exception
-/// propagates. Throws std::runtime_error naming `target` if its directory does not exist or
-/// `write` created no file, or if `target` is a directory. A target that exists and is not a
+/// propagates; a std::runtime_error from writing (the disk full, a device refusing) comes out
+/// as an InputError with its message (an output that cannot be written, as a bad output path).
+/// Throws std::runtime_error naming `target` if its directory does not exist or `write` created
+/// no file, or if `target` is a directory. A target that exists and is not a
 /// regular file (a device such as /dev/null, a FIFO) is written directly, not replaced.
 /// Temporaries left in the directory by writers that were killed are removed. Safe to call from
 /// several threads at once.

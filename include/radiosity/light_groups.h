@@ -54,4 +54,17 @@ GroupScale parseGroupScale(std::string_view text);
 std::vector<Color> groupScalesFor(std::span<const LightGroup> groups,
                                   std::span<const GroupScale> scales);
 
+/// The lights as a front end sets them, each at its own intensity, and each light group's scale:
+/// what animate and the viewer keep, and turn into what a solve or relight is given.
+struct LightState {
+  std::vector<Light> lights;
+  std::vector<Color> scales;  ///< per group of the groups it is used with (1: as set)
+
+  /// The lights, each times its group's scale (groups: lightGroupsOf the scene and `lights`).
+  std::vector<Light> effectiveLights(std::span<const LightGroup> groups) const;
+  /// Per material of `scene`, its group's scale (1 for materials in no group): the emission
+  /// scales of a relight.
+  std::vector<Color> emissionScales(const Scene& scene, std::span<const LightGroup> groups) const;
+};
+
 }  // namespace rad

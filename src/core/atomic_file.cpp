@@ -1,5 +1,6 @@
 #include <fcntl.h>
 #include <radiosity/atomic_file.h>
+#include <radiosity/error.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -83,6 +84,24 @@ void setWritesFiles(bool writes) {
   writesFiles = writes;
 }
 
+namespace {
+
+// A writer's failure (the disk full, the device refusing) as what it is to the user: an output
+// that cannot be written, like a bad output path (InputError: exit 2).
+void asOutputError(const std::function<void()>& work) {
+  try {
+    work();
+  } catch (const InputError&) {
+    throw;
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
+}
+
+}  // namespace
+
 void writeFileAtomically(const fs::path& target,
                          const std::function<void(const fs::path& temporary)>& write) {
   if (!writesFiles) return;
@@ -99,19 +118,21 @@ void writeFileAtomically(const fs::path& target,
     throw std::runtime_error("cannot write '" + target.string() + "': it is a directory");
   if (fs::exists(status) && !fs::is_regular_file(status)) {
     // A device or a pipe (/dev/null, /dev/stdout, a FIFO) is written to, never replaced.
-    write(target);
+    asOutputError([&] { write(target); });
     return;
   }
   removeStaleTemporaries(directory);
   const fs::path temporary = temporaryPathFor(target);
   try {
-    write(temporary);
-    if (!fs::exists(temporary, ec))
-      throw std::runtime_error("cannot write '" + target.string() +
-                               "': the writer produced no file");
-    flushToDisk(temporary);
-    fs::rename(temporary, target, ec);
-    if (ec) throw std::runtime_error("cannot write '" + target.string() + "': " + ec.message());
+    asOutputError([&] {
+      write(temporary);
+      if (!fs::exists(temporary, ec))
+        throw std::runtime_error("cannot write '" + target.string() +
+                                 "': the writer produced no file");
+      flushToDisk(temporary);
+      fs::rename(temporary, target, ec);
+      if (ec) throw std::runtime_error("cannot write '" + target.string() + "': " + ec.message());
+    });
   } catch (...) {
     removeQuietly(temporary);
     throw;

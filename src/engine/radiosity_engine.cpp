@@ -2,10 +2,10 @@
 // objects' part in every solve, relight, picture and export, written here once.
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/gltf_export.h>
 #include <radiosity/radiosity_engine.h>
 
 #include "engine/placed_objects_impl.h"
-#include "output/gltf_export.h"
 
 namespace rad {
 

@@ -73,6 +73,21 @@ void scaleEmitters(Scene& scene, std::span<const LightGroup> groups,
   }
 }
 
+std::vector<Light> LightState::effectiveLights(std::span<const LightGroup> groups) const {
+  std::vector<Light> effective = lights;
+  for (size_t g = 0; g < groups.size() && g < scales.size(); ++g)
+    for (uint32_t i : groups[g].lights) effective[i].intensity *= scales[g];
+  return effective;
+}
+
+std::vector<Color> LightState::emissionScales(const Scene& scene,
+                                              std::span<const LightGroup> groups) const {
+  std::vector<Color> emission(scene.materials.size(), Color(1.0f));
+  for (size_t g = 0; g < groups.size() && g < scales.size(); ++g)
+    for (uint32_t m : groups[g].materials) emission[m] = scales[g];
+  return emission;
+}
+
 GroupScale parseGroupScale(std::string_view text) {
   auto fail = [&](const std::string& why) {
     throw InputError("--group",

@@ -1,6 +1,5 @@
-#include "lit_mesh/baked_mesh.h"
-
 #include <fmt/format.h>
+#include <radiosity/baked_mesh.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 

@@ -1,4 +1,4 @@
-#include "output/gltf_export.h"
+#include <radiosity/gltf_export.h>
 
 // Only tinygltf's declarations: the implementation is compiled once, in
 // src/scene/io/gltf_loader.cpp. These switches must match it there, because TinyGLTF's inline

@@ -1,8 +1,7 @@
-#include "output/surface_samples.h"
-
 #include <fmt/format.h>
 #include <radiosity/atomic_file.h>
 #include <radiosity/image.h>
+#include <radiosity/surface_samples.h>
 
 #include <cstring>
 #include <glm/gtc/constants.hpp>

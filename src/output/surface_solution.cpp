@@ -1,14 +1,14 @@
 // The statistics and exporters every solution shares, through the SurfaceSolution interface.
 #include <fmt/format.h>
+#include <radiosity/gltf_export.h>
+#include <radiosity/surface_samples.h>
 #include <radiosity/surface_solution.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
-#include "output/gltf_export.h"
 #include "output/lightmap_atlas.h"
-#include "output/surface_samples.h"
 
 namespace rad {
 

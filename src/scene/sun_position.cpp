@@ -1,5 +1,6 @@
 // The NOAA solar calculator's equations (NOAA Global Monitoring Laboratory, "General Solar Position
-// Calculations" and its spreadsheet, from Meeus, "Astronomical Algorithms", 1991): docs/references.md.
+// Calculations" and its spreadsheet, from Meeus, "Astronomical Algorithms", 1991):
+// docs/references.md.
 #include "scene/sun_position.h"
 
 #include <algorithm>
@@ -14,8 +15,12 @@ namespace rad {
 
 namespace {
 
-double radians(double deg) { return deg * std::numbers::pi / 180.0; }
-double degrees(double rad) { return rad * 180.0 / std::numbers::pi; }
+double radians(double deg) {
+  return deg * std::numbers::pi / 180.0;
+}
+double degrees(double rad) {
+  return rad * 180.0 / std::numbers::pi;
+}
 
 // The Julian day of a Gregorian calendar date at 0h UTC (Meeus, chapter 7).
 double julianDayOf(int year, int month, int day) {
@@ -40,8 +45,10 @@ double refractionDeg(double elevationDeg) {
   if (elevationDeg > 5.0)
     arcSeconds = 58.1 / t - 0.07 / (t * t * t) + 0.000086 / std::pow(t, 5.0);
   else if (elevationDeg > -0.575)
-    arcSeconds = 1735.0 + elevationDeg * (-518.2 + elevationDeg * (103.4 + elevationDeg *
-                                                                               (-12.79 + elevationDeg * 0.711)));
+    arcSeconds =
+        1735.0 +
+        elevationDeg *
+            (-518.2 + elevationDeg * (103.4 + elevationDeg * (-12.79 + elevationDeg * 0.711)));
   else
     arcSeconds = -20.772 / t;
   return arcSeconds / 3600.0;
@@ -53,9 +60,8 @@ bool parseIsoTime(std::string_view text, UtcTime& time, std::string& why) {
   why = "expected a date and time with its offset, like 2026-06-21T12:00:00+02:00";
   const int year = digitsAt(text, 0, 4), month = digitsAt(text, 5, 2), day = digitsAt(text, 8, 2);
   const int hour = digitsAt(text, 11, 2), minute = digitsAt(text, 14, 2);
-  if (year < 0 || month < 1 || month > 12 || hour < 0 || hour > 23 || minute < 0 ||
-      minute > 59 || text[4] != '-' || text[7] != '-' || (text[10] != 'T' && text[10] != ' ') ||
-      text[13] != ':')
+  if (year < 0 || month < 1 || month > 12 || hour < 0 || hour > 23 || minute < 0 || minute > 59 ||
+      text[4] != '-' || text[7] != '-' || (text[10] != 'T' && text[10] != ' ') || text[13] != ':')
     return false;
   const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
   const int monthDays[] = {31, leap ? 29 : 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
@@ -75,8 +81,7 @@ bool parseIsoTime(std::string_view text, UtcTime& time, std::string& why) {
   double offsetMinutes = 0.0;
   if (at + 1 == text.size() && text[at] == 'Z') {
     offsetMinutes = 0.0;
-  } else if (at + 6 == text.size() && (text[at] == '+' || text[at] == '-') &&
-             text[at + 3] == ':') {
+  } else if (at + 6 == text.size() && (text[at] == '+' || text[at] == '-') && text[at + 3] == ':') {
     const int h = digitsAt(text, at + 1, 2), m = digitsAt(text, at + 4, 2);
     if (h < 0 || h > 14 || m < 0 || m > 59) return false;
     offsetMinutes = (text[at] == '-' ? -1.0 : 1.0) * (60.0 * h + m);
@@ -113,14 +118,14 @@ SunPosition sunPosition(const UtcTime& time, double latitudeDeg, double longitud
                     0.5 * y * y * std::sin(4.0 * l0) -
                     1.25 * eccentricity * eccentricity * std::sin(2.0 * m));
   const double utcMinutes = std::fmod(time.julianDay + 0.5, 1.0) * 1440.0;
-  const double trueSolarMin =
-      std::fmod(std::fmod(utcMinutes + equationOfTimeMin + 4.0 * longitudeDeg, 1440.0) + 1440.0,
-                1440.0);
+  const double trueSolarMin = std::fmod(
+      std::fmod(utcMinutes + equationOfTimeMin + 4.0 * longitudeDeg, 1440.0) + 1440.0, 1440.0);
   const double hourAngle = radians(trueSolarMin / 4.0 - 180.0);
   const double lat = radians(latitudeDeg);
-  const double cosZenith = std::clamp(std::sin(lat) * std::sin(declination) +
-                                          std::cos(lat) * std::cos(declination) * std::cos(hourAngle),
-                                      -1.0, 1.0);
+  const double cosZenith =
+      std::clamp(std::sin(lat) * std::sin(declination) +
+                     std::cos(lat) * std::cos(declination) * std::cos(hourAngle),
+                 -1.0, 1.0);
   const double zenith = std::acos(cosZenith);
   // Azimuth from north, clockwise: atan2 of the east and north components of the sun's direction.
   const double east = -std::cos(declination) * std::sin(hourAngle);

@@ -15,12 +15,6 @@
 
 namespace rad {
 
-/// The lights as asked (each at its own intensity) and each light group's scale.
-struct LightState {
-  std::vector<Light> lights;
-  std::vector<Color> scales;  ///< per group of LightRequestRules::groups
-};
-
 /// What a session lets a request change.
 struct LightRequestRules {
   const Scene& scene;

@@ -1,9 +1,9 @@
 // The viewer's routes on cpp-httplib.
-#include "server/viewer_server.h"
-
 #include <fmt/format.h>
 #include <httplib.h>
 #include <radiosity/error.h>
+#include <radiosity/viewer_server.h>
+#include <radiosity/viewer_session.h>
 #include <sys/socket.h>
 
 #include <algorithm>
@@ -16,7 +16,6 @@
 
 #include "server/bounded_http_server.h"
 #include "server/light_request.h"
-#include "server/viewer_session.h"
 
 namespace rad {
 

@@ -1,11 +1,12 @@
 // The viewer's state: the lights the page asked for, the relighter that follows them, and the
 // display mesh's colours.
-#include "server/viewer_session.h"
-
 #include <fmt/format.h>
 #include <radiosity/error.h>
+#include <radiosity/gltf_export.h>
 #include <radiosity/ies_profile.h>
 #include <radiosity/radiosity_method.h>
+#include <radiosity/surface_samples.h>
+#include <radiosity/viewer_session.h>
 #include <tbb/parallel_for.h>
 
 #include <chrono>
@@ -13,8 +14,7 @@
 #include <cstring>
 #include <span>
 
-#include "output/gltf_export.h"
-#include "output/surface_samples.h"
+#include "server/light_request.h"
 
 namespace rad {
 
@@ -39,8 +39,7 @@ ViewerSession::ViewerSession(std::unique_ptr<const RadiosityEngine> engine,
     : engine_(std::move(engine)),
       scene_(engine_->scene()),
       groups_(lightGroupsOf(scene_, lights)),
-      lights_(std::move(lights)),
-      scales_(groups_.size(), Color(1.0f)),
+      state_{std::move(lights), std::vector<Color>(groups_.size(), Color(1.0f))},
       relighting_(std::move(relighting)) {
   start(displayEdge);
 }
@@ -51,8 +50,7 @@ ViewerSession::ViewerSession(std::unique_ptr<const RadiosityEngine> engine,
     : engine_(std::move(engine)),
       scene_(engine_->scene()),
       groups_(lightGroupsOf(scene_, lights)),
-      lights_(std::move(lights)),
-      scales_(groups_.size(), Color(1.0f)),
+      state_{std::move(lights), std::vector<Color>(groups_.size(), Color(1.0f))},
       fixed_(std::move(solution)) {
   start(displayEdge);
 }
@@ -87,8 +85,8 @@ Json ViewerSession::summary() const {
   std::lock_guard relight(relightMutex_);
   std::lock_guard state(stateMutex_);
   Json lights = Json::array();
-  for (size_t i = 0; i < lights_.size(); ++i) {
-    const Light& l = lights_[i];
+  for (size_t i = 0; i < state_.lights.size(); ++i) {
+    const Light& l = state_.lights[i];
     Json light = {{"id", i},
                   {"type", lightTypeName(l.type)},
                   {"position", array(l.position)},
@@ -106,7 +104,7 @@ Json ViewerSession::summary() const {
   Json groups = Json::array();
   for (size_t g = 0; g < groups_.size(); ++g)
     groups.push_back({{"name", groups_[g].name},
-                      {"scale", array(scales_[g])},
+                      {"scale", array(state_.scales[g])},
                       {"lights", groups_[g].lights.size()},
                       {"emitting_materials", groups_[g].materials.size()}});
   const Camera camera = scene_.cameraOrDefault();
@@ -182,13 +180,6 @@ std::string ViewerSession::objectsCsv() const {
   return objectRadiometryCsv(solution().objectRadiometry());
 }
 
-std::vector<Light> ViewerSession::effectiveLights() const {
-  std::vector<Light> lights = lights_;
-  for (size_t g = 0; g < groups_.size(); ++g)
-    for (uint32_t i : groups_[g].lights) lights[i].intensity *= scales_[g];
-  return lights;
-}
-
 LightRequestRules ViewerSession::requestRules() const {
   LightRequestRules rules{scene_, groups_, "", ""};
   if (!fixed_) return rules;
@@ -205,29 +196,25 @@ std::string ViewerSession::applyLights(const Json& request, double* relightMs) {
   uint64_t mine = 0;
   {
     std::lock_guard state(stateMutex_);
-    LightState next = lightStateAfter(request, {lights_, scales_}, requestRules());
-    lights_ = std::move(next.lights);
-    scales_ = std::move(next.scales);
+    state_ = lightStateAfter(request, state_, requestRules());
     mine = ++asked_;
   }
   std::lock_guard relight(relightMutex_);
   if (reached_ < mine) {  // else a later request's relight already covered this one
-    std::vector<Light> lights;
-    std::vector<Color> emission(scene_.materials.size(), Color(1.0f));
+    LightState asked;
     uint64_t newest = 0;
     {
       std::lock_guard state(stateMutex_);
-      lights = effectiveLights();
-      for (size_t g = 0; g < groups_.size(); ++g)
-        for (uint32_t m : groups_[g].materials) emission[m] = scales_[g];
+      asked = state_;
       newest = asked_;
     }
+    const std::vector<Light> lights = asked.effectiveLights(groups_);
+    const std::vector<Color> emission = asked.emissionScales(scene_, groups_);
     const auto start = std::chrono::steady_clock::now();
     if (relighting_) {
       relighting_->relight(lights, emission);
     } else {
-      std::lock_guard state(stateMutex_);
-      fixed_->setGroupScales(scales_);  // the groups as solved, combined anew
+      fixed_->setGroupScales(asked.scales);  // the groups as solved, combined anew
     }
     shade();
     lastRelightMs_ =

@@ -1,5 +1,6 @@
 // The public face of the voxel method: voxelize, solve, then answer radiance queries.
 #include <fmt/format.h>
+#include <radiosity/baked_mesh.h>
 #include <radiosity/error.h>
 #include <radiosity/voxel_radiosity.h>
 
@@ -10,7 +11,6 @@
 
 #include "core/convergence_advice.h"
 #include "core/vector_memory.h"
-#include "lit_mesh/baked_mesh.h"
 #include "voxel/voxel_radiosity_impl.h"
 #include "voxel/voxelizer.h"
 

@@ -158,6 +158,29 @@ TEST(Cli, UnsupportedOutputExtensionFailsBeforeRendering) {
   EXPECT_FALSE(fs::exists(jpg));
 }
 
+// Two outputs of one run on one file: the second would overwrite the first. Refused before any
+// work, naming both options; nothing written.
+TEST(Cli, TwoOutputsOnOneFileAreRefused) {
+  const fs::path dir = freshDir("same_output");
+  const std::string same = (dir / "same.csv").string();
+  const CliResult r = run({"solve", "cornell", "--method", "voxel", "--voxels", "2000", "--export",
+                           same, "--stats", (dir / "." / "same.csv").string()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--stats"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--export"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(same));
+}
+
+// A disk that fills up while an output is written (/dev/full refuses every write): the run ends
+// with exit 2 and the message, as for a bad output path.
+TEST(Cli, AFullDiskIsAnOutputErrorWithExitTwo) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
+  const CliResult full = run({"solve", "cornell", "--method", "voxel", "--voxels", "2000",
+                              "--sphere-radius", "4", "--stats", "/dev/full"});
+  EXPECT_EQ(full.status, 2) << full.err;
+  EXPECT_NE(full.err.find("/dev/full"), std::string::npos) << full.err;
+}
+
 TEST(Cli, MissingSceneFileIsBadInput) {
   const fs::path dir = freshDir("missing");
   const std::string png = (dir / "x.png").string();

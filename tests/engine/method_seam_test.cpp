@@ -14,6 +14,7 @@
 #include <radiosity/run_stats.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/solution_file.h>
+#include <radiosity/viewer_session.h>
 
 #include <cmath>
 #include <filesystem>
@@ -27,7 +28,6 @@
 #include "scene/scene_summary.h"
 #include "scene/setting_fields.h"
 #include "scene/solution_file.h"
-#include "server/viewer_session.h"
 
 namespace rad {
 namespace {

@@ -33,7 +33,8 @@ VoxelRadiositySettings smallVoxelSettings() {
   return s;
 }
 
-// Every point of a lone floor sees the light at 60 degrees: H = E cos 60 = E / 2 exactly, B = rho H.
+// Every point of a lone floor sees the light at 60 degrees: H = E cos 60 = E / 2 exactly, B = rho
+// H.
 TEST(DirectionalLight, AFloorReceivesECosThetaInEveryMethod) {
   const Color e(3.0f, 2.0f, 1.0f);
   const Scene scene = test::floorUnderLight(2.0f, sunAt(60.0f, e));
@@ -50,9 +51,9 @@ TEST(DirectionalLight, AFloorReceivesECosThetaInEveryMethod) {
   }
   // Facing away from it, a floor is dark.
   const Scene below = test::floorUnderLight(2.0f, sunAt(120.0f, e));
-  EXPECT_EQ(maxComponent(test::objectNamed(PatchRadiosity(below, test::uncachedPatchSettings(100)),
-                                           "floor")
-                             .meanIrradiance),
+  EXPECT_EQ(maxComponent(
+                test::objectNamed(PatchRadiosity(below, test::uncachedPatchSettings(100)), "floor")
+                    .meanIrradiance),
             0.0f);
 }
 

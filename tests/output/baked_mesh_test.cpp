@@ -1,9 +1,8 @@
 // Baking a SurfaceRadiance into the scene's triangles: the cut covers each triangle exactly, no
 // piece is longer than asked, a sliver becomes a row of pieces rather than a grid, and every
 // vertex carries the radiance at its own position.
-#include "lit_mesh/baked_mesh.h"
-
 #include <gtest/gtest.h>
+#include <radiosity/baked_mesh.h>
 #include <radiosity/scene_builder.h>
 
 #include <algorithm>

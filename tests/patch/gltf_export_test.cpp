@@ -1,9 +1,8 @@
 // The lit patch mesh as binary glTF: read back with tinygltf, it must be the patch mesh (triangle
 // count, area, one node per object), carry the radiance the renderer shows as vertex colours, and
 // be written atomically like every other output.
-#include "output/gltf_export.h"
-
 #include <gtest/gtest.h>
+#include <radiosity/gltf_export.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/scene_loader.h>
 #include <radiosity/texture.h>

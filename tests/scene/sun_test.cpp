@@ -85,9 +85,9 @@ class SceneFileSun : public ::testing::Test {
   std::string write(const std::string& lights, const std::string& unit = "m") {
     const auto dir = test::scratchDir("sun_scene");
     const std::string unitKey = unit.empty() ? "" : R"("unit": ")" + unit + R"(", )";
-    return test::writeFile(dir / "sun.json", "{" + unitKey + R"("geometry": [{"file": ")" +
-                                                 test::kData + R"(small/small.gltf"}], "lights": )" +
-                                                 lights + "}");
+    return test::writeFile(dir / "sun.json",
+                           "{" + unitKey + R"("geometry": [{"file": ")" + test::kData +
+                               R"(small/small.gltf"}], "lights": )" + lights + "}");
   }
 };
 

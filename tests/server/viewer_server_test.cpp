@@ -1,17 +1,19 @@
 // The viewer's API over HTTP: the scene, mesh and colours it serves; a light move answered with
 // the colours the library's relighter gives for the same lights; bad requests refused with 400
 // and nothing changed; no file served from outside the page's folder.
-#include "server/viewer_server.h"
-
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
 #include <netinet/in.h>
+#include <radiosity/baked_mesh.h>
 #include <radiosity/error.h>
+#include <radiosity/gltf_export.h>
 #include <radiosity/radiosity_engine.h>
 #include <radiosity/relighter.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
+#include <radiosity/viewer_server.h>
+#include <radiosity/viewer_session.h>
 #include <radiosity/voxel_radiosity.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -27,10 +29,7 @@
 #include <thread>
 
 #include "cli/cli_run.h"
-#include "lit_mesh/baked_mesh.h"
-#include "output/gltf_export.h"
 #include "scene/builtin/builtin_shapes.h"
-#include "server/viewer_session.h"
 
 namespace rad {
 namespace {

@@ -8,6 +8,7 @@
 // arrive while one runs are coalesced: the newest state wins, and every waiting request is
 // answered with the colours of that state.
 
+#include <radiosity/baked_mesh.h>
 #include <radiosity/light_groups.h>
 #include <radiosity/radiosity_engine.h>
 #include <radiosity/relighting.h>
@@ -21,10 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "lit_mesh/baked_mesh.h"
-#include "server/light_request.h"
-
 namespace rad {
+
+struct LightRequestRules;  // server/light_request.h
 
 /// The latest time the viewer places dynamic objects at (a day).
 inline constexpr double kMaxViewerSeconds = 86400.0;
@@ -70,9 +70,8 @@ class ViewerSession {
   std::string applyLights(const nlohmann::json& request, double* relightMs = nullptr);
 
  private:
-  std::vector<Light> effectiveLights() const;  // with the groups' scales; under stateMutex_
-  LightRequestRules requestRules() const;      // what a request may change here
-  void shade();                                // under relightMutex_
+  LightRequestRules requestRules() const;  // what a request may change here
+  void shade();                            // under relightMutex_
 
   std::unique_ptr<const RadiosityEngine> engine_;
   const Scene& scene_;
@@ -81,9 +80,8 @@ class ViewerSession {
   std::vector<uint32_t> glbOrder_;
   std::string meshGlb_;
 
-  mutable std::mutex stateMutex_;  ///< the asked state: lights_, scales_, asked_
-  std::vector<Light> lights_;
-  std::vector<Color> scales_;
+  mutable std::mutex stateMutex_;  ///< the asked state: state_, asked_
+  LightState state_;
   uint64_t asked_ = 0;  ///< generation of the newest asked state
 
   mutable std::mutex relightMutex_;         ///< the relighting and what it shows
