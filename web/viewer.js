@@ -115,7 +115,10 @@ let inFlight = false, pending = false;
 function lightState() {
   const state = { groups: { ...groupScales } };
   if (summary.relights)  // a voxel solution takes group scales only
-    state.lights = lights.map((l) => ({ id: l.id, position: l.position, direction: l.direction, intensity: l.intensity }));
+    state.lights = lights.map((l) => ({
+      id: l.id, direction: l.direction, intensity: l.intensity,
+      ...(l.type === 'directional' ? {} : { position: l.position }),  // the sun has none
+    }));
   return state;
 }
 
@@ -238,9 +241,10 @@ function lightPanel(light) {
     inputs.forEach((input, k) => { input.value = Number(light.direction[k].toPrecision(6)); });
     markers[light.id].userData.arrow?.setDirection(new THREE.Vector3().fromArray(light.direction).normalize());
   };
+  // A directional light (the sun) has no position: its marker only shows where its light comes from.
   const position = numberInputs('position', light.position, (k, v) => { light.position[k] = v; update(); });
   position.classList.add('position');
-  box.appendChild(position);
+  if (light.type !== 'directional') box.appendChild(position);
   if (light.type !== 'point') {
     const direction = numberInputs('direction', light.direction, (k, v) => {
       light.direction[k] = v;
@@ -250,7 +254,7 @@ function lightPanel(light) {
     direction.classList.add('direction');
     box.appendChild(direction);
   }
-  const intensity = numberInputs('W/sr', light.intensity, (k, v) => { light.intensity[k] = Math.max(0, v); sendState(); });
+  const intensity = numberInputs(light.type === 'directional' ? 'W/unit²' : 'W/sr', light.intensity, (k, v) => { light.intensity[k] = Math.max(0, v); sendState(); });
   intensity.classList.add('intensity');
   box.appendChild(intensity);
   // A voxel solution is not relit: its lights are shown, not edited.
@@ -328,6 +332,11 @@ async function start() {
     lights.push(light);
     const marker = new THREE.Mesh(markerGeometry, new THREE.MeshBasicMaterial({ color: 0xffdd55 }));
     marker.position.fromArray(light.position);
+    if (light.type === 'directional') {  // up the light's way from the scene's centre
+      const centre = new THREE.Vector3().fromArray(summary.bounds.min)
+        .add(new THREE.Vector3().fromArray(summary.bounds.max)).multiplyScalar(0.5);
+      marker.position.copy(centre).addScaledVector(new THREE.Vector3().fromArray(light.direction), -0.6 * diagonal);
+    }
     marker.userData.light = light;
     if (light.type !== 'point') {  // the axis a spot or IES light points along
       const arrow = new THREE.ArrowHelper(new THREE.Vector3().fromArray(light.direction).normalize(),
@@ -359,7 +368,7 @@ async function start() {
       const turn = marker.quaternion.clone().multiply(marker.userData.startTurn);
       light.direction = marker.userData.startDirection.clone().applyQuaternion(turn).normalize().toArray();
       light.showDirection();
-    } else {
+    } else if (light.type !== 'directional') {
       light.position = marker.position.toArray();
       light.positionInputs.forEach((input, k) => { input.value = Number(light.position[k].toPrecision(6)); });
       marker.userData.arrow?.position.copy(marker.position);

@@ -69,6 +69,7 @@ void editLight(const Json& edit, size_t k, std::vector<Light>& lights) {
   for (const auto& [key, value] : edit.items()) {
     if (key == "id") continue;
     if (key == "position") {
+      if (!light.positional()) refuse(at + "/position", "a directional light has no position");
       light.position = vec3(value, at + "/position");
       if (glm::compMax(glm::abs(light.position)) > kMaxSceneCoordinate)
         refuse(at + "/position", fmt::format("beyond {:g} scene units", kMaxSceneCoordinate));
