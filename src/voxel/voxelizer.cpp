@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <cassert>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -151,6 +153,7 @@ void fragmentTriangle(const Scene& scene, const VoxelGrid& grid, uint32_t t, boo
 // results stay exact where objects meet (a lamp set in a ceiling).
 struct Side {
   uint32_t orientation = 0, object = 0;
+  uint32_t id = 0;  ///< its place among its cell's sides as they were made
   Vec3d normalSum{0.0}, centroidSum{0.0}, rhoArea{0.0}, keArea{0.0};
   double weight = 0.0, area = 0.0, backArea = 0.0;
   double coveredArea = 0.0, coveredWeight = 0.0;  ///< area times coverage (Material)
@@ -178,9 +181,14 @@ float pieceCoverage(const Scene& scene, const Fragment& f) {
   return sum / 9.0f;
 }
 
-void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orientations,
-                std::vector<Side>& sides) {
-  const Vec3 n = f.backSide ? -scene.triangleNormal(f.triangle) : scene.triangleNormal(f.triangle);
+Vec3 fragmentNormal(const Scene& scene, const Fragment& f) {
+  return f.backSide ? -scene.triangleNormal(f.triangle) : scene.triangleNormal(f.triangle);
+}
+
+// Adds the piece to the side of its orientation and object; returns that side's id.
+uint32_t addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orientations,
+                    std::vector<Side>& sides) {
+  const Vec3 n = fragmentNormal(scene, f);
   uint32_t orientation = uint32_t(orientations.size());
   for (uint32_t o = 0; o < orientations.size(); ++o)
     if (glm::dot(glm::normalize(orientations[o]), Vec3d(n)) > 0.5) orientation = o;
@@ -189,7 +197,8 @@ void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orien
   auto side = std::find_if(sides.begin(), sides.end(), [&](const Side& s) {
     return s.orientation == orientation && s.object == object;
   });
-  if (side == sides.end()) side = sides.insert(sides.end(), Side{orientation, object});
+  if (side == sides.end())
+    side = sides.insert(sides.end(), Side{orientation, object, uint32_t(sides.size())});
   // Pieces that only touch the cube (zero area) still orient and place the side.
   const double w = std::max(double(f.area), 1e-12);
   const Material& m = scene.materialOf(f.triangle);
@@ -218,6 +227,7 @@ void addToSides(const Scene& scene, const Fragment& f, std::vector<Vec3d>& orien
     side->emitterWeight = emitted;
     side->emitter = scene.faceOf(f.triangle).material;
   }
+  return side->id;
 }
 
 // The grid's surfaces by content, so that sides made of the same share one.
@@ -248,8 +258,18 @@ void appendSide(VoxelGrid& grid, std::map<SurfaceKey, uint32_t>& surfaceIndex, c
       grid, surfaceIndex, {m, side.object, side.backArea > 0.5 * side.area, side.emitter}));
 }
 
+// The sides a cell's grid entries are, in their order: those at least half covered (the sweeps
+// take a side as opaque, and leave one less covered out), by orientation.
+void keepEntrySides(std::vector<Side>& sides) {
+  std::erase_if(sides, [](const Side& s) {
+    return !(s.coveredWeight > 0.0) || !(s.coveredArea >= 0.5 * s.area);
+  });
+  std::stable_sort(sides.begin(), sides.end(),
+                   [](const Side& a, const Side& b) { return a.orientation < b.orientation; });
+}
+
 // Calls f(cell key, sides) for each cell of the fragments (sorted by cell): its fragments
-// clustered into sides, in orientation order.
+// clustered into sides, those of its entries in their order.
 template <typename F>
 void forEachCellsSides(const Scene& scene, const std::vector<Fragment>& fragments, F&& f) {
   std::vector<Side> sides;
@@ -260,14 +280,8 @@ void forEachCellsSides(const Scene& scene, const std::vector<Fragment>& fragment
     orientations.clear();
     for (; i < fragments.size() && fragments[i].cellKey == key; ++i)
       addToSides(scene, fragments[i], orientations, sides);
-    // The sweeps take a side as opaque: one less than half covered is left out (empty).
-    std::erase_if(sides, [](const Side& s) {
-      return !(s.coveredWeight > 0.0) || !(s.coveredArea >= 0.5 * s.area);
-    });
-    if (sides.empty()) continue;
-    std::stable_sort(sides.begin(), sides.end(),
-                     [](const Side& a, const Side& b) { return a.orientation < b.orientation; });
-    f(key, sides);
+    keepEntrySides(sides);
+    if (!sides.empty()) f(key, sides);
   }
 }
 
@@ -319,6 +333,52 @@ void buildEntries(const Scene& scene, const std::vector<Fragment>& fragments, Vo
   grid.cellEntryBegin.push_back(uint32_t(grid.orientation.size()));
 }
 
+// Every triangle's pieces in the grid's voxels, sorted by cell, and within a cell by triangle,
+// its front before its back. `progress` hears 0.25 and 0.5 (it may be empty).
+std::vector<Fragment> sortedFragments(const Scene& scene, const VoxelGrid& grid,
+                                      const ProgressCallback& progress) {
+  // Each triangle's fragments are counted first, then made again straight into their place in
+  // one array, in triangle order (deterministic): clipping twice (0.6 s at 2M voxels) is cheaper
+  // than holding them twice. Gathered from per-block vectors, they took 64 B a fragment at the
+  // peak: 151 MB before the grid was built for a 2M-voxel room, 77 MB this way.
+  const size_t triangles = scene.triangles.size();
+  auto twoSided = [&](size_t t) { return scene.materialOf(uint32_t(t)).twoSided; };
+  std::vector<size_t> firstFragment(triangles + 1, 0);
+  tbb::enumerable_thread_specific<std::vector<Fragment>> scratch;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles, 64), [&](const auto& r) {
+    std::vector<Fragment>& pieces = scratch.local();
+    for (size_t t = r.begin(); t != r.end(); ++t) {
+      pieces.clear();
+      fragmentTriangle(scene, grid, uint32_t(t), twoSided(t), pieces);
+      firstFragment[t + 1] = pieces.size();
+    }
+  });
+  scratch.clear();
+  for (size_t t = 0; t < triangles; ++t) firstFragment[t + 1] += firstFragment[t];
+  if (progress && !progress(0.25)) throw Cancelled();
+  requireMemory(double(firstFragment[triangles]) * sizeof(Fragment), scene.name,
+                fmt::format("the {} pieces of the surfaces in voxels of {:g}",
+                            firstFragment[triangles], grid.voxelSize),
+                "use a larger voxel size or fewer voxels");
+  std::vector<Fragment> fragments(firstFragment[triangles]);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles, 64), [&](const auto& r) {
+    for (size_t t = r.begin(); t != r.end(); ++t) {
+      FragmentSpan place{fragments.data() + firstFragment[t]};
+      fragmentTriangle(scene, grid, uint32_t(t), twoSided(t), place);
+    }
+  });
+  releaseMemory(firstFragment);
+  if (progress && !progress(0.5)) throw Cancelled();
+  // By cell, and within a cell by triangle, its front before its back (one piece of each per
+  // cell): a total order, sorted in place and in parallel, where a stable sort would hold a
+  // second copy of the fragments.
+  tbb::parallel_sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) {
+    return std::tie(a.cellKey, a.triangle, a.backSide) <
+           std::tie(b.cellKey, b.triangle, b.backSide);
+  });
+  return fragments;
+}
+
 // A planar piece of area A with unit normal n covers about A (|nx| + |ny| + |nz|) / s^2 voxels
 // (the sum of its projections on the three axis planes); this is the sum of those areas.
 double projectedArea(const Scene& scene) {
@@ -343,6 +403,57 @@ float voxelSizeForCount(const Scene& scene, size_t targetVoxels) {
 
 double expectedVoxelCount(const Scene& scene, float voxelSize) {
   return projectedArea(scene) / (double(voxelSize) * double(voxelSize));
+}
+
+void forEachSidesPieces(const Scene& scene, const VoxelGrid& grid, size_t firstEntry,
+                        size_t lastEntry, const SidePiecesVisitor& visit) {
+  if (firstEntry >= lastEntry) return;
+  const std::vector<Fragment> fragments = sortedFragments(scene, grid, {});
+  auto cellOf = [&](size_t entry) {
+    return uint32_t(
+        std::upper_bound(grid.cellEntryBegin.begin(), grid.cellEntryBegin.end(), uint32_t(entry)) -
+        grid.cellEntryBegin.begin() - 1);
+  };
+  std::atomic<bool> stopped = false;
+  tbb::parallel_for(
+      tbb::blocked_range<uint32_t>(cellOf(firstEntry), cellOf(lastEntry - 1) + 1, 16),
+      [&](const auto& r) {
+        std::vector<Side> sides;
+        std::vector<Vec3d> orientations;
+        std::vector<uint32_t> sideOf, entryOf;
+        std::vector<SidePiece> pieces;
+        for (uint32_t cell = r.begin(); cell != r.end() && !stopped; ++cell) {
+          const IVec3 c = grid.cellCoordinates(cell);
+          const uint64_t key = cellKey(c.x, c.y, c.z);
+          const auto first =
+              std::lower_bound(fragments.begin(), fragments.end(), key,
+                               [](const Fragment& f, uint64_t k) { return f.cellKey < k; });
+          const auto last =
+              std::upper_bound(first, fragments.end(), key,
+                               [](uint64_t k, const Fragment& f) { return k < f.cellKey; });
+          sides.clear();
+          orientations.clear();
+          sideOf.clear();
+          for (auto f = first; f != last; ++f)
+            sideOf.push_back(addToSides(scene, *f, orientations, sides));
+          entryOf.assign(sides.size(), UINT32_MAX);
+          keepEntrySides(sides);
+          assert(sides.size() == grid.cellEntryBegin[cell + 1] - grid.cellEntryBegin[cell]);
+          for (size_t k = 0; k < sides.size(); ++k) entryOf[sides[k].id] = uint32_t(k);
+          for (size_t k = 0; k < sides.size(); ++k) {
+            const size_t entry = grid.cellEntryBegin[cell] + k;
+            if (entry < firstEntry || entry >= lastEntry) continue;
+            pieces.clear();
+            for (size_t i = 0; i < sideOf.size(); ++i) {
+              if (entryOf[sideOf[i]] != k) continue;
+              const Fragment& f = first[ptrdiff_t(i)];
+              const double covered = std::max(double(f.area), 1e-12) * pieceCoverage(scene, f);
+              if (covered > 0.0) pieces.push_back({f.centroid, fragmentNormal(scene, f), covered});
+            }
+            if (!visit(entry, pieces)) stopped = true;
+          }
+        }
+      });
 }
 
 VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
@@ -372,41 +483,7 @@ VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
       fmt::format("voxel size {:g} gives about {:.0f} voxels, which", grid.voxelSize, expected),
       "use a larger voxel size or fewer voxels");
 
-  // Each triangle's fragments are counted first, then made again straight into their place in
-  // one array, in triangle order (deterministic): clipping twice (0.6 s at 2M voxels) is cheaper
-  // than holding them twice. Gathered from per-block vectors, they took 64 B a fragment at the
-  // peak: 151 MB before the grid was built for a 2M-voxel room, 77 MB this way.
-  const size_t triangles = scene.triangles.size();
-  auto twoSided = [&](size_t t) { return scene.materialOf(uint32_t(t)).twoSided; };
-  std::vector<size_t> firstFragment(triangles + 1, 0);
-  tbb::enumerable_thread_specific<std::vector<Fragment>> scratch;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles, 64), [&](const auto& r) {
-    std::vector<Fragment>& pieces = scratch.local();
-    for (size_t t = r.begin(); t != r.end(); ++t) {
-      pieces.clear();
-      fragmentTriangle(scene, grid, uint32_t(t), twoSided(t), pieces);
-      firstFragment[t + 1] = pieces.size();
-    }
-  });
-  scratch.clear();
-  for (size_t t = 0; t < triangles; ++t) firstFragment[t + 1] += firstFragment[t];
-  if (progress && !progress(0.25)) throw Cancelled();
-  std::vector<Fragment> fragments(firstFragment[triangles]);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles, 64), [&](const auto& r) {
-    for (size_t t = r.begin(); t != r.end(); ++t) {
-      FragmentSpan place{fragments.data() + firstFragment[t]};
-      fragmentTriangle(scene, grid, uint32_t(t), twoSided(t), place);
-    }
-  });
-  releaseMemory(firstFragment);
-  if (progress && !progress(0.5)) throw Cancelled();
-  // By cell, and within a cell by triangle, its front before its back (one piece of each per
-  // cell): a total order, sorted in place and in parallel, where a stable sort would hold a
-  // second copy of the fragments.
-  tbb::parallel_sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) {
-    return std::tie(a.cellKey, a.triangle, a.backSide) <
-           std::tie(b.cellKey, b.triangle, b.backSide);
-  });
+  std::vector<Fragment> fragments = sortedFragments(scene, grid, progress);
   buildEntries(scene, fragments, grid);
   releaseMemory(fragments);
   if (progress && !progress(1.0)) throw Cancelled();

@@ -12,6 +12,9 @@
 #include <radiosity/scene.h>
 #include <radiosity/voxel_radiosity.h>
 
+#include <functional>
+#include <span>
+
 #include "voxel/voxel_grid.h"
 
 namespace rad {
@@ -26,6 +29,24 @@ struct VoxelizerSettings {
 /// scene has no triangles.
 VoxelGrid voxelizeScene(const Scene& scene, const VoxelizerSettings& settings,
                         const ProgressCallback& progress = {});
+
+/// A piece of the surface a voxel side stands for: one triangle's part inside the voxel.
+struct SidePiece {
+  Vec3 centroid{0.0f};
+  Vec3 normal{0.0f};  ///< the unit normal of the side of the triangle it is
+  double area = 0.0;  ///< its covered area (scene units^2; coverage times area)
+};
+
+/// Called with a grid entry and its side's pieces (at least one; those of no coverage left out);
+/// returns false to stop.
+using SidePiecesVisitor = std::function<bool(size_t entry, std::span<const SidePiece> pieces)>;
+
+/// Calls `visit` for every entry in [firstEntry, lastEntry) of `grid`, which voxelizeScene made
+/// of `scene`, with its pieces cut again from the triangles as the grid's were, from several
+/// threads at once. Holds every piece of the scene meanwhile (32 B each; throws InputError when
+/// they would not fit in memory).
+void forEachSidesPieces(const Scene& scene, const VoxelGrid& grid, size_t firstEntry,
+                        size_t lastEntry, const SidePiecesVisitor& visit);
 
 /// About how many surface voxels this scene has at `voxelSize` (the inverse of the above).
 double expectedVoxelCount(const Scene& scene, float voxelSize);
