@@ -55,10 +55,18 @@ int runInfo(const std::string& sceneName, Console& console) {
                            map == &m.rhoTexture ? "colour" : "emission", map->texture->name(),
                            map->texture->width(), map->texture->height());
   out << fmt::format("lights     {}\n", scene.lights.size());
-  for (const Light& light : scene.lights)
-    out << fmt::format("  {:<5} at ({:g}, {:g}, {:g}), intensity ({:g}, {:g}, {:g}) W/sr\n",
-                       lightTypeName(light.type), light.position.x, light.position.y,
-                       light.position.z, light.intensity.r, light.intensity.g, light.intensity.b);
+  for (const Light& light : scene.lights) {
+    const Color& i = light.intensity;
+    if (light.positional())
+      out << fmt::format("  {:<5} at ({:g}, {:g}, {:g}), intensity ({:g}, {:g}, {:g}) W/sr\n",
+                         lightTypeName(light.type), light.position.x, light.position.y,
+                         light.position.z, i.r, i.g, i.b);
+    else  // the sun: a way, and the irradiance on a plane facing it
+      out << fmt::format(
+          "  {} along ({:.4g}, {:.4g}, {:.4g}), irradiance ({:g}, {:g}, {:g}) W/{}^2\n",
+          lightTypeName(light.type), light.direction.x, light.direction.y, light.direction.z, i.r,
+          i.g, i.b, scene.unit.symbol());
+  }
   out << fmt::format("dynamic    {}\n", scene.dynamicObjects.size());
   for (const DynamicObject& object : scene.dynamicObjects)
     out << fmt::format("  {} ({} triangles, {} keyframes)\n", object.name,

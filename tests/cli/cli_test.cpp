@@ -250,6 +250,21 @@ TEST(Cli, InfoPrintsCountsAndPower) {
   EXPECT_NE(office.out.find("tiles.png (128 x 128 texels)"), std::string::npos) << office.out;
 }
 
+// A directional light has no position: info gives its way and its irradiance in the scene's unit.
+TEST(Cli, InfoNamesTheSunsWayAndIrradiance) {
+  const fs::path dir = freshDir("info_sun");
+  const fs::path scene = writeFile(
+      dir / "sun.json",
+      R"({"unit": "mm", "geometry": [{"file": ")" + std::string(RADIOSITY_TEST_DATA_DIR) +
+          R"(/scene/small/small.obj"}], "lights": [{"type": "directional", "direction": [0, -1, 0],
+          "irradiance": [0.001, 0.001, 0.001]}]})");
+  const CliResult r = run({"info", scene.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("directional along (0, -1, 0), irradiance (0.001, 0.001, 0.001) W/mm^2"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST(Cli, InfoWarnsAboutDarkScene) {
   const fs::path dir = freshDir("info_dark");
   const fs::path obj = writeFile(dir / "dark.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
