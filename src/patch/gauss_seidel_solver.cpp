@@ -16,7 +16,9 @@ PatchSolution solveGaussSeidel(const FormFactorTable& table, const PatchSystem& 
   PatchSolution out;
   const double norm = sourceNorm(s);
   out.radiosity = sources(s);
-  out.irradiance.assign(s.size(), Color(0.0f));
+  // H = D exactly while B is all zero: the answer of a solve with no light put in (everything
+  // black, or every emitter off), which the sweeps below never start.
+  out.irradiance = directIrradiance(s);
   while (norm > 0.0 && out.iterations < control.maxIterations) {
     double change = 0.0;
     for (size_t i = 0; i < s.size(); ++i) {

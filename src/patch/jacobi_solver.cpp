@@ -30,7 +30,9 @@ PatchSolution solveJacobi(const FormFactorTable& table, const PatchSystem& s,
   PatchSolution out;
   const double norm = sourceNorm(s);
   out.radiosity = sources(s);
-  out.irradiance.assign(s.size(), Color(0.0f));
+  // H = D exactly while B is all zero: the answer of a solve with no light put in (everything
+  // black, or every emitter off), which the sweeps below never start.
+  out.irradiance = directIrradiance(s);
   std::vector<Color> next(s.size());
   const bool split = control.processes && control.processes->split();
   // Its own block of the patches (all of them in one process).
