@@ -7,6 +7,7 @@
 #include <radiosity/error.h>
 #include <radiosity/scene_loader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 
@@ -156,6 +157,49 @@ TEST_F(SceneFileSun, BadSunsAreErrorsNamingTheKey) {
     ADD_FAILURE() << "a sun in a scene of unknown unit loaded";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("unit"), std::string::npos) << e.what();
+  }
+}
+
+// Photometric keys at 179 lm/W (docs/references.md 4.4): 179 cd is 1 W/sr; a point light's
+// 4 pi 179 lm is 1 W/sr; a spot's lumens spread over its profile, whose solid angle (2 pi times the
+// integral of the smoothstep falloff over cos theta) is integrated here by a 100,000-step midpoint
+// rule; 1,790 lx is 10 W/m^2, 1e-5 W/mm^2.
+TEST_F(SceneFileSun, PhotometricKeysConvertAt179LumensPerWatt) {
+  const Scene s = loadScene(write(R"([
+      {"type": "point", "position": [0, 2, 0], "intensity_cd": 179},
+      {"type": "point", "position": [0, 2, 0], "flux_lm": 2249.38033},
+      {"type": "spot", "position": [0, 2, 0], "direction": [0, -1, 0], "inner_angle_deg": 20,
+       "outer_angle_deg": 30, "flux_lm": [179, 358, 537]},
+      {"type": "directional", "direction": [0, -1, 0], "illuminance_lux": 1790}])",
+                                  "mm"));
+  ASSERT_EQ(s.lights.size(), 4u);
+  EXPECT_NEAR(s.lights[0].intensity.g, 1.0f, 1e-6f);
+  EXPECT_NEAR(s.lights[1].intensity.g, 1.0f, 1e-6f);  // 4 pi x 179 = 2249.38033
+  const double cosOuter = std::cos(30.0 * M_PI / 180.0), cosInner = std::cos(20.0 * M_PI / 180.0);
+  double omega = 0.0;
+  const int steps = 100000;
+  for (int k = 0; k < steps; ++k) {
+    const double c = cosOuter + (1.0 - cosOuter) * (k + 0.5) / steps;
+    const double t = std::clamp((c - cosOuter) / (cosInner - cosOuter), 0.0, 1.0);
+    omega += t * t * (3.0 - 2.0 * t) * (1.0 - cosOuter) / steps;
+  }
+  omega *= 2.0 * M_PI;
+  EXPECT_NEAR(s.lights[2].intensity.r, 1.0 / omega, 1e-4 / omega);
+  EXPECT_NEAR(s.lights[2].intensity.b, 3.0 / omega, 3e-4 / omega);
+  EXPECT_NEAR(s.lights[3].intensity.g, 1e-5f, 1e-11f);
+
+  for (const auto& [lights, why] : std::vector<std::pair<std::string, std::string>>{
+           {R"([{"type": "point", "position": [0, 2, 0], "intensity": [1, 1, 1],
+               "intensity_cd": 179}])",
+            "give one"},
+           {R"([{"type": "point", "position": [0, 2, 0]}])", "intensity_cd"},
+           {R"([{"type": "point", "position": [0, 2, 0], "flux_lm": -5}])", "flux_lm"}}) {
+    try {
+      loadScene(write(lights));
+      ADD_FAILURE() << "loaded " << lights;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -377,22 +377,65 @@ std::string readGroupName(const JsonReader& r, const Json& j, const std::string&
   return group;
 }
 
-Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
+// How strong a light is, by exactly one of its radiometric key or photometric ones (179 lm/W, as
+// candela are read everywhere): a point or spot light's "intensity" (W/sr), "intensity_cd" or
+// "flux_lm" (its power over the sphere, or over the spot's profile), a directional light's
+// "irradiance" (W/unit^2) or "illuminance_lux" (which needs the scene's unit). A photometric
+// value is a number (white) or an RGB triple.
+Color readStrength(const JsonReader& r, const Json& j, const std::string& ptr, const Light& light,
+                   const LengthUnit& unit) {
+  const bool directional = !light.positional();
+  const std::vector<const char*> keys =
+      directional ? std::vector<const char*>{"irradiance", "illuminance_lux"}
+                  : std::vector<const char*>{"intensity", "intensity_cd", "flux_lm"};
+  const char* given = nullptr;
+  for (const char* key : keys)
+    if (j.contains(key)) {
+      if (given) r.fail(ptr, fmt::format("both \"{}\" and \"{}\": give one", given, key));
+      given = key;
+    }
+  if (!given)
+    r.fail(ptr, fmt::format("missing key \"{}\" for a {} light (or \"{}\")", keys[0],
+                            lightTypeName(light.type),
+                            fmt::join(keys.begin() + 1, keys.end(), "\" or \"")));
+  const std::string at = ptr + "/" + given;
+  const Json& v = j[given];
+  if (given == keys[0]) return r.color(v, at, given, 0.0, kMaxLight);
+  const Color photometric =
+      v.is_number() ? Color(float(r.number(v, at))) : r.color(v, at, given, 0.0, kMaxLight);
+  if (!(minComponent(photometric) >= 0.0f)) r.fail(at, "must be >= 0");
+  const float wattsPerLumen = float(kWattsPerSrPerCandela);
+  if (directional) {
+    if (!unit.known())
+      r.fail(at, "lux is per square metre: the scene needs its \"unit\" (or give \"irradiance\")");
+    return photometric * float(kWattsPerSquareMetrePerLux * unit.metres * unit.metres);
+  }
+  if (std::string_view(given) == "intensity_cd") return photometric * wattsPerLumen;
+  Light unitLight = light;  // flux: the power of the light at 1 W/sr, in steradians
+  unitLight.intensity = Color(1.0f);
+  return photometric * (wattsPerLumen / unitLight.power().g);
+}
+
+Light readLight(const JsonReader& r, const Json& j, const std::string& ptr,
+                const LengthUnit& unit) {
   r.requireObject(j, ptr);
   if (!j.contains("type"))
     r.fail(ptr, "missing key \"type\" (point, spot, ies, directional or sun)");
   const std::string type = r.string(j["type"], ptr + "/type");
   Light light;
   if (type == "directional") {
-    r.checkKeys(j, ptr, {"type", "direction", "irradiance", "spin_deg_per_s", "path", "group"});
+    r.checkKeys(
+        j, ptr,
+        {"type", "direction", "irradiance", "illuminance_lux", "spin_deg_per_s", "path", "group"});
     light.type = LightType::Directional;
   } else if (type == "point") {
-    r.checkKeys(j, ptr, {"type", "position", "intensity", "path", "group"});
+    r.checkKeys(j, ptr,
+                {"type", "position", "intensity", "intensity_cd", "flux_lm", "path", "group"});
     light.type = LightType::Point;
   } else if (type == "spot") {
     r.checkKeys(j, ptr,
-                {"type", "position", "direction", "intensity", "inner_angle_deg", "outer_angle_deg",
-                 "spin_deg_per_s", "path", "group"});
+                {"type", "position", "direction", "intensity", "intensity_cd", "flux_lm",
+                 "inner_angle_deg", "outer_angle_deg", "spin_deg_per_s", "path", "group"});
     light.type = LightType::Spot;
   } else if (type == "ies") {
     r.checkKeys(j, ptr,
@@ -409,20 +452,12 @@ Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
     return j[key];
   };
   if (light.positional()) light.position = r.point(required("position"), ptr + "/position");
-  if (!light.positional())
+  if (!light.positional() || j.contains("direction"))
     light.direction = readDirection(r, required("direction"), ptr + "/direction");
-  if (j.contains("direction"))
-    light.direction = readDirection(r, j["direction"], ptr + "/direction");
   if (j.contains("spin_deg_per_s"))
     light.spinDegPerS = r.vec3(j["spin_deg_per_s"], ptr + "/spin_deg_per_s");
   if (j.contains("path")) light.path = readPath(r, j["path"], ptr + "/path", light.type);
   if (j.contains("group")) light.group = readGroupName(r, j["group"], ptr + "/group");
-  if (light.type == LightType::Directional)
-    light.intensity =
-        r.color(required("irradiance"), ptr + "/irradiance", "irradiance", 0.0, kMaxLight);
-  else if (light.type != LightType::Ies)
-    light.intensity =
-        r.color(required("intensity"), ptr + "/intensity", "intensity", 0.0, kMaxLight);
   if (light.type == LightType::Spot) {
     light.innerAngleDeg = float(r.number(required("inner_angle_deg"), ptr + "/inner_angle_deg"));
     light.outerAngleDeg = float(r.number(required("outer_angle_deg"), ptr + "/outer_angle_deg"));
@@ -432,6 +467,7 @@ Light readLight(const JsonReader& r, const Json& j, const std::string& ptr) {
              fmt::format("spot angles inner {} / outer {} must satisfy 0 < inner <= outer < 180",
                          light.innerAngleDeg, light.outerAngleDeg));
   }
+  if (light.type != LightType::Ies) light.intensity = readStrength(r, j, ptr, light, unit);
   if (light.type == LightType::Ies) {
     light.iesFile =
         resolvePath(parentDirectory(r.path()), r.string(required("file"), ptr + "/file"));
@@ -611,7 +647,7 @@ Scene loadSceneJson(const std::string& path) {
       const Json& light = lights[i];
       const bool sun = light.is_object() && light.value("type", Json()) == "sun";
       scene.lights.push_back(sun ? readSun(r, light, at, scene.unit, builder)
-                                 : readLight(r, light, at));
+                                 : readLight(r, light, at, scene.unit));
     }
   }
   if (root.contains("camera")) scene.camera = readCamera(r, root["camera"]);
