@@ -67,10 +67,10 @@ Color groupPower(const Scene& scene, std::span<const Light> lights, const LightG
 
 void scaleEmitters(Scene& scene, std::span<const LightGroup> groups,
                    std::span<const Color> scales) {
-  for (size_t g = 0; g < groups.size(); ++g) {
-    for (uint32_t i : groups[g].lights) scene.lights[i].intensity *= scales[g];
-    for (uint32_t m : groups[g].materials) scene.materials[m].emission *= scales[g];
-  }
+  const LightState state{scene.lights, {scales.begin(), scales.end()}};
+  const std::vector<Color> emission = state.emissionScales(scene, groups);
+  scene.lights = state.effectiveLights(groups);
+  for (size_t m = 0; m < emission.size(); ++m) scene.materials[m].emission *= emission[m];
 }
 
 std::vector<Light> LightState::effectiveLights(std::span<const LightGroup> groups) const {

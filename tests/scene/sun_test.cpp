@@ -193,7 +193,9 @@ TEST_F(SceneFileSun, PhotometricKeysConvertAt179LumensPerWatt) {
                "intensity_cd": 179}])",
             "give one"},
            {R"([{"type": "point", "position": [0, 2, 0]}])", "intensity_cd"},
-           {R"([{"type": "point", "position": [0, 2, 0], "flux_lm": -5}])", "flux_lm"}}) {
+           {R"([{"type": "point", "position": [0, 2, 0], "flux_lm": -5}])", "flux_lm"},
+           // 1e30 cd is 5.6e27 W/sr, beyond the 1e18 a scene file's light may hold
+           {R"([{"type": "point", "position": [0, 2, 0], "intensity_cd": 1e30}])", "below"}}) {
     try {
       loadScene(write(lights));
       ADD_FAILURE() << "loaded " << lights;

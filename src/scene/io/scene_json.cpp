@@ -382,6 +382,25 @@ std::string readGroupName(const JsonReader& r, const Json& j, const std::string&
 // "flux_lm" (its power over the sphere, or over the spot's profile), a directional light's
 // "irradiance" (W/unit^2) or "illuminance_lux" (which needs the scene's unit). A photometric
 // value is a number (white) or an RGB triple.
+// W per square scene unit per lux: lux is lm per square metre, so the scene's unit must be known.
+double irradiancePerLux(const JsonReader& r, const std::string& at, const LengthUnit& unit) {
+  if (!unit.known())
+    r.fail(at,
+           "lux is per square metre: the scene needs its \"unit\" (or give \"irradiance\" in "
+           "W per square scene unit)");
+  return kWattsPerSquareMetrePerLux * unit.metres * unit.metres;
+}
+
+// A photometric value in the engine's radiometric units (`factor` of them each), within the
+// bound a scene file's light keeps (kMaxLight).
+Color radiometricOf(const JsonReader& r, const std::string& at, const Color& value, double factor) {
+  const Color converted = value * float(factor);
+  if (!(maxComponent(converted) < kMaxLight))
+    r.fail(at, fmt::format("{:g} in radiometric units must be below {:g}", maxComponent(converted),
+                           kMaxLight));
+  return converted;
+}
+
 Color readStrength(const JsonReader& r, const Json& j, const std::string& ptr, const Light& light,
                    const LengthUnit& unit) {
   const bool directional = !light.positional();
@@ -404,16 +423,12 @@ Color readStrength(const JsonReader& r, const Json& j, const std::string& ptr, c
   const Color photometric =
       v.is_number() ? Color(float(r.number(v, at))) : r.color(v, at, given, 0.0, kMaxLight);
   if (!(minComponent(photometric) >= 0.0f)) r.fail(at, "must be >= 0");
-  const float wattsPerLumen = float(kWattsPerSrPerCandela);
-  if (directional) {
-    if (!unit.known())
-      r.fail(at, "lux is per square metre: the scene needs its \"unit\" (or give \"irradiance\")");
-    return photometric * float(kWattsPerSquareMetrePerLux * unit.metres * unit.metres);
-  }
-  if (std::string_view(given) == "intensity_cd") return photometric * wattsPerLumen;
+  if (directional) return radiometricOf(r, at, photometric, irradiancePerLux(r, at, unit));
+  if (std::string_view(given) == "intensity_cd")
+    return radiometricOf(r, at, photometric, kWattsPerSrPerCandela);
   Light unitLight = light;  // flux: the power of the light at 1 W/sr, in steradians
   unitLight.intensity = Color(1.0f);
-  return photometric * (wattsPerLumen / unitLight.power().g);
+  return radiometricOf(r, at, photometric, kWattsPerSrPerCandela / unitLight.power().g);
 }
 
 Light readLight(const JsonReader& r, const Json& j, const std::string& ptr,
@@ -595,12 +610,9 @@ Light readSun(const JsonReader& r, const Json& j, const std::string& ptr, const 
     const double lux = j.contains("illuminance_lux")
                            ? r.number(j["illuminance_lux"], ptr + "/illuminance_lux")
                            : clearSkySunIlluminanceLux(sun.elevationDeg);
-    if (!(lux >= 0.0)) r.fail(ptr + "/illuminance_lux", "must be >= 0");
-    if (!unit.known())
-      r.fail(ptr,
-             "the sun's light is in lux (per square metre): the scene needs its \"unit\", "
-             "or give \"irradiance\" in W per square scene unit");
-    light.intensity = Color(float(lux * kWattsPerSquareMetrePerLux * unit.metres * unit.metres));
+    const std::string at = ptr + "/illuminance_lux";
+    if (!(lux >= 0.0)) r.fail(at, "must be >= 0");
+    light.intensity = radiometricOf(r, at, Color(float(lux)), irradiancePerLux(r, at, unit));
   }
   if (sun.elevationDeg <= 0.0) {
     builder.warn(r.path(), fmt::format("{}: the sun is {:.1f} degrees below the horizon then; it "
