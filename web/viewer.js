@@ -11,7 +11,8 @@ import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
 const statusLine = document.getElementById('status');
 // What the browser test waits on: frames drawn, relights answered, requests failed.
-window.viewerState = { frames: 0, relights: 0, errors: 0, lastRelightMs: 0, objectUpdates: 0, objectTime: 0 };
+window.viewerState = { frames: 0, relights: 0, errors: 0, lastRelightMs: 0, objectUpdates: 0, objectTime: 0,
+  sensor: null };
 
 function report(text, isError = false) {
   statusLine.textContent = text;
@@ -87,6 +88,26 @@ async function falseColours() {
   values.forEach((value, v) => { rampColor(value / top).toArray(out, 3 * v); });
   document.getElementById('legend-max').textContent = `${top.toPrecision(3)} ${lux ? 'lx' : 'W/m²'}`;
   return out.buffer;
+}
+
+// The lux meter: what a sensor on the clicked surface reads (facing the viewer), computed by the
+// server as `--sensors` computes it, with the moving objects where the slider puts them.
+const sensorMarker = new THREE.Mesh(new THREE.SphereGeometry(1, 12, 6),
+  new THREE.MeshBasicMaterial({ color: 0xff3366 }));
+async function readSensor(hit, viewDirection) {
+  const normal = hit.face.normal.clone().transformDirection(hit.object.matrixWorld);
+  if (normal.dot(viewDirection) > 0) normal.negate();
+  const triple = (v) => v.toArray().map((x) => Number(x.toPrecision(7))).join(',');
+  const time = document.getElementById('time').value;
+  const reading = await (await fetchOk(`api/sensor?position=${triple(hit.point)}&normal=${triple(normal)}` +
+    `&t=${summary.paths_end_s > 0 ? time : 0}`)).json();
+  const h = reading.irradiance;
+  document.getElementById('sensor-reading').textContent = reading.illuminance_lux === null
+    ? `${(0.2126 * h[0] + 0.7152 * h[1] + 0.0722 * h[2]).toPrecision(4)} W per square scene unit`
+    : `${reading.illuminance_lux.toPrecision(4)} lx at (${reading.position.map((x) => x.toPrecision(4)).join(', ')})`;
+  sensorMarker.position.copy(hit.point);
+  scene3d.add(sensorMarker);
+  window.viewerState.sensor = reading;
 }
 
 async function showColours() {
@@ -328,6 +349,7 @@ async function start() {
   orbit.update();
 
   const markerGeometry = new THREE.SphereGeometry(diagonal * 0.012, 16, 8);
+  sensorMarker.scale.setScalar(diagonal * 0.006);
   for (const light of summary.lights) {
     lights.push(light);
     const marker = new THREE.Mesh(markerGeometry, new THREE.MeshBasicMaterial({ color: 0xffdd55 }));
@@ -389,6 +411,11 @@ async function start() {
     const rect = canvas.getBoundingClientRect();
     pointer.set(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
     raycaster.setFromCamera(pointer, camera);
+    if (event.shiftKey) {
+      const surface = raycaster.intersectObjects(meshes)[0];
+      if (surface) readSensor(surface, raycaster.ray.direction).catch((e) => report(e.message, true));
+      return;
+    }
     const hit = raycaster.intersectObjects(markers.filter(Boolean))[0];
     if (hit && summary.relights) gizmo.attach(hit.object);
   });

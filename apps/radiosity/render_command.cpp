@@ -16,6 +16,7 @@
 #include "commands.h"
 #include "method_options.h"
 #include "picture_options.h"
+#include "sensor_options.h"
 
 namespace rad::cli {
 
@@ -26,6 +27,7 @@ struct RenderOptions {
   MethodOptions method;
   double time = 0.0;
   PictureOptions picture;
+  SensorOptions sensors;
   std::string scene, output, stats, solution;
   int objectPoints = 64;
 };
@@ -60,6 +62,16 @@ Image renderPicture(const RadiosityEngine& engine, const Camera& camera, const R
     stats.counts.rays += estimated.rays;
     stats.timingsSeconds.solve = solveTime.seconds();
   }
+  o.sensors.measure(
+      scene,
+      [&](std::span<const SensorPoint> points, const SensorSettings& sensors) {
+        EstimatedSensors estimated = method.estimateSensors(
+            scene, caster, points, sensors, engine.settings(), console.progress("sensors"));
+        console.finishProgress();
+        stats.counts.rays += estimated.rays;
+        return std::move(estimated.irradiance);
+      },
+      console, stats);
   return std::move(picture.image);
 }
 
@@ -73,6 +85,16 @@ Image renderSolution(const RadiosityEngine& engine, const Camera& camera,
   Image image = o.picture.render(engine, solution, camera, o.time, console.progress("render"));
   console.finishProgress();
   stats.timingsSeconds.render = renderTime.seconds();
+  o.sensors.measure(
+      engine.scene(),
+      [&](std::span<const SensorPoint> points, const SensorSettings& sensors) {
+        std::vector<Color> irradiance =
+            engine.sensorIrradiance(solution, o.time, points, sensors, o.picture.objectSettings(),
+                                    console.progress("sensors"));
+        console.finishProgress();
+        return irradiance;
+      },
+      console, stats);
   return image;
 }
 
@@ -93,7 +115,9 @@ int runRender(RenderOptions& o, Console& console) {
     throw InputError("-o " + o.output, "unsupported image format (supported: .png, .exr, .pfm)");
   checkOutputPath("-o", o.output);
   checkOutputPath("--stats", o.stats);
-  const std::pair<std::string, std::string> outputs[] = {{"-o", o.output}, {"--stats", o.stats}};
+  o.sensors.prepare(scene);
+  const std::pair<std::string, std::string> outputs[] = {
+      {"-o", o.output}, {"--stats", o.stats}, o.sensors.output()};
   checkDistinctOutputs(outputs);
 
   const Camera camera = o.picture.camera(scene);
@@ -135,6 +159,7 @@ void addRenderCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("-o,--output", o->output,
                   "Output image: .png (tone mapped), .exr or .pfm (linear radiance)");
   o->picture.addTo(*sub);
+  o->sensors.addTo(*sub);
   addStatsOption(*sub, o->stats);
   addTimeOption(*sub, o->time);
   sub->add_option("--solution", o->solution,

@@ -15,6 +15,7 @@
 #include "command_support.h"
 #include "commands.h"
 #include "method_options.h"
+#include "sensor_options.h"
 
 namespace rad::cli {
 
@@ -25,6 +26,7 @@ struct SolveOptions {
   explicit SolveOptions(CLI::App& command)
       : method(command, {&MethodCapabilities::surfaceSolution, "voxel", {"spp"}, true}) {}
   MethodOptions method;
+  SensorOptions sensors;
   double time = 0.0;
   float exposure = 0.0f;
   int lightmap = 0;  ///< texels a side of the .glb's lightmap atlas; 0: vertex colours
@@ -64,6 +66,15 @@ int finishSolve(const SolveOptions& o, const RadiosityEngine& engine,
   if (ext == ".ply") solution.exportPly(o.exportPath, o.exposure);
   if (ext == ".glb") exportGlbWithObjects(o, engine, solution, console);
   if (!o.save.empty()) solution.save(o.save, solvedWith(o.method.settings()));
+  o.sensors.measure(
+      scene,
+      [&](std::span<const SensorPoint> points, const SensorSettings& sensors) {
+        std::vector<Color> irradiance = engine.sensorIrradiance(solution, o.time, points, sensors,
+                                                                {}, console.progress("sensors"));
+        console.finishProgress();
+        return irradiance;
+      },
+      console, stats);
   if (!o.stats.empty()) {
     stats.settings = settingsOf(o.method.settings());
     writeStatsFile(o.stats, scene, o.scene, o.method.method(), total.seconds(), console, stats);
@@ -93,10 +104,12 @@ int runSolve(SolveOptions& o, Console& console) {
       {"--export", o.exportPath},
       {"--stats", o.stats},
       {"--save", o.save},
-      {"--lightmap", o.lightmap > 0 ? lightmapIrradiancePath(o.exportPath) : ""}};
+      {"--lightmap", o.lightmap > 0 ? lightmapIrradiancePath(o.exportPath) : ""},
+      o.sensors.output()};
   checkDistinctOutputs(outputs);
   RunStats stats;
   Scene scene = loadSceneForCommand(o.scene, o.time, console, stats);
+  o.sensors.prepare(scene);
   // Before the solve: an atlas too small for the scene's charts is refused before any work.
   if (o.lightmap > 0) requireLightmapExport(scene, o.lightmap);
   o.method.resolve(scene, "", console);
@@ -139,6 +152,7 @@ void addSolveCommand(CLI::App& app, Console& console, CommandAction& action) {
                   "SIZE texels (TEXCOORD_1; the radiance shown, x 2^exposure), and beside the "
                   ".glb the irradiance atlas as EXR (FILE.lightmap.exr) for engines")
       ->check(CLI::Range(16, 16384));
+  o->sensors.addTo(*sub);
   addStatsOption(*sub, o->stats);
   addTimeOption(*sub, o->time);
   sub->callback(

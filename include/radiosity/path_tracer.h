@@ -10,8 +10,10 @@
 #include <radiosity/progress.h>
 #include <radiosity/ray_caster.h>
 #include <radiosity/scene.h>
+#include <radiosity/sensors.h>
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -66,5 +68,15 @@ std::vector<ObjectRadiometry> estimateObjectRadiometry(const Scene& scene, const
                                                        const PathTracerSettings& settings,
                                                        PathTracerStats* stats = nullptr,
                                                        const ProgressCallback& progress = {});
+
+/// Irradiance (W per square scene unit) at each sensor point, the mean of
+/// `sensors.hemisphereRays` irradiance paths (next-event estimation, then bounces) through
+/// `caster` (built over `scene`): the reference for sensorIrradiance (sensors.h).
+std::vector<Color> estimateSensorIrradiance(const Scene& scene, const RayCaster& caster,
+                                            std::span<const SensorPoint> points,
+                                            const SensorSettings& sensors,
+                                            const PathTracerSettings& settings,
+                                            PathTracerStats* stats = nullptr,
+                                            const ProgressCallback& progress = {});
 
 }  // namespace rad

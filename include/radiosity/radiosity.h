@@ -23,6 +23,7 @@
 #include <radiosity/scene.h>
 #include <radiosity/scene_builder.h>
 #include <radiosity/scene_loader.h>
+#include <radiosity/sensors.h>
 #include <radiosity/solution_file.h>
 #include <radiosity/solver_settings.h>
 #include <radiosity/surface_radiance.h>

@@ -13,6 +13,7 @@
 #include <radiosity/ray_caster.h>
 #include <radiosity/relighting.h>
 #include <radiosity/scene.h>
+#include <radiosity/sensors.h>
 #include <radiosity/solver_settings.h>
 #include <radiosity/surface_radiance.h>
 #include <radiosity/surface_solution.h>
@@ -20,6 +21,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace rad {
 
@@ -68,6 +70,13 @@ class RadiosityEngine {
   Image render(const SurfaceSolution& solution, const Camera& camera, double seconds,
                const SurfaceRenderSettings& settings, const DynamicObjectSettings& objects = {},
                ProbeCache* probes = nullptr, const ProgressCallback& progress = {}) const;
+  /// The irradiance at each sensor point (sensors.h) of `solution` with the objects placed at
+  /// `seconds`: their shadows, and their light as the probes give it.
+  std::vector<Color> sensorIrradiance(const SurfaceSolution& solution, double seconds,
+                                      std::span<const SensorPoint> points,
+                                      const SensorSettings& settings,
+                                      const DynamicObjectSettings& objects = {},
+                                      const ProgressCallback& progress = {}) const;
   /// The solution's lit mesh with the objects placed at `seconds` (a node each) as binary glTF,
   /// written atomically: SurfaceSolution::exportGlb's file with the objects in it.
   void exportGlb(const SurfaceSolution& solution, double seconds, const std::string& path,

@@ -12,6 +12,7 @@
 #include <radiosity/ray_caster.h>
 #include <radiosity/relighting.h>
 #include <radiosity/scene.h>
+#include <radiosity/sensors.h>
 #include <radiosity/solver_settings.h>
 #include <radiosity/surface_solution.h>
 
@@ -61,6 +62,12 @@ struct EstimatedObjects {
   uint64_t rays = 0;
 };
 
+/// Irradiance at sensor points a picture method estimated, and the rays it took.
+struct EstimatedSensors {
+  std::vector<Color> irradiance;  ///< W per square scene unit, a point each
+  uint64_t rays = 0;
+};
+
 class RadiosityMethod {
  public:
   virtual ~RadiosityMethod() = default;
@@ -87,6 +94,13 @@ class RadiosityMethod {
   /// Without surfaceSolution: each object's means at `pointsPerObject` points.
   virtual EstimatedObjects estimateObjects(const Scene& scene, const RayCaster& caster,
                                            int pointsPerObject, const MethodSettings& settings,
+                                           const ProgressCallback& progress) const;
+  /// Without surfaceSolution: the irradiance at each sensor point (a surface solution's is the
+  /// engine's, RadiosityEngine::sensorIrradiance).
+  virtual EstimatedSensors estimateSensors(const Scene& scene, const RayCaster& caster,
+                                           std::span<const SensorPoint> points,
+                                           const SensorSettings& sensors,
+                                           const MethodSettings& settings,
                                            const ProgressCallback& progress) const;
 };
 

@@ -4,6 +4,7 @@
 
 #include <radiosity/object_radiometry.h>
 #include <radiosity/scene.h>
+#include <radiosity/sensors.h>
 #include <radiosity/types.h>
 
 #include <array>
@@ -50,6 +51,8 @@ struct RunStats {
     std::array<Color, 6> lobes{};
   };
   std::vector<DynamicObjectEntry> dynamicObjects;
+  /// The sensor sets measured (sensors.h), under "sensors" by name.
+  std::vector<SensorReading> sensors;
   uint64_t memoryPeakBytes = 0;
   /// Numbers particular to the method, written under the method's name ("voxel": {...}).
   nlohmann::json methodDetails;

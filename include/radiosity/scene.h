@@ -191,6 +191,20 @@ struct SolverSettings {
   std::map<std::string, SettingValue, std::less<>> values;
 };
 
+/// A point where light is measured, as a lighting designer's sensor (a lux meter) lies: its
+/// position and the unit normal of the plane it measures on (irradiance counts light from the
+/// hemisphere the normal points into).
+struct SensorPoint {
+  Vec3 position{0.0f};
+  Vec3 normal{0.0f, 1.0f, 0.0f};
+};
+
+/// A named set of sensors: one point, a calculation grid (a work plane's) or a file's rows.
+struct SensorSet {
+  std::string name;
+  std::vector<SensorPoint> points;
+};
+
 /// A scene's length unit: what one scene unit is in metres. Emission Ke is radiance per square
 /// scene unit (W/(sr unit^2)) and irradiance W per square scene unit; the unit converts them to
 /// SI. Unknown for an OBJ alone and a scene file that does not say ("unit").
@@ -228,6 +242,7 @@ struct Scene {
   /// file gives none). The first is `camera` unless the scene file sets one.
   std::vector<std::pair<std::string, Camera>> cameras;
   SolverSettings solver;
+  std::vector<SensorSet> sensors;     ///< where the scene file asks for the light (sensors.h)
   std::vector<std::string> warnings;  ///< non-fatal problems found while loading
 
   const Face& faceOf(uint32_t triangle) const { return faces[triangleFace[triangle]]; }

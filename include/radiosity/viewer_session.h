@@ -12,6 +12,7 @@
 #include <radiosity/light_groups.h>
 #include <radiosity/radiosity_engine.h>
 #include <radiosity/relighting.h>
+#include <radiosity/sensors.h>
 #include <radiosity/surface_solution.h>
 
 #include <cstdint>
@@ -60,6 +61,11 @@ class ViewerSession {
   /// colours the linear radiance leaving each. Throws InputError for a time that is negative,
   /// not finite or past kMaxViewerSeconds.
   nlohmann::json objectsAt(double seconds) const;
+  /// What a sensor at `point` reads of the solution now, the dynamic objects placed at
+  /// `seconds` (RadiosityEngine::sensorIrradiance): {"position", "normal", "irradiance" (W per
+  /// square scene unit), "illuminance_lux" (null when the scene's unit is unknown)}. Throws
+  /// InputError for a time as objectsAt does.
+  nlohmann::json sensorAt(const SensorPoint& point, double seconds) const;
   /// The latest time the objects' paths set anything (0: none moves).
   double pathsEnd() const;
 

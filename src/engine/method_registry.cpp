@@ -79,6 +79,15 @@ EstimatedObjects RadiosityMethod::estimateObjects(const Scene& /*scene*/,
   throw std::logic_error(name() + " solves the surfaces: its means are of its solution");
 }
 
+EstimatedSensors RadiosityMethod::estimateSensors(const Scene& /*scene*/,
+                                                  const RayCaster& /*caster*/,
+                                                  std::span<const SensorPoint> /*points*/,
+                                                  const SensorSettings& /*sensors*/,
+                                                  const MethodSettings& /*settings*/,
+                                                  const ProgressCallback& /*progress*/) const {
+  throw std::logic_error(name() + " solves the surfaces: its sensors read its solution");
+}
+
 std::unique_ptr<SurfaceSolution> MethodModel::load(const std::string& path,
                                                    std::span<const Light> /*lights*/) const {
   throw InputError(path,

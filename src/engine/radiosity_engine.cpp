@@ -101,6 +101,17 @@ Image RadiosityEngine::render(const SurfaceSolution& solution, const Camera& cam
                                progress);
 }
 
+std::vector<Color> RadiosityEngine::sensorIrradiance(const SurfaceSolution& solution,
+                                                     double seconds,
+                                                     std::span<const SensorPoint> points,
+                                                     const SensorSettings& settings,
+                                                     const DynamicObjectSettings& objects,
+                                                     const ProgressCallback& progress) const {
+  const PlacedObjects placed = objectsAt(solution, seconds, objects);
+  return rad::sensorIrradiance(placed.scene(), placed.caster(), placed.radiance(), points, settings,
+                               progress);
+}
+
 void RadiosityEngine::exportGlb(const SurfaceSolution& solution, double seconds,
                                 const std::string& path, float exposureEV) const {
   if (impl_->scene.dynamicObjects.empty()) return solution.exportGlb(path, exposureEV);

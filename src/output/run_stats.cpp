@@ -12,6 +12,26 @@ nlohmann::json rgb(const Color& c) {
   return nlohmann::json::array({c.r, c.g, c.b});
 }
 
+// A sensor set: its points' irradiance and lux (null where the scene's unit is unknown) and the
+// figures a lighting designer checks.
+nlohmann::json sensorJson(const SensorReading& r) {
+  const bool lux = !r.lux.empty();
+  nlohmann::json points = nlohmann::json::array();
+  for (size_t i = 0; i < r.points.size(); ++i) {
+    const SensorPoint& p = r.points[i];
+    points.push_back({{"position", rgb(p.position)},
+                      {"normal", rgb(p.normal)},
+                      {"irradiance", rgb(r.irradiance[i])},
+                      {"illuminance_lux", lux ? nlohmann::json(r.lux[i]) : nlohmann::json()}});
+  }
+  const auto luxOrNull = [&](double v) { return lux ? nlohmann::json(v) : nlohmann::json(); };
+  return {{"points", points},
+          {"mean_lux", luxOrNull(r.meanLux)},
+          {"min_lux", luxOrNull(r.minLux)},
+          {"max_lux", luxOrNull(r.maxLux)},
+          {"uniformity", luxOrNull(r.uniformity)}};
+}
+
 }  // namespace
 
 Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& objects,
@@ -80,6 +100,10 @@ nlohmann::json toJson(const RunStats& s) {
     nlohmann::json& groups = j["light_groups"] = nlohmann::json::array();
     for (const RunStats::LightGroupEntry& g : s.lightGroups)
       groups.push_back({{"name", g.name}, {"scale", rgb(g.scale)}, {"power", rgb(g.power)}});
+  }
+  if (!s.sensors.empty()) {
+    nlohmann::json& sensors = j["sensors"] = nlohmann::json::object();
+    for (const SensorReading& r : s.sensors) sensors[r.name] = sensorJson(r);
   }
   if (!s.methodDetails.empty()) j[s.method] = s.methodDetails;
   if (!s.distributed.empty()) j["distributed"] = s.distributed;

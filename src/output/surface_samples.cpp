@@ -6,17 +6,11 @@
 #include <cstring>
 #include <glm/gtc/constants.hpp>
 
+#include "output/csv_field.h"
+
 namespace rad {
 
 namespace {
-
-// CSV fields are quoted when they hold a separator or a quote (RFC 4180).
-std::string csvField(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string quoted = "\"";
-  for (char c : s) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
 
 template <typename T>
 void append(std::string& out, const T& value) {

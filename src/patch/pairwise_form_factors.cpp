@@ -15,9 +15,9 @@
 
 #include "core/progress_ticker.h"
 #include "core/rng.h"
+#include "geometry/point_polygon_form_factor.h"
 #include "geometry/sampling.h"
 #include "patch/form_factor_estimators.h"
-#include "patch/point_polygon_form_factor.h"
 #include "patch/row_exchange.h"
 
 namespace rad {

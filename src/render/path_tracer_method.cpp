@@ -64,6 +64,18 @@ class PathTracerMethod final : public RadiosityMethod {
     estimated.rays = stats.rays;
     return estimated;
   }
+
+  EstimatedSensors estimateSensors(const Scene& scene, const RayCaster& caster,
+                                   std::span<const SensorPoint> points,
+                                   const SensorSettings& sensors, const MethodSettings& settings,
+                                   const ProgressCallback& progress) const override {
+    PathTracerStats stats;
+    EstimatedSensors estimated;
+    estimated.irradiance = estimateSensorIrradiance(
+        scene, caster, points, sensors, pathTracerSettingsOf(settings), &stats, progress);
+    estimated.rays = stats.rays;
+    return estimated;
+  }
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <httplib.h>
 #include <radiosity/error.h>
+#include <radiosity/scene_builder.h>
 #include <radiosity/viewer_server.h>
 #include <radiosity/viewer_session.h>
 #include <sys/socket.h>
@@ -9,6 +10,8 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
+#include <cmath>
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <stdexcept>
@@ -65,6 +68,50 @@ httplib::Server::Handler methodNotAllowed(const std::string& allowed) {
 bool isOrigin(const std::string& origin) {
   static const std::regex form(R"(https?://([A-Za-z0-9.-]+|\[[0-9A-Fa-f:.]+\])(:[0-9]{1,5})?)");
   return std::regex_match(origin, form);
+}
+
+// A query parameter's number, or InputError naming it ("request ?t").
+double numberParam(const std::string& name, const std::string& text) {
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+    throw InputError("request ?" + name, fmt::format("'{}' is not a finite number", text));
+  return value;
+}
+
+// ?t=SECONDS, 0 when absent.
+double secondsParam(const httplib::Request& request) {
+  return request.has_param("t") ? numberParam("t", request.get_param_value("t")) : 0.0;
+}
+
+// ?NAME=x,y,z: three finite numbers within the scene's coordinate range.
+Vec3 tripleParam(const httplib::Request& request, const std::string& name) {
+  if (!request.has_param(name))
+    throw InputError("request ?" + name, "expected three numbers x,y,z");
+  const std::string text = request.get_param_value(name);
+  Vec3 v(0.0f);
+  size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const size_t comma = i < 2 ? text.find(',', start) : text.size();
+    if (comma == std::string::npos)
+      throw InputError("request ?" + name, fmt::format("'{}': expected x,y,z", text));
+    const double value = numberParam(name, text.substr(start, comma - start));
+    if (std::abs(value) > kMaxSceneCoordinate)
+      throw InputError("request ?" + name,
+                       fmt::format("{:g} is beyond {:g} scene units", value, kMaxSceneCoordinate));
+    v[i] = float(value);
+    start = comma + 1;
+  }
+  return v;
+}
+
+// /api/sensor's point: ?position=x,y,z&normal=x,y,z, the normal made unit.
+SensorPoint sensorParam(const httplib::Request& request) {
+  const SensorPoint point{tripleParam(request, "position"), tripleParam(request, "normal")};
+  const float length = glm::length(point.normal);
+  if (!(length > 0.0f) || !std::isfinite(length))
+    throw InputError("request ?normal", "expected a non-zero vector");
+  return {point.position, point.normal / length};
 }
 
 void binary(httplib::Response& response, const std::string& bytes) {
@@ -156,14 +203,19 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
   });
   http.Get("/api/dynamic", [this](const httplib::Request& request, httplib::Response& response) {
     // ?t=SECONDS (0 when absent): the dynamic objects there, lit by probes.
-    const std::string text = request.has_param("t") ? request.get_param_value("t") : "0";
-    double seconds = 0.0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), seconds);
-    if (ec != std::errc() || end != text.data() + text.size())
-      return badRequest(response, fmt::format("t '{}' is not a number of seconds", text));
     withSession(response, [&](ViewerSession& session) {
       try {
-        response.set_content(session.objectsAt(seconds).dump(), "application/json");
+        response.set_content(session.objectsAt(secondsParam(request)).dump(), "application/json");
+      } catch (const InputError& e) {
+        badRequest(response, e.what());
+      }
+    });
+  });
+  http.Get("/api/sensor", [this](const httplib::Request& request, httplib::Response& response) {
+    withSession(response, [&](ViewerSession& session) {
+      try {
+        response.set_content(session.sensorAt(sensorParam(request), secondsParam(request)).dump(),
+                             "application/json");
       } catch (const InputError& e) {
         badRequest(response, e.what());
       }
@@ -182,7 +234,7 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
   });
   // A known path asked with another method: 405 naming the one it takes.
   for (const char* path : {"/api/progress", "/api/scene", "/api/mesh.glb", "/api/colors",
-                           "/api/irradiance", "/api/objects.csv", "/api/dynamic"}) {
+                           "/api/irradiance", "/api/objects.csv", "/api/dynamic", "/api/sensor"}) {
     http.Post(path, methodNotAllowed("GET"));
     http.Put(path, methodNotAllowed("GET"));
     http.Delete(path, methodNotAllowed("GET"));

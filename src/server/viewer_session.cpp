@@ -5,6 +5,7 @@
 #include <radiosity/gltf_export.h>
 #include <radiosity/ies_profile.h>
 #include <radiosity/radiosity_method.h>
+#include <radiosity/sensors.h>
 #include <radiosity/surface_samples.h>
 #include <radiosity/viewer_session.h>
 #include <tbb/parallel_for.h>
@@ -29,6 +30,13 @@ std::string bytesOf(const std::vector<float>& values) {
 
 Json array(const Vec3& v) {
   return Json::array({v.x, v.y, v.z});
+}
+
+// A time the page may ask for (the ?t of /api/dynamic and /api/sensor).
+void requireViewerTime(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0.0 || seconds > kMaxViewerSeconds)
+    throw InputError("request ?t",
+                     fmt::format("expected a time in [0, {:g}] s", kMaxViewerSeconds));
 }
 
 }  // namespace
@@ -140,10 +148,23 @@ double ViewerSession::pathsEnd() const {
   return std::min(end, kMaxViewerSeconds);
 }
 
+Json ViewerSession::sensorAt(const SensorPoint& point, double seconds) const {
+  requireViewerTime(seconds);
+  const SensorPoint points[] = {point};
+  std::vector<Color> irradiance;
+  {
+    std::lock_guard relight(relightMutex_);
+    irradiance = engine_->sensorIrradiance(solution(), seconds, points, SensorSettings{});
+  }
+  const std::optional<double> lux = illuminanceLux(irradiance[0], scene_.unit);
+  return {{"position", array(point.position)},
+          {"normal", array(point.normal)},
+          {"irradiance", array(irradiance[0])},
+          {"illuminance_lux", lux ? Json(*lux) : Json()}};
+}
+
 Json ViewerSession::objectsAt(double seconds) const {
-  if (!std::isfinite(seconds) || seconds < 0.0 || seconds > kMaxViewerSeconds)
-    throw InputError("request /t",
-                     fmt::format("expected a time in [0, {:g}] s", kMaxViewerSeconds));
+  requireViewerTime(seconds);
   Json objects = Json::array();
   if (scene_.dynamicObjects.empty()) return {{"t", seconds}, {"objects", objects}};
   LitMesh mesh;

@@ -2,7 +2,8 @@
 // loads and draws the lit scene, a spot moved through the page's own controls relights it, and
 // the picture changes where the beam moved and hardly elsewhere; the page logs no errors.
 // Usage: node viewer_test.mjs BINARY WEB_DIR OUT_DIR   (screenshots go to OUT_DIR)
-import { mkdirSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 
 import { launchChromium, openTab, pictureBlocks, viewerOutcome } from './headless_chromium.mjs';
@@ -25,6 +26,29 @@ try {
   const { tab: page, errors } = await openTab(browser, 900, 600);
   await page.goto(url);
   await page.waitForFunction(() => window.viewerState && window.viewerState.frames > 3, { timeout: 60000 });
+
+  // The lux meter: a shift-click on the floor reads what `solve --sensors` reads at that point
+  // (the same method and settings; the server's relighter against the solve's Gauss-Seidel).
+  const box = await page.evaluate(() => {
+    const r = document.getElementById('view').getBoundingClientRect();
+    return { x: r.left + 0.5 * r.width, y: r.top + 0.85 * r.height };
+  });
+  await page.keyboard.down('Shift');
+  await page.mouse.click(box.x, box.y);
+  await page.keyboard.up('Shift');
+  await page.waitForFunction(() => window.viewerState.sensor !== null, { timeout: 60000 });
+  const sensor = await page.evaluate(() => window.viewerState.sensor);
+  const shown = await page.evaluate(() => document.getElementById('sensor-reading').textContent);
+  console.log(`lux meter: ${shown}`);
+  if (!shown.includes(' lx')) fail(`lux meter shows '${shown}'`);
+  const csv = path.join(outDir, 'sensor.csv'), readings = path.join(outDir, 'sensor_read.csv');
+  writeFileSync(csv, `${[...sensor.position, ...sensor.normal].join(',')},clicked\n`);
+  execFileSync(binary, ['solve', 'cornell-spot', '--method', 'patch', '--patches', '600', '--cache-dir',
+    'none', '--sensors', csv, '--sensor-output', readings, '--quiet']);
+  const solved = Number(readFileSync(readings, 'utf8').trim().split('\n')[1].split(',')[11]);
+  console.log(`the page reads ${sensor.illuminance_lux.toPrecision(5)} lx, solve --sensors ${solved.toPrecision(5)} lx`);
+  if (!(Math.abs(sensor.illuminance_lux / solved - 1) < 0.01))
+    fail(`the page's ${sensor.illuminance_lux} lx against solve --sensors' ${solved} lx`);
 
   const blocks = () => pictureBlocks(page);
   const before = await blocks();

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <functional>
 
+#include "geometry/point_polygon_form_factor.h"
 #include "patch/form_factor_estimators.h"
-#include "patch/point_polygon_form_factor.h"
 #include "patch_test_scenes.h"
 
 namespace rad {

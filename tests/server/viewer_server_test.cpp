@@ -527,6 +527,45 @@ TEST_F(ViewerServerTest, ServesTheDynamicObjectsWhereTheirPathsPutThem) {
   }
 }
 
+// The page's lux at a clicked point is what `solve --sensors` reads there: the engine's sensors of
+// the same solution (the relighter's, as ALightMoveAnswersTheRelightersColours shows) with the
+// objects placed at the time asked (the box reaches the point at t = 1).
+TEST_F(ViewerServerTest, ASensorReadsWhatTheEnginesSensorsRead) {
+  MethodSettings settings;
+  settings.method = "patch";
+  settings.section<PatchRadiositySettings>() = smallSettings();
+  const RadiosityEngine engine(scene_, settings);
+  const Relighter relighter(model_, scene_.lights);
+  const SensorPoint points[] = {{Vec3(275.0f, 0.5f, 250.0f), Vec3(0, 1, 0)}};
+  std::vector<double> read;
+  for (const char* t : {"0", "1"}) {
+    const auto answer =
+        client_->Get(std::string("/api/sensor?position=275,0.5,250&normal=0,2,0&t=") + t);
+    ASSERT_TRUE(answer);
+    ASSERT_EQ(answer->status, 200) << answer->body;
+    const nlohmann::json j = nlohmann::json::parse(answer->body);
+    EXPECT_EQ(j["normal"], nlohmann::json::array({0.0, 1.0, 0.0}));
+    const Color expected =
+        engine.sensorIrradiance(relighter.solution(), std::stod(t), points, {})[0];
+    ASSERT_GT(expected.g, 0.0f);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(j["irradiance"][size_t(c)].get<double>(), expected[c], 0.01 * expected[c]) << t;
+    const double lux = *illuminanceLux(expected, scene_.unit);
+    EXPECT_NEAR(j["illuminance_lux"].get<double>(), lux, 0.01 * lux) << t;
+    read.push_back(lux);
+  }
+  EXPECT_LT(read[1], 0.5 * read[0]);  // the box shades it
+  for (const std::string bad :
+       {"position=1,2,3", "position=1,2&normal=0,1,0", "position=1,2,3&normal=0,0,0",
+        "position=1,x,3&normal=0,1,0", "position=1,2,3e30&normal=0,1,0",
+        "position=1,2,3&normal=0,1,0&t=-1"}) {
+    const auto r = client_->Get("/api/sensor?" + bad);
+    ASSERT_TRUE(r) << bad;
+    EXPECT_EQ(r->status, 400) << bad;
+    EXPECT_NE(r->body.find("request ?"), std::string::npos) << r->body;
+  }
+}
+
 TEST_F(ViewerServerTest, ServesThePageButNothingOutsideItsFolder) {
   const auto page = client_->Get("/index.html");
   ASSERT_TRUE(page);

@@ -2,7 +2,7 @@
 // Realistic Image Synthesis" (1993), eq. 3.53; as stated and checked in docs/references.md 1(f),
 // including its pitfalls (atan2 for the edge angles, skip zero-length edges, clip to the tangent
 // plane first).
-#include "patch/point_polygon_form_factor.h"
+#include "geometry/point_polygon_form_factor.h"
 
 #include <algorithm>
 #include <cmath>
