@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 #include <radiosity/error.h>
 #include <radiosity/process_memory.h>
+#include <radiosity/sensors.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -113,8 +114,39 @@ Camera PictureOptions::camera(const Scene& scene) const {
   return camera;
 }
 
+void PictureOptions::addFalseColourTo(CLI::App& c) {
+  c.add_option("--false-colour", falseColour,
+               "A lighting designer's picture: the irradiance at each pixel in false colour, with "
+               "isolines and a legend, in lux (needs the scene's unit) or irradiance (W per square "
+               "scene unit)")
+      ->check(CLI::IsMember({"lux", "irradiance"}));
+  c.add_option("--false-colour-max", falseColourMax,
+               "The top of the false colours, in their unit (default: the picture's 98th "
+               "percentile, rounded up to a step of the legend)")
+      ->check(finiteNumberIn(0.0, 1e30));
+}
+
+FalseColourScale PictureOptions::falseColourScale(const Scene& scene) const {
+  FalseColourScale scale;
+  scale.max = falseColourMax;
+  if (direct != "per-pixel")
+    throw InputError("--false-colour", "the irradiance at each pixel needs --direct per-pixel");
+  if (falseColour == "irradiance") {
+    scale.unit = "W/" + scene.unit.symbol() + "^2";
+    return scale;
+  }
+  const std::optional<double> luxPerIrradiance = illuminanceLux(Color(1.0f), scene.unit);
+  if (!luxPerIrradiance)
+    throw InputError("--false-colour lux",
+                     "the scene's length unit is not known (its \"unit\"): lux are per square "
+                     "metre; use --false-colour irradiance");
+  scale.perIrradiance = *luxPerIrradiance;
+  return scale;
+}
+
 SurfaceRenderSettings PictureOptions::surfaceSettings(const MethodSettings& run) const {
   SurfaceRenderSettings settings;
+  settings.irradiance = run.irradiancePictures;
   settings.samplesPerPixel = run.samplesPerPixel;
   settings.seed = run.seed;
   settings.direct = direct == "solution" ? DirectLightMode::Solution : DirectLightMode::PerPixel;
@@ -124,7 +156,7 @@ SurfaceRenderSettings PictureOptions::surfaceSettings(const MethodSettings& run)
 
 ImageWriteOptions PictureOptions::writeOptions() const {
   ImageWriteOptions options;
-  options.exposureEV = exposure;
+  options.exposureEV = falseColour.empty() ? exposure : 0.0f;  // false colours are the ramp's
   options.exrPixelType = exrFloat ? ExrPixelType::Float : ExrPixelType::Half;
   return options;
 }

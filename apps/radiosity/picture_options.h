@@ -2,6 +2,7 @@
 // The options of the commands that make pictures (render, animate): the picture's size, how a
 // radiosity solution's direct light is drawn, and how the file is written.
 
+#include <radiosity/false_colour.h>
 #include <radiosity/image.h>
 #include <radiosity/radiosity_engine.h>
 #include <radiosity/scene.h>
@@ -30,9 +31,17 @@ struct PictureOptions {
   std::vector<float> eye, target, up;  ///< --eye, --target, --up: 3 numbers each, or none
   float fovDeg = 0.0f;                 ///< --fov: the vertical field of view; 0: the camera's
 
+  std::string falseColour;      ///< --false-colour: "lux", "irradiance" or "" (radiance)
+  double falseColourMax = 0.0;  ///< --false-colour-max: the ramp's top; 0: from the picture
+
   /// Adds --width, --height, --exposure, --exr-float, --direct, --emitter-samples, --camera,
   /// --eye, --target, --up and --fov.
   void addTo(CLI::App& command);
+  /// Adds --false-colour and --false-colour-max (render).
+  void addFalseColourTo(CLI::App& command);
+  /// The false colours asked for, checked before any work: lux need the scene's unit, and the
+  /// irradiance at each pixel per-pixel direct light. Throws InputError naming the option.
+  FalseColourScale falseColourScale(const Scene& scene) const;
   /// The scene's camera (or the one --camera names) with what the flags set, at the size asked.
   /// Throws InputError for a camera the scene does not have or a view that is no view.
   Camera camera(const Scene& scene) const;

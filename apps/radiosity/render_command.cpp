@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "command_support.h"
 #include "commands.h"
@@ -98,10 +99,12 @@ Image renderSolution(const RadiosityEngine& engine, const Camera& camera,
   return image;
 }
 
-// A picture with per-pixel direct light needs the direct light kept apart from the bounces.
+// A picture with per-pixel direct light needs the direct light kept apart from the bounces; a
+// false-colour one shows the irradiance at each pixel.
 MethodSettings solveSettingsFor(const RenderOptions& o) {
   MethodSettings settings = o.method.settings();
   settings.keepDirectLight = o.picture.direct == "per-pixel";
+  settings.irradiancePictures = !o.picture.falseColour.empty();
   return settings;
 }
 
@@ -121,6 +124,9 @@ int runRender(RenderOptions& o, Console& console) {
   checkDistinctOutputs(outputs);
 
   const Camera camera = o.picture.camera(scene);
+  const std::optional<FalseColourScale> falseColour =
+      o.picture.falseColour.empty() ? std::nullopt
+                                    : std::optional(o.picture.falseColourScale(scene));
   InterruptGuard interruptible;
   // A method that makes its own pictures takes the scene as it is at --time, the objects placed
   // and the groups' emitters scaled: the reference, the objects' light included.
@@ -132,12 +138,13 @@ int runRender(RenderOptions& o, Console& console) {
     scaleEmitters(scene, lightGroupsOf(scene, scene.lights),
                   groupScalesFor(lightGroupsOf(scene, scene.lights), groups));
   const RadiosityEngine engine(scene, solveSettingsFor(o));
-  const Image image =
+  Image image =
       ownPictures
           ? renderPicture(engine, camera, o, console, stats)
           : renderSolution(engine, camera,
                            *solveSurfaces(engine, {groups, o.solution, o.time}, console, report), o,
                            console, stats);
+  if (falseColour) image = falseColourPicture(image, *falseColour);
   InterruptGuard::throwIfInterrupted();
   writeImage(o.output, image, o.picture.writeOptions());
   if (!o.stats.empty()) {
@@ -159,6 +166,7 @@ void addRenderCommand(CLI::App& app, Console& console, CommandAction& action) {
   sub->add_option("-o,--output", o->output,
                   "Output image: .png (tone mapped), .exr or .pfm (linear radiance)");
   o->picture.addTo(*sub);
+  o->picture.addFalseColourTo(*sub);
   o->sensors.addTo(*sub);
   addStatsOption(*sub, o->stats);
   addTimeOption(*sub, o->time);

@@ -30,6 +30,10 @@ struct PathTracerSettings {
   /// A render split among processes: each renders every count-th tile from its rank, and the
   /// tiles are added up (each pixel from one process: the same picture, bit for bit).
   ProcessShare processes;
+  /// Each pixel the irradiance arriving where its camera ray meets a surface, on the side it
+  /// sees (W per square scene unit; an irradiance path a sample), not the radiance leaving it:
+  /// a false-colour picture's (false_colour.h).
+  bool irradiance = false;
 };
 
 struct PathTracerStats {

@@ -83,6 +83,8 @@ class MethodSettings {
   /// direct light, saved solutions).
   ProcessShare processes;
   bool keepDirectLight = false;
+  /// Set by the run: pictures show the irradiance at each hit (false colour), not the radiance.
+  bool irradiancePictures = false;
 
   MethodSettings() = default;
   MethodSettings(const MethodSettings& other);

@@ -56,6 +56,10 @@ struct SurfaceRenderSettings {
   /// Per-pixel direct light: area samples of the emitting surfaces at each camera ray's hit
   /// (point, spot and IES lights take one shadow ray each).
   int emitterSamples = 8;
+  /// Each pixel the irradiance arriving at its hit, on the side seen (W per square scene unit),
+  /// not the radiance leaving it: a false-colour picture's (false_colour.h). Needs per-pixel
+  /// direct light.
+  bool irradiance = false;
 };
 
 /// Renders what `camera` sees of `scene`, each visible point shaded by `radiance`: with

@@ -96,4 +96,12 @@ Color PathIntegrator::irradiance(const Vec3& p, const Vec3& n, Rng& rng) const {
   return h;
 }
 
+Color PathIntegrator::irradianceSeen(const Ray& ray, Rng& rng) const {
+  const Hit hit = caster_->intersect(ray);
+  if (!hit.valid()) return Color(0.0f);
+  if (!hit.frontFace && !scene_->materialOf(hit.triangle).twoSided) return Color(0.0f);
+  const Vec3 n = hit.frontFace ? hit.geometricNormal : -hit.geometricNormal;
+  return irradiance(ray.origin + hit.distance * ray.direction, n, rng);
+}
+
 }  // namespace rad

@@ -23,6 +23,9 @@ class PathIntegrator {
   /// Irradiance H at point p on a surface with front normal n: the cosine-weighted integral of
   /// incident radiance (direct light by next-event estimation, the rest by one bounce).
   Color irradiance(const Vec3& p, const Vec3& n, Rng& rng) const;
+  /// Irradiance at the surface the ray meets, on the side it sees (0 on the back of a one-sided
+  /// face, or where it meets nothing): what a false-colour picture shows.
+  Color irradianceSeen(const Ray& ray, Rng& rng) const;
 
  private:
   /// Estimate of the integral of direct incident radiance times cos over the hemisphere of n;

@@ -47,7 +47,9 @@ bool renderTile(const PathIntegrator& integrator, const PinholeCamera& camera,
         if (s % kSamplesBetweenPolls == kSamplesBetweenPolls - 1 && ticker.pollCancelled())
           return false;
         const Vec2 offset = uniformSquare(rng);
-        sum += integrator.radiance(camera.ray(x, y, offset), rng);
+        const Ray ray = camera.ray(x, y, offset);
+        sum += settings.irradiance ? integrator.irradianceSeen(ray, rng)
+                                   : integrator.radiance(ray, rng);
       }
       image.at(x, y) = sum * weight;
       ticker.tick();

@@ -19,6 +19,7 @@ PathTracerSettings pathTracerSettingsOf(const MethodSettings& m) {
   s.seed = m.seed;
   s.checkpointDir = m.cacheDir;
   s.processes = m.processes;
+  s.irradiance = m.irradiancePictures;
   return s;
 }
 

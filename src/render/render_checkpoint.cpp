@@ -28,6 +28,8 @@ std::filesystem::path renderCheckpointFile(const Scene& scene, const Camera& cam
   for (const int v : {camera.width, camera.height, settings.samplesPerPixel, settings.maxDepth})
     h.value(v);
   h.value(settings.seed);
+  // (only when set, so that the radiance pictures' checkpoints keep their names)
+  if (settings.irradiance) h.text("irradiance");
   return std::filesystem::path(settings.checkpointDir) /
          ("pathtrace-" + h.key().hex() + ".checkpoint");
 }

@@ -22,11 +22,12 @@ namespace {
 class PerPixelDirectShading {
  public:
   PerPixelDirectShading(const Scene& scene, const RayCaster& caster,
-                        const SurfaceRadiance& radiance, int emitterSamples)
+                        const SurfaceRadiance& radiance, int emitterSamples, bool irradiance)
       : scene_(scene),
         direct_(scene, caster, radiance.directLights(), radiance.emissionScales()),
         radiance_(radiance),
-        emitterSamples_(emitterSamples) {}
+        emitterSamples_(emitterSamples),
+        irradiance_(irradiance) {}
 
   Color operator()(const SurfaceHit& hit, Rng& rng) const {
     const Material& m = scene_.materialOf(hit.triangle);
@@ -39,6 +40,7 @@ class PerPixelDirectShading {
         emitted += direct_.sampleEmitters(hit.point, n, rng);
       h += emitted / float(emitterSamples_);
     }
+    if (irradiance_) return h;
     // (the scales cover the solution's own materials; a scene with objects placed has more)
     const Color ke =
         scaledEmission(scene_, scene_.faceOf(hit.triangle).material, radiance_.emissionScales()) *
@@ -51,6 +53,7 @@ class PerPixelDirectShading {
   DirectLighting direct_;
   const SurfaceRadiance& radiance_;
   int emitterSamples_;
+  bool irradiance_;
 };
 
 }  // namespace
@@ -70,7 +73,12 @@ Image renderSurfaceRadiance(const Scene& scene, const RayCaster& caster, const C
   const PinholeCamera pinhole(camera);
   const bool perPixel =
       settings.direct == DirectLightMode::PerPixel && radiance.hasIndirectIrradiance();
-  const PerPixelDirectShading shade(scene, caster, radiance, settings.emitterSamples);
+  if (settings.irradiance && !perPixel)
+    throw InputError("render",
+                     "a picture of the irradiance needs per-pixel direct light (a "
+                     "solution that keeps its direct light apart)");
+  const PerPixelDirectShading shade(scene, caster, radiance, settings.emitterSamples,
+                                    settings.irradiance);
   Image image(camera.width, camera.height);
   ProgressTicker ticker(progress, size_t(camera.height));
   tbb::parallel_for(tbb::blocked_range<int>(0, camera.height), [&](const auto& rows) {

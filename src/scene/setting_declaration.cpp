@@ -73,7 +73,8 @@ MethodSettings::MethodSettings(const MethodSettings& other)
       cacheDir(other.cacheDir),
       cacheMaxMegabytes(other.cacheMaxMegabytes),
       processes(other.processes),
-      keepDirectLight(other.keepDirectLight) {
+      keepDirectLight(other.keepDirectLight),
+      irradiancePictures(other.irradiancePictures) {
   for (const auto& [type, section] : other.sections_) sections_[type] = section->clone();
 }
 
