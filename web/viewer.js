@@ -12,7 +12,7 @@ import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 const statusLine = document.getElementById('status');
 // What the browser test waits on: frames drawn, relights answered, requests failed.
 window.viewerState = { frames: 0, relights: 0, errors: 0, lastRelightMs: 0, objectUpdates: 0, objectTime: 0,
-  sensor: null };
+  sensor: null, sensorSets: null };
 
 function report(text, isError = false) {
   statusLine.textContent = text;
@@ -110,6 +110,37 @@ async function readSensor(hit, viewDirection) {
   window.viewerState.sensor = reading;
 }
 
+// The scene's sensor sets (its calculation grids), read anew after every relight: a dot a point
+// in the false colours' ramp up to the brightest point, and a line a set in the Lux meter panel.
+const sensorDots = new THREE.Group();
+async function showSensorSets() {
+  if (!summary.sensor_sets.length) return;
+  const time = summary.paths_end_s > 0 ? document.getElementById('time').value : 0;
+  const answer = await (await fetchOk(`api/sensors?t=${time}`)).json();
+  for (const dots of sensorDots.children) dots.geometry.dispose();
+  sensorDots.clear();
+  const sets = Object.entries(answer.sets);
+  const top = Math.max(0, ...sets.map(([, set]) => set.max_lux ?? 0));
+  const lines = [];
+  for (const [name, set] of sets) {
+    const positions = [], colors = [];
+    for (const point of set.points) {
+      positions.push(...point.position);
+      rampColor(top > 0 ? (point.illuminance_lux ?? 0) / top : 0).toArray(colors, colors.length);
+    }
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.Float32BufferAttribute(positions, 3));
+    geometry.setAttribute('color', new THREE.Float32BufferAttribute(colors, 3));
+    sensorDots.add(new THREE.Points(geometry, new THREE.PointsMaterial(
+      { size: 7, sizeAttenuation: false, vertexColors: true, toneMapped: false })));
+    lines.push(set.mean_lux === null ? `${name}: ${set.points.length} points (no unit, no lux)`
+      : `${name}: ${set.points.length === 1 ? '' : 'mean '}${set.mean_lux.toPrecision(4)} lx` +
+        (set.points.length === 1 ? '' : `, min ${set.min_lux.toPrecision(3)}, uniformity ${set.uniformity.toFixed(2)}`));
+  }
+  document.getElementById('sensor-sets').textContent = lines.join('\n');
+  window.viewerState.sensorSets = answer;
+}
+
 async function showColours() {
   const falseMode = falseColour;
   renderer.toneMapping = falseMode ? THREE.NoToneMapping : THREE.LinearToneMapping;
@@ -153,6 +184,7 @@ async function sendState() {
     const ms = Number(response.headers.get('X-Relight-Ms'));
     radiance = await response.arrayBuffer();
     await showColours();
+    await showSensorSets();
     if (summary.dynamic_objects.length) showObjects();  // lit by the new light too
     window.viewerState.relights += 1;
     window.viewerState.lastRelightMs = ms;
@@ -334,6 +366,8 @@ async function start() {
   scene3d.add(objectParts);
   radiance = await (await fetchOk('api/colors')).arrayBuffer();
   applyColors(radiance);
+  scene3d.add(sensorDots);
+  await showSensorSets();
   const advanceTime = summary.dynamic_objects.length ? setUpTime() : () => {};
   if (summary.dynamic_objects.length) await showObjects();
 

@@ -72,6 +72,10 @@ Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& obj
                     std::span<const Color> emissionScales = {});
 
 nlohmann::json toJson(const RunStats& stats);
+/// A sensor set as the stats' "sensors" hold it: its points (position, normal, irradiance,
+/// illuminance_lux), mean_lux, min_lux, max_lux and uniformity (lux null when the unit is
+/// unknown).
+nlohmann::json toJson(const SensorReading& reading);
 /// Writes the stats as indented JSON, atomically (temporary file + rename).
 void writeRunStats(const std::string& path, const RunStats& stats);
 

@@ -66,6 +66,10 @@ class ViewerSession {
   /// square scene unit), "illuminance_lux" (null when the scene's unit is unknown)}. Throws
   /// InputError for a time as objectsAt does.
   nlohmann::json sensorAt(const SensorPoint& point, double seconds) const;
+  /// What the scene's sensor sets read of the solution now, the objects placed at `seconds`:
+  /// {"t", "sets": {name: the stats' form of the set (run_stats.h)}}. Throws InputError for a
+  /// time as objectsAt does.
+  nlohmann::json sensorSets(double seconds) const;
   /// The latest time the objects' paths set anything (0: none moves).
   double pathsEnd() const;
 

@@ -25,7 +25,9 @@ Color rampColour(double t) {
                                                  0xfaba39, 0xe4460a, 0x7a0403};
   const double x = std::clamp(t, 0.0, 1.0) * double(kStops.size() - 1);
   const size_t k = std::min(size_t(x), kStops.size() - 2);
-  const auto channel = [](uint32_t hex, int shift) { return float((hex >> shift) & 0xff) / 255.0f; };
+  const auto channel = [](uint32_t hex, int shift) {
+    return float((hex >> shift) & 0xff) / 255.0f;
+  };
   Color c(0.0f);
   for (int i = 0; i < 3; ++i) {
     const float a = channel(kStops[k], 16 - 8 * i), b = channel(kStops[k + 1], 16 - 8 * i);
@@ -59,8 +61,8 @@ double topOf(const std::vector<double>& values) {
 void drawText(Image& image, int x, int y, int scale, const std::string& text, const Color& colour) {
   std::vector<char> buffer(text.size() * 1024 + 64);  // ~270 B a character on average
   std::string copy = text;
-  const int quads = stb_easy_font_print(0.0f, 0.0f, copy.data(), nullptr, buffer.data(),
-                                        int(buffer.size()));
+  const int quads =
+      stb_easy_font_print(0.0f, 0.0f, copy.data(), nullptr, buffer.data(), int(buffer.size()));
   for (int q = 0; q < quads; ++q) {
     // Four vertices of 16 bytes (x, y, z floats and a colour): an axis-aligned rectangle.
     float corner[2][2];

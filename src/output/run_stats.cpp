@@ -12,9 +12,9 @@ nlohmann::json rgb(const Color& c) {
   return nlohmann::json::array({c.r, c.g, c.b});
 }
 
-// A sensor set: its points' irradiance and lux (null where the scene's unit is unknown) and the
-// figures a lighting designer checks.
-nlohmann::json sensorJson(const SensorReading& r) {
+}  // namespace
+
+nlohmann::json toJson(const SensorReading& r) {
   const bool lux = !r.lux.empty();
   nlohmann::json points = nlohmann::json::array();
   for (size_t i = 0; i < r.points.size(); ++i) {
@@ -31,8 +31,6 @@ nlohmann::json sensorJson(const SensorReading& r) {
           {"max_lux", luxOrNull(r.maxLux)},
           {"uniformity", luxOrNull(r.uniformity)}};
 }
-
-}  // namespace
 
 Color absorbedPower(const Scene& scene, const std::vector<ObjectRadiometry>& objects,
                     std::span<const Color> emissionScales) {
@@ -103,7 +101,7 @@ nlohmann::json toJson(const RunStats& s) {
   }
   if (!s.sensors.empty()) {
     nlohmann::json& sensors = j["sensors"] = nlohmann::json::object();
-    for (const SensorReading& r : s.sensors) sensors[r.name] = sensorJson(r);
+    for (const SensorReading& r : s.sensors) sensors[r.name] = toJson(r);
   }
   if (!s.methodDetails.empty()) j[s.method] = s.methodDetails;
   if (!s.distributed.empty()) j["distributed"] = s.distributed;

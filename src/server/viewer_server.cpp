@@ -211,6 +211,15 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
       }
     });
   });
+  http.Get("/api/sensors", [this](const httplib::Request& request, httplib::Response& response) {
+    withSession(response, [&](ViewerSession& session) {
+      try {
+        response.set_content(session.sensorSets(secondsParam(request)).dump(), "application/json");
+      } catch (const InputError& e) {
+        badRequest(response, e.what());
+      }
+    });
+  });
   http.Get("/api/sensor", [this](const httplib::Request& request, httplib::Response& response) {
     withSession(response, [&](ViewerSession& session) {
       try {
@@ -233,8 +242,9 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
     });
   });
   // A known path asked with another method: 405 naming the one it takes.
-  for (const char* path : {"/api/progress", "/api/scene", "/api/mesh.glb", "/api/colors",
-                           "/api/irradiance", "/api/objects.csv", "/api/dynamic", "/api/sensor"}) {
+  for (const char* path :
+       {"/api/progress", "/api/scene", "/api/mesh.glb", "/api/colors", "/api/irradiance",
+        "/api/objects.csv", "/api/dynamic", "/api/sensor", "/api/sensors"}) {
     http.Post(path, methodNotAllowed("GET"));
     http.Put(path, methodNotAllowed("GET"));
     http.Delete(path, methodNotAllowed("GET"));

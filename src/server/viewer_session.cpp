@@ -5,6 +5,7 @@
 #include <radiosity/gltf_export.h>
 #include <radiosity/ies_profile.h>
 #include <radiosity/radiosity_method.h>
+#include <radiosity/run_stats.h>
 #include <radiosity/sensors.h>
 #include <radiosity/surface_samples.h>
 #include <radiosity/viewer_session.h>
@@ -119,6 +120,8 @@ Json ViewerSession::summary() const {
   const Bounds bounds = scene_.bounds();
   Json dynamicObjects = Json::array();
   for (const DynamicObject& o : scene_.dynamicObjects) dynamicObjects.push_back(o.name);
+  Json sensorNames = Json::array();
+  for (const SensorSet& set : scene_.sensors) sensorNames.push_back(set.name);
   const LengthUnit& unit = scene_.unit;
   return {{"scene", scene_.name},
           {"unit", unit.known() ? Json{{"name", unit.name}, {"metres", unit.metres}} : Json()},
@@ -138,6 +141,7 @@ Json ViewerSession::summary() const {
           {"bounds", {{"min", array(bounds.min)}, {"max", array(bounds.max)}}},
           {"dynamic_objects", dynamicObjects},
           {"paths_end_s", pathsEnd()},
+          {"sensor_sets", sensorNames},
           {"last_relight_ms", lastRelightMs_}};
 }
 
@@ -161,6 +165,20 @@ Json ViewerSession::sensorAt(const SensorPoint& point, double seconds) const {
           {"normal", array(point.normal)},
           {"irradiance", array(irradiance[0])},
           {"illuminance_lux", lux ? Json(*lux) : Json()}};
+}
+
+Json ViewerSession::sensorSets(double seconds) const {
+  requireViewerTime(seconds);
+  const std::vector<SensorPoint> points = sensorPoints(scene_.sensors);
+  std::vector<Color> irradiance;
+  {
+    std::lock_guard relight(relightMutex_);
+    irradiance = engine_->sensorIrradiance(solution(), seconds, points, SensorSettings{});
+  }
+  Json sets = Json::object();
+  for (const SensorReading& r : sensorReadings(scene_.sensors, irradiance, scene_.unit))
+    sets[r.name] = toJson(r);
+  return {{"t", seconds}, {"sets", sets}};
 }
 
 Json ViewerSession::objectsAt(double seconds) const {

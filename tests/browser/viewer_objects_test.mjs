@@ -2,7 +2,8 @@
 // path puts it, moves when the time slider does (the picture changes where it was and where it
 // went, not everywhere), and Play advances the time; the page logs no errors.
 // Usage: node viewer_objects_test.mjs BINARY WEB_DIR SCENE OUT_DIR   (screenshots go to OUT_DIR)
-import { mkdirSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
 
 import { launchChromium, openTab, pictureBlocks, viewerOutcome } from './headless_chromium.mjs';
@@ -38,6 +39,22 @@ try {
     const frames = await page.evaluate(() => window.viewerState.frames);
     await page.waitForFunction((n) => window.viewerState.frames > n + 3, { timeout: 60000 }, frames);
   };
+  // The office's sensor sets, drawn and listed: what `solve --sensor-output` reads, within 1%
+  // (the server's relighter against the solve's Gauss-Seidel, the chair where t = 0 puts it).
+  await page.waitForFunction(() => window.viewerState.sensorSets !== null, { timeout: 60000 });
+  const sets = await page.evaluate(() => window.viewerState.sensorSets.sets);
+  const listed = await page.evaluate(() => document.getElementById('sensor-sets').textContent);
+  console.log(`sensor sets: ${listed.replace(/\n/g, '; ')}`);
+  if (!listed.includes('workplane: mean')) fail(`the sensor sets are listed as '${listed}'`);
+  const readings = path.join(outDir, 'office_sensors.csv');
+  execFileSync(binary, ['solve', sceneFile, '--method', 'patch', '--patches', '1500', '--cache-dir', 'none',
+    '--sensor-output', readings, '--quiet']);
+  const rows = readFileSync(readings, 'utf8').trim().split('\n').slice(1).map((row) => row.split(','));
+  const solvedMean = rows.filter((r) => r[0] === 'workplane').reduce((sum, r) => sum + Number(r[11]), 0) /
+    sets.workplane.points.length;
+  console.log(`workplane: the page ${sets.workplane.mean_lux.toPrecision(4)} lx, solve ${solvedMean.toPrecision(4)} lx`);
+  if (!(Math.abs(sets.workplane.mean_lux / solvedMean - 1) < 0.01))
+    fail(`the page's workplane mean ${sets.workplane.mean_lux} lx against solve's ${solvedMean} lx`);
   const hidden = await page.evaluate(() => document.getElementById('time-section').hidden);
   if (hidden) fail('the time controls are hidden for a scene with a moving object');
   await showTime(0);

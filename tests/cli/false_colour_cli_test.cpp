@@ -28,8 +28,9 @@ TEST(FalseColourCli, EveryMethodDrawsItWithItsLegend) {
        {std::vector<std::string>{"--method", "patch", "--patches", "400", "--cache-dir", "none"},
         std::vector<std::string>{"--method", "pathtrace", "--spp", "2"}}) {
     const std::string out = (dir / (method[1] + ".png")).string();
-    std::vector<std::string> args = {"render", "cornell", "--false-colour", "lux", "--width", "64",
-                                     "--height", "64", "-o", out, "--quiet"};
+    std::vector<std::string> args = {"render",  "cornell", "--false-colour", "lux",
+                                     "--width", "64",      "--height",       "64",
+                                     "-o",      out,       "--quiet"};
     args.insert(args.end(), method.begin(), method.end());
     const CliResult r = run(args);
     ASSERT_EQ(r.status, 0) << r.err;
@@ -44,9 +45,9 @@ TEST(FalseColourCli, LuxWithoutAUnitOrAnIrradianceItCannotShowAreRefused) {
       run({"render", obj, "--false-colour", "lux", "-o", (dir / "x.png").string()});
   EXPECT_EQ(noUnit.status, 2);
   EXPECT_THAT(noUnit.err, HasSubstr("--false-colour lux: the scene's length unit is not known"));
-  const CliResult solutionLight = run({"render", "cornell", "--method", "patch", "--direct",
-                                       "solution", "--false-colour", "irradiance", "-o",
-                                       (dir / "y.png").string()});
+  const CliResult solutionLight =
+      run({"render", "cornell", "--method", "patch", "--direct", "solution", "--false-colour",
+           "irradiance", "-o", (dir / "y.png").string()});
   EXPECT_EQ(solutionLight.status, 2);
   EXPECT_THAT(solutionLight.err, HasSubstr("needs --direct per-pixel"));
 }

@@ -2,9 +2,9 @@
 // what false-colour pictures show: looking straight down on a floor under a point light of
 // intensity I at height h, the centre pixel sees E = I / h^2 (the light's foot), in every method.
 #include <gtest/gtest.h>
+#include <radiosity/error.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
-#include <radiosity/error.h>
 #include <radiosity/voxel_radiosity.h>
 
 #include "lighting/light_test_scenes.h"
@@ -37,8 +37,8 @@ TEST(IrradiancePicture, TheFloorUnderAPointLightShowsIOverHSquared) {
   voxelSettings.sphereRadius = 8;
   voxelSettings.keepDirectLight = true;
   const VoxelRadiosity voxel(scene, voxelSettings);
-  for (const SurfaceRadiance* solution : {static_cast<const SurfaceRadiance*>(&patch),
-                                          static_cast<const SurfaceRadiance*>(&voxel)}) {
+  for (const SurfaceRadiance* solution :
+       {static_cast<const SurfaceRadiance*>(&patch), static_cast<const SurfaceRadiance*>(&voxel)}) {
     const Image image = renderSurfaceRadiance(scene, lookingDown(), *solution, settings);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(image.at(16, 16)[c], expected[c], 1e-3 * expected[c]);
   }

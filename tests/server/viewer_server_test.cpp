@@ -555,6 +555,11 @@ TEST_F(ViewerServerTest, ASensorReadsWhatTheEnginesSensorsRead) {
     read.push_back(lux);
   }
   EXPECT_LT(read[1], 0.5 * read[0]);  // the box shades it
+  // The scene's own sets (it has none; the office's are read in the browser test).
+  const auto sets = client_->Get("/api/sensors?t=1");
+  ASSERT_TRUE(sets && sets->status == 200);
+  EXPECT_EQ(nlohmann::json::parse(sets->body)["sets"], nlohmann::json::object());
+  EXPECT_EQ(client_->Get("/api/sensors?t=-1")->status, 400);
   for (const std::string bad :
        {"position=1,2,3", "position=1,2&normal=0,1,0", "position=1,2,3&normal=0,0,0",
         "position=1,x,3&normal=0,1,0", "position=1,2,3e30&normal=0,1,0",
