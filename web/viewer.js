@@ -167,7 +167,7 @@ let inFlight = false, pending = false;
 function lightState() {
   const state = { groups: { ...groupScales } };
   if (summary.relights)  // a voxel solution takes group scales only
-    state.lights = lights.map((l) => ({
+    state.lights = lights.map((l) => (l.type === 'sky' ? { id: l.id, intensity: l.intensity } : {
       id: l.id, direction: l.direction, intensity: l.intensity,
       ...(l.type === 'directional' ? {} : { position: l.position }),  // the sun has none
     }));
@@ -295,10 +295,11 @@ function lightPanel(light) {
     markers[light.id].userData.arrow?.setDirection(new THREE.Vector3().fromArray(light.direction).normalize());
   };
   // A directional light (the sun) has no position: its marker only shows where its light comes from.
+  // A sky has neither: its radiance alone.
   const position = numberInputs('position', light.position, (k, v) => { light.position[k] = v; update(); });
   position.classList.add('position');
-  if (light.type !== 'directional') box.appendChild(position);
-  if (light.type !== 'point') {
+  if (light.type !== 'directional' && light.type !== 'sky') box.appendChild(position);
+  if (light.type !== 'point' && light.type !== 'sky') {
     const direction = numberInputs('direction', light.direction, (k, v) => {
       light.direction[k] = v;
       light.showDirection();
@@ -307,7 +308,8 @@ function lightPanel(light) {
     direction.classList.add('direction');
     box.appendChild(direction);
   }
-  const intensity = numberInputs(light.type === 'directional' ? 'W/unit²' : 'W/sr', light.intensity, (k, v) => { light.intensity[k] = Math.max(0, v); sendState(); });
+  const unit = { directional: 'W/unit²', sky: 'W/(sr unit²)' }[light.type] ?? 'W/sr';
+  const intensity = numberInputs(unit, light.intensity, (k, v) => { light.intensity[k] = Math.max(0, v); sendState(); });
   intensity.classList.add('intensity');
   box.appendChild(intensity);
   // A voxel solution is not relit: its lights are shown, not edited.
@@ -386,6 +388,10 @@ async function start() {
   sensorMarker.scale.setScalar(diagonal * 0.006);
   for (const light of summary.lights) {
     lights.push(light);
+    if (light.type === 'sky') {  // everywhere above: no marker to drag
+      document.getElementById('lights').appendChild(lightPanel(light));
+      continue;
+    }
     const marker = new THREE.Mesh(markerGeometry, new THREE.MeshBasicMaterial({ color: 0xffdd55 }));
     marker.position.fromArray(light.position);
     if (light.type === 'directional') {  // up the light's way from the scene's centre

@@ -61,6 +61,10 @@ int runInfo(const std::string& sceneName, Console& console) {
       out << fmt::format("  {:<5} at ({:g}, {:g}, {:g}), intensity ({:g}, {:g}, {:g}) W/sr\n",
                          lightTypeName(light.type), light.position.x, light.position.y,
                          light.position.z, i.r, i.g, i.b);
+    else if (light.type == LightType::Sky)
+      out << fmt::format("  sky {}, radiance ({:g}, {:g}, {:g}) W/(sr {}^2){}\n",
+                         skyModelName(light.sky.model), i.r, i.g, i.b, scene.unit.symbol(),
+                         light.sky.model == SkyModel::Uniform ? "" : " at the zenith");
     else  // the sun: a way, and the irradiance on a plane facing it
       out << fmt::format(
           "  {} along ({:.4g}, {:.4g}, {:.4g}), irradiance ({:g}, {:g}, {:g}) W/{}^2\n",

@@ -4,6 +4,7 @@
 // Units and conventions: docs/ARCHITECTURE.md ("Units and conventions").
 
 #include <radiosity/ies_profile.h>
+#include <radiosity/sky.h>
 #include <radiosity/texture.h>
 #include <radiosity/types.h>
 
@@ -75,9 +76,11 @@ struct Face {
 
 /// Object: one axis lobe of the light a dynamic object reflects, leaving from the centroid of its
 /// faces that send it (lighting/dynamic_objects.h; made by the program, not read from scene
-/// files). Directional: light from so far away that its rays are parallel (the sun).
-enum class LightType { Point, Spot, Ies, Object, Directional };
-/// "point", "spot", "ies", "object" or "directional", as the scene file and the stats spell it.
+/// files). Directional: light from so far away that its rays are parallel (the sun). Sky: light
+/// from every direction above the horizon, from beyond the scene (sky.h).
+enum class LightType { Point, Spot, Ies, Object, Directional, Sky };
+/// "point", "spot", "ies", "object", "directional" or "sky", as the scene file and the stats
+/// spell it.
 const char* lightTypeName(LightType type);
 
 /// A light's state at a time of its animation: the fields it sets (the others follow the
@@ -99,7 +102,8 @@ inline float axisLobe(const Vec3& d, int k) {
 /// W/sr (RGB): the irradiance at distance d on a surface tilted by theta is I cos(theta) / d^2.
 /// A directional light has no position: it travels along `direction`, and `intensity` is the
 /// irradiance E (W per square scene unit) on a plane facing it, E cos(theta) on one tilted by
-/// theta, wherever nothing shadows it.
+/// theta, wherever nothing shadows it. A sky has no position either: `intensity` is its reference
+/// radiance (W/(sr unit^2): a uniform sky's, a CIE sky's at the zenith) and `sky` its shape.
 struct Light {
   LightType type = LightType::Point;
   Vec3 position{0.0f};
@@ -128,14 +132,17 @@ struct Light {
   /// Object: the radius around `position` that the object's own surface lies within. Shadow
   /// rays toward the light stop there: the light leaves that surface, which must not shadow it.
   float radius = 0.0f;
+  /// Sky: the shape of its radiance over the directions.
+  Sky sky;
 
-  /// Radiant intensity (W/sr) toward the unit direction `toward` (from the light outward).
+  /// Radiant intensity (W/sr) toward the unit direction `toward` (from the light outward); for a
+  /// sky, the radiance travelling along `toward` (arriving from -toward).
   Color intensityToward(const Vec3& toward) const;
-  /// Total radiant power (W) the light emits in all directions; 0 for a directional light, whose
-  /// power is that of the scene it falls on (Scene::lightPower).
+  /// Total radiant power (W) the light emits in all directions; 0 for a directional light or a
+  /// sky, whose power is that of the scene it falls on (Scene::lightPower).
   Color power() const;
-  /// False for a directional light, which has no position.
-  bool positional() const { return type != LightType::Directional; }
+  /// False for a directional light and a sky, which have no position.
+  bool positional() const { return type != LightType::Directional && type != LightType::Sky; }
   /// True if the light moves or changes with time (a spin or a path).
   bool animated() const { return !path.empty() || spinDegPerS != Vec3(0.0f); }
   /// The light at `seconds` into its animation (itself when it has none).
@@ -290,9 +297,9 @@ struct Scene {
   /// Total emitted power (W): pi * Ke * area * mean coverage over emitting triangles plus every
   /// light's lightPower.
   Color emittedPower() const;
-  /// A light's power (W): Light::power(), and for a directional light the power it sends
-  /// through the scene's bounds (its irradiance times the area of the bounding box's shadow on
-  /// a plane facing it), what can fall on the scene.
+  /// A light's power (W): Light::power(), and for a directional light or a sky the power it
+  /// sends through the scene's bounds (the irradiance times the area of the bounding box's
+  /// shadow on a plane facing it, summed over the sky's directions), what can fall on the scene.
   Color lightPower(const Light& light) const;
   bool hasEmitters() const;
   /// The camera of the scene, or one that frames its bounds from the front (+z looking -z).

@@ -74,14 +74,19 @@ inline Vec2 sampleStratum(int stratum, int side, Rng& rng) {
               (float(stratum / side) + jitter.y) / float(side));
 }
 
-/// Sample `index` of `count` over a pixel, [0,1)^2: one sample lies at the centre; of more, the
-/// first side^2 (side = floor(sqrt(count))) lie one in each cell of a side x side grid, jittered,
-/// and any others anywhere, so that every count is unbiased and a square one fully stratified
-/// (at 4 samples an edge's pixels take 0, 1/4, ... 1 of each side instead of a random share).
-inline Vec2 pixelSample(int index, int count, Rng& rng) {
-  if (count <= 1) return Vec2(0.5f);
-  const int side = int(std::sqrt(double(count)));
+/// Sample `index` of `count` over [0,1)^2: the first side^2 (side = floor(sqrt(count))) lie one
+/// in each cell of a side x side grid, jittered, and any others anywhere, so that every count is
+/// unbiased and a square one fully stratified. Draws two numbers from `rng`.
+inline Vec2 stratifiedSample(int index, int count, Rng& rng) {
+  const int side = std::max(1, int(std::sqrt(double(count))));
   return index < side * side ? sampleStratum(index, side, rng) : uniformSquare(rng);
+}
+
+/// Sample `index` of `count` over a pixel: one sample lies at the centre; more are
+/// stratifiedSample's (at 4 samples an edge's pixels take 0, 1/4, ... 1 of each side instead of
+/// a random share).
+inline Vec2 pixelSample(int index, int count, Rng& rng) {
+  return count <= 1 ? Vec2(0.5f) : stratifiedSample(index, count, rng);
 }
 
 /// A uniformly random permutation of 0 .. n-1 (Fisher-Yates), e.g. to pair the strata of two

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/constants.hpp>
 #include <limits>
 
@@ -32,8 +33,13 @@ DirectLighting::DirectLighting(const Scene& scene, const RayCaster& caster,
     : DirectLighting(scene, caster, lights, {}) {}
 
 DirectLighting::DirectLighting(const Scene& scene, const RayCaster& caster,
-                               std::span<const Light> lights, std::span<const Color> emissionScales)
-    : caster_(&caster), lights_(lights), emitters_(scene, emissionScales) {
+                               std::span<const Light> lights, std::span<const Color> emissionScales,
+                               int skySamples)
+    : caster_(&caster),
+      lights_(lights),
+      emitters_(scene, emissionScales),
+      skySamples_(std::max(1, skySamples)) {
+  for (const Light& light : lights_) hasSky_ = hasSky_ || light.type == LightType::Sky;
   const Bounds b = scene.bounds();
   sceneExtent_ = b.empty() ? 1.0f : std::max(b.diagonal(), std::max(maxAbs(b.min), maxAbs(b.max)));
   if (!(sceneExtent_ > 0.0f)) sceneExtent_ = 1.0f;
@@ -63,7 +69,58 @@ bool DirectLighting::visibleToward(const Vec3& p, const Vec3& n, const Vec3& w) 
   return !caster_->occluded(r);
 }
 
+Color DirectLighting::skySample(const Light& sky, const Vec3& p, const Vec3& n, Vec2 u) const {
+  const Vec3 w = glm::normalize(toWorld(sampleCosineHemisphere(u), n));
+  const Color l = sky.intensityToward(-w);
+  if (!(maxComponent(l) > 0.0f) || !visibleToward(p, n, w)) return Color(0.0f);
+  return glm::pi<float>() * l;
+}
+
+Color DirectLighting::fromSky(const Vec3& p, const Vec3& n, Rng& rng, int samples) const {
+  if (!hasSky_ || samples < 1) return Color(0.0f);
+  Color sum(0.0f);
+  for (int s = 0; s < samples; ++s) {
+    const Vec2 u = stratifiedSample(s, samples, rng);
+    for (const Light& light : lights_)
+      if (light.type == LightType::Sky) sum += skySample(light, p, n, u);
+  }
+  return sum / float(samples);
+}
+
+Color skyRadiance(std::span<const Light> lights, const Vec3& w) {
+  Color sum(0.0f);
+  for (const Light& light : lights)
+    if (light.type == LightType::Sky) sum += light.intensityToward(-w);
+  return sum;
+}
+
+Color DirectLighting::skyRadiance(const Vec3& w) const {
+  return hasSky_ ? rad::skyRadiance(lights_, w) : Color(0.0f);
+}
+
+Color DirectLighting::skyOver(const Light& sky, std::span<const Vec3> points,
+                              std::span<const double> weights, const Vec3& n) const {
+  if (points.empty()) return Color(0.0f);
+  const Vec3 key[2] = {points[0], n};
+  uint64_t bits[3] = {};
+  std::memcpy(bits, key, sizeof key);
+  Rng rng(splitMix64(bits[0] ^ splitMix64(bits[1])), splitMix64(bits[2]));
+  const int q = int(points.size()), count = q * skySamples_;
+  const std::vector<int> owner = randomPermutation(count, rng);
+  Vec3d sum(0.0);
+  for (int s = 0; s < count; ++s) {
+    const int i = owner[size_t(s)] % q;
+    const Color e = skySample(sky, points[size_t(i)], n, stratifiedSample(s, count, rng));
+    sum += double(q) * weights[size_t(i)] * Vec3d(e);
+  }
+  return Color(sum / double(count));
+}
+
 Color DirectLighting::fromLight(const Light& light, const Vec3& p, const Vec3& n) const {
+  if (light.type == LightType::Sky) {
+    const double whole = 1.0;
+    return skyOver(light, {&p, 1}, {&whole, 1}, n);
+  }
   if (!light.positional()) {  // parallel rays from beyond the scene: E cos(theta), unshadowed
     const Vec3 w = -light.direction;
     const float cosReceiver = glm::dot(n, w);

@@ -22,7 +22,8 @@ struct PatchLight {
 /// What one light puts on a patch: D over the midpoint rule's points (`points`, rounded up to a
 /// square), and the edge test over them and the patch's corners (pulled 2% toward its centre, so
 /// that an edge along the patch's border is seen too). Nothing, and no rays cast, where the
-/// light cannot reach the patch at all (behind its plane, or a spot's cone clear of it).
+/// light cannot reach the patch at all (behind its plane, or a spot's cone clear of it). A sky:
+/// D by its rays stratified over the points together, no edge test (its light is soft).
 /// Thread-safe.
 PatchLight lightOnPatch(const PatchMesh& mesh, uint32_t patch, const DirectLighting& direct,
                         const Light& light, int points);

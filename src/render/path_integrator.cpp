@@ -1,12 +1,12 @@
 // Unidirectional path tracing of Lambertian surfaces with next-event estimation (Kajiya, "The
 // Rendering Equation", SIGGRAPH 1986; Pharr, Jakob and Humphreys, "Physically Based Rendering",
 // 4th ed., ch. 13). At every vertex: one emissive-triangle sample chosen by power and every
-// analytic light; a cosine-weighted bounce. Emissive triangles are reached both ways and
-// combined by the power heuristic (Veach and Guibas, "Optimally Combining Sampling Techniques
-// for Monte Carlo Rendering", SIGGRAPH 1995), which keeps each contribution bounded where
-// surfaces meet (area sampling alone has unbounded variance at edges, cos cos / d^2 -> inf).
-// Russian roulette after the third vertex (Arvo and Kirk, "Particle Transport and Image
-// Synthesis", SIGGRAPH 1990).
+// analytic light; a cosine-weighted bounce, which brings the sky's radiance where it escapes.
+// Emissive triangles are reached both ways and combined by the power heuristic (Veach and Guibas,
+// "Optimally Combining Sampling Techniques for Monte Carlo Rendering", SIGGRAPH 1995), which keeps
+// each contribution bounded where surfaces meet (area sampling alone has unbounded variance at
+// edges, cos cos / d^2 -> inf). Russian roulette after the third vertex (Arvo and Kirk, "Particle
+// Transport and Image Synthesis", SIGGRAPH 1990).
 #include "render/path_integrator.h"
 
 #include <algorithm>
@@ -29,7 +29,11 @@ PathIntegrator::PathIntegrator(const Scene& scene, const RayCaster& caster, int 
 Color PathIntegrator::directIntegral(const Vec3& p, const Vec3& n, bool misWeighted,
                                      Rng& rng) const {
   Color sum = direct_.sampleEmitters(p, n, rng, misWeighted);
-  for (const Light& light : direct_.lights()) sum += direct_.fromLight(light, p, n);
+  for (const Light& light : direct_.lights())
+    if (light.type != LightType::Sky) sum += direct_.fromLight(light, p, n);
+  // The sky is found by the bounce, a ray that leaves the scene; where none follows, by a ray
+  // of its own: counted once either way.
+  if (!misWeighted) sum += direct_.fromSky(p, n, rng, 1);
   return sum;
 }
 
@@ -47,7 +51,10 @@ Color PathIntegrator::trace(Ray ray, float bouncePdf, int firstDepth, Rng& rng) 
   Color radiance(0.0f), throughput(1.0f);
   for (int depth = firstDepth; depth < maxDepth_; ++depth) {
     const Hit hit = caster_->intersect(ray);
-    if (!hit.valid()) break;
+    if (!hit.valid()) {
+      radiance += throughput * direct_.skyRadiance(ray.direction);
+      break;
+    }
     const Material& m = scene_->materialOf(hit.triangle);
     // A one-sided surface seen from behind absorbs everything and emits nothing.
     if (!hit.frontFace && !m.twoSided) break;

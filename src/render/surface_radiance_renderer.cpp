@@ -21,10 +21,11 @@ namespace {
 // here with shadow rays (DirectLighting, the physics the path tracer uses).
 class PerPixelDirectShading {
  public:
+  // A sky gets as many rays a hit as the emitters get samples.
   PerPixelDirectShading(const Scene& scene, const RayCaster& caster,
                         const SurfaceRadiance& radiance, int emitterSamples, bool irradiance)
       : scene_(scene),
-        direct_(scene, caster, radiance.directLights(), radiance.emissionScales()),
+        direct_(scene, caster, radiance.directLights(), radiance.emissionScales(), emitterSamples),
         radiance_(radiance),
         emitterSamples_(emitterSamples),
         irradiance_(irradiance) {}
@@ -46,6 +47,13 @@ class PerPixelDirectShading {
         scaledEmission(scene_, scene_.faceOf(hit.triangle).material, radiance_.emissionScales()) *
         scene_.textureAt(m.emissionTexture, hit.triangle, hit.barycentric);
     return ke + scene_.reflectanceAt(hit.triangle, hit.barycentric) * h * glm::one_over_pi<float>();
+  }
+
+  /// What a camera ray that leaves the scene along `w` sees: the sky the solution was lit by
+  /// (at its group's scale), or the scene's where the solution names no lights.
+  Color escaped(const Vec3& w) const {
+    return radiance_.directLights().empty() ? skyRadiance(scene_.lights, w)
+                                            : direct_.skyRadiance(w);
   }
 
  private:
@@ -90,7 +98,10 @@ Image renderSurfaceRadiance(const Scene& scene, const RayCaster& caster, const C
         for (int s = 0; s < settings.samplesPerPixel; ++s) {
           const Ray ray = pinhole.ray(x, y, pixelSample(s, settings.samplesPerPixel, rng));
           const Hit hit = caster.intersect(ray);
-          if (!hit.valid()) continue;
+          if (!hit.valid()) {
+            sum += shade.escaped(ray.direction);
+            continue;
+          }
           const SurfaceHit at{ray.origin + hit.distance * ray.direction, hit.geometricNormal,
                               hit.triangle, hit.frontFace, hit.barycentric};
           sum += perPixel ? shade(at, rng) : radiance.radiance(at);

@@ -16,9 +16,11 @@ const char* lightTypeName(LightType type) {
     case LightType::Object:
       return "object";
     case LightType::Directional:
+      return "directional";
+    case LightType::Sky:
       break;
   }
-  return "directional";
+  return "sky";
 }
 
 namespace {
@@ -65,6 +67,8 @@ Color Light::intensityToward(const Vec3& toward) const {
       for (int k = 0; k < 6; ++k) sum += lobes[size_t(k)] * axisLobe(toward, k);
       return intensity * sum;  // intensity: a dimmer on it (1 as made)
     }
+    case LightType::Sky:
+      return intensity * sky.relativeRadiance(-toward);
   }
   return Color(0.0f);
 }
@@ -97,6 +101,7 @@ Color Light::power() const {
       return intensity * sum * glm::pi<float>();
     }
     case LightType::Directional:
+    case LightType::Sky:
       break;
   }
   return Color(0.0f);

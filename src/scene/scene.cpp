@@ -199,14 +199,49 @@ Color Scene::emittedPower() const {
   return Color(power);
 }
 
+namespace {
+
+// The area of the shadow a box of edges `e` casts on a plane facing the unit direction d: each
+// face pair's area times |d . its normal|.
+double boxShadow(const Vec3d& e, const Vec3d& d) {
+  const Vec3d a = glm::abs(d);
+  return a.x * e.y * e.z + a.y * e.x * e.z + a.z * e.x * e.y;
+}
+
+// The power a sky sends into a box of edges `e`: the integral over the directions w above its
+// horizon of L(w) times the box's shadow across w, by the midpoint rule in the elevation's sine
+// and the azimuth (equal solid angles; 64 x 256 cells, exact to 1e-4 for the CIE skies).
+Color skyPowerInto(const Light& sky, const Vec3d& e) {
+  constexpr int kRings = 64, kSectors = 256;
+  const Vec3 up = sky.sky.up;
+  const Vec3 x =
+      glm::normalize(glm::cross(std::abs(up.y) < 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0), up));
+  const Vec3 z = glm::cross(x, up);
+  const double cellSolidAngle = 2.0 * glm::pi<double>() / (double(kRings) * kSectors);
+  Vec3d sum(0.0);
+  for (int i = 0; i < kRings; ++i) {
+    const double sinElevation = (i + 0.5) / kRings,
+                 cosElevation = std::sqrt(1.0 - sinElevation * sinElevation);
+    for (int k = 0; k < kSectors; ++k) {
+      const double azimuth = 2.0 * glm::pi<double>() * (k + 0.5) / kSectors;
+      const Vec3 w = Vec3(cosElevation * std::cos(azimuth)) * x +
+                     Vec3(cosElevation * std::sin(azimuth)) * z + Vec3(float(sinElevation)) * up;
+      sum += Vec3d(sky.intensityToward(-w)) * boxShadow(e, Vec3d(w));
+    }
+  }
+  return Color(sum * cellSolidAngle);
+}
+
+}  // namespace
+
 Color Scene::lightPower(const Light& light) const {
   if (light.positional()) return light.power();
   Bounds b;
   for (const Vec3& p : positions) b.extend(p);
   if (b.empty()) return Color(0.0f);
-  // A box's shadow on the plane facing d: each face pair's area times |d . its normal|.
-  const Vec3d e = Vec3d(b.max - b.min), d = glm::abs(Vec3d(light.direction));
-  return Color(Vec3d(light.intensity) * (d.x * e.y * e.z + d.y * e.x * e.z + d.z * e.x * e.y));
+  const Vec3d e = Vec3d(b.max - b.min);
+  if (light.type == LightType::Sky) return skyPowerInto(light, e);
+  return Color(Vec3d(light.intensity) * boxShadow(e, Vec3d(light.direction)));
 }
 
 bool Scene::hasEmitters() const {

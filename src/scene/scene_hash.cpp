@@ -63,6 +63,10 @@ void hashLights(Hasher& h, std::span<const Light> lights) {
     h.text(l.iesFile);
     h.value(l.lobes);
     if (l.type == LightType::Object) h.value(l.radius);  // made by the program, never in files
+    if (l.type != LightType::Sky) continue;
+    h.value(l.sky.model);
+    h.value(l.sky.up);
+    h.value(l.sky.towardSun);
   }
 }
 

@@ -69,11 +69,14 @@ void editLight(const Json& edit, size_t k, std::vector<Light>& lights) {
   for (const auto& [key, value] : edit.items()) {
     if (key == "id") continue;
     if (key == "position") {
-      if (!light.positional()) refuse(at + "/position", "a directional light has no position");
+      if (!light.positional())
+        refuse(at + "/position",
+               fmt::format("a {} light has no position", lightTypeName(light.type)));
       light.position = vec3(value, at + "/position");
       if (glm::compMax(glm::abs(light.position)) > kMaxSceneCoordinate)
         refuse(at + "/position", fmt::format("beyond {:g} scene units", kMaxSceneCoordinate));
     } else if (key == "direction") {
+      if (light.type == LightType::Sky) refuse(at + "/direction", "a sky has no direction");
       const Vec3 d = vec3(value, at + "/direction");
       // Scaled to a largest component of 1 first: the length of [1e20, 0, 0] overflows.
       const float largest = glm::compMax(glm::abs(d));

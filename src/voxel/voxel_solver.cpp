@@ -18,6 +18,7 @@
 #include "core/progress_ticker.h"
 #include "core/rng.h"
 #include "core/vector_memory.h"
+#include "geometry/sampling.h"
 #include "lighting/direct_lighting.h"
 #include "voxel/direction_set.h"
 #include "voxel/exact_color_sum.h"
@@ -47,18 +48,32 @@ void forEvenlySpacedPieces(std::span<const SidePiece> pieces, double area, int c
   }
 }
 
+// A side's irradiance from the skies: `samples` cosine-weighted rays, each from the centroid of
+// the next of as many evenly spaced pieces along its normal, in the next stratum of the disk the
+// directions lift from (pieces and directions stratified together, as the emitters' samples).
+Vec3d skyOnSide(const DirectLighting& direct, std::span<const Light> skies,
+                std::span<const SidePiece> pieces, double area, int samples, Rng& rng) {
+  Vec3d sum(0.0);
+  forEvenlySpacedPieces(pieces, area, samples, [&](int s, const SidePiece& p) {
+    const Vec2 u = stratifiedSample(s, samples, rng);
+    for (const Light& sky : skies) sum += Vec3d(direct.skySample(sky, p.centroid, p.normal, u));
+    return true;
+  });
+  return sum / double(samples);
+}
+
 // Direct irradiance at every entry: the mean over the pieces of surface it stands for
 // (forEachSidesPieces), each lit at its centroid along its own normal. The analytic lights are
 // exact (one shadow ray each) at every piece, or at kLightPieces evenly spaced by area where it
 // has more; the emitters' light is the mean of `directSamples` area samples, each from the
-// centroid of the next of as many evenly spaced pieces. Lit from the side's centroid, along its
-// mean normal, small round objects were dark: the centroid of a door knob's side lay inside the
-// knob, and one normal stood for a curtain rod's fan of facets (living_room_bare at 100k voxels:
-// the knob -17%, the rod -6% of the path tracer's direct light; now -7% and +1%, the knob's
-// long facets lit at their centroids). Points spread over the pieces came nearer the truth on
-// the knob, but near an emitter's edge (a window frame against its glass, a wall against a
-// lamp) their samples' 1 / d^2 made sides far noisier. Throws Cancelled when `progress` asks,
-// within a fraction of a second even at thousands of samples a side.
+// centroid of the next of as many evenly spaced pieces, and a sky's of as many rays (skyOnSide).
+// Lit from the side's centroid, along its mean normal, small round objects were dark: the centroid
+// of a door knob's side lay inside the knob, and one normal stood for a curtain rod's fan of facets
+// (living_room_bare at 100k voxels: the knob -17%, the rod -6% of the path tracer's direct light;
+// now -7% and +1%, the knob's long facets lit at their centroids). Points spread over the pieces
+// came nearer the truth on the knob, but near an emitter's edge (a window frame against its glass,
+// a wall against a lamp) their samples' 1 / d^2 made sides far noisier. Throws Cancelled when
+// `progress` asks, within a fraction of a second even at thousands of samples a side.
 std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
                                     const RayCaster& caster, std::span<const Light> lights,
                                     const VoxelSolverSettings& settings, uint64_t& rays,
@@ -66,7 +81,10 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
   constexpr int kSamplesBetweenPolls = 256;
   constexpr int kLightPieces = 64;
   const uint64_t raysBefore = caster.raysCast();
-  const DirectLighting direct(scene, caster, lights, settings.emissionScales);
+  std::vector<Light> analytic, skies;
+  for (const Light& light : lights)
+    (light.type == LightType::Sky ? skies : analytic).push_back(light);
+  const DirectLighting direct(scene, caster, analytic, settings.emissionScales);
   std::vector<Color> h(grid.entryCount(), Color(0.0f));
   // Split among processes, each shoots a block of the sides; their sum is every side's.
   const auto [begin, end] = settings.processes.block(grid.entryCount());
@@ -75,8 +93,8 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
     double area = 0.0;
     for (const SidePiece& p : pieces) area += p.area;
     Vec3d sum(0.0);
+    Rng rng(settings.seed, e);
     if (direct.hasEmitters()) {
-      Rng rng(settings.seed, e);
       bool cancelled = false;
       forEvenlySpacedPieces(pieces, area, settings.directSamples, [&](int s, const SidePiece& p) {
         if (s % kSamplesBetweenPolls == kSamplesBetweenPolls - 1 && ticker.pollCancelled())
@@ -97,6 +115,7 @@ std::vector<Color> directIrradiance(const Scene& scene, const VoxelGrid& grid,
           return true;
         });
     }
+    if (!skies.empty()) sum += skyOnSide(direct, skies, pieces, area, settings.directSamples, rng);
     h[e] = Color(sum);
     ticker.tick();
     return !ticker.cancelled();

@@ -31,6 +31,9 @@ namespace rad {
 
 namespace {
 
+// The scene's zenith where it names none.
+constexpr Vec3 kDefaultUp(0.0f, 1.0f, 0.0f);
+
 std::string lowerExtension(const std::string& file) {
   const size_t dot = file.find_last_of('.');
   const size_t slash = file.find_last_of("/\\");
@@ -472,9 +475,10 @@ Json parseJson(const std::string& text, const std::string& path) {
 
 // The sun at a place and time (sun_position.h): a directional light coming from where the sun
 // stands, with the clear-sky direct light of that elevation unless "irradiance" or
-// "illuminance_lux" says how much. "north" and "up" are the scene's axes (up +y by default).
+// "illuminance_lux" says how much. "north" is the scene's; its own "up" (the key it had before
+// the scene's) must be the scene's "up" and gives it where the scene does not.
 Light readSun(const JsonReader& r, const Json& j, const std::string& ptr, const LengthUnit& unit,
-              SceneBuilder& builder) {
+              std::optional<Vec3>& sceneUp, SceneBuilder& builder) {
   r.checkKeys(j, ptr,
               {"type", "latitude", "longitude", "datetime", "north", "up", "irradiance",
                "illuminance_lux", "group"});
@@ -491,7 +495,13 @@ Light readSun(const JsonReader& r, const Json& j, const std::string& ptr, const 
   std::string why;
   if (!parseIsoTime(r.string(required("datetime"), ptr + "/datetime"), time, why))
     r.fail(ptr + "/datetime", why);
-  const Vec3 up = j.contains("up") ? readDirection(r, j["up"], ptr + "/up") : Vec3(0, 1, 0);
+  if (j.contains("up")) {
+    const Vec3 own = readDirection(r, j["up"], ptr + "/up");
+    if (sceneUp && !(glm::dot(own, *sceneUp) > 1.0f - 1e-6f))
+      r.fail(ptr + "/up", "differs from the scene's \"up\" (give it once, at the top level)");
+    sceneUp = own;
+  }
+  const Vec3 up = sceneUp.value_or(kDefaultUp);
   Vec3 north = readDirection(r, required("north"), ptr + "/north");
   north -= glm::dot(north, up) * up;  // its horizontal part
   if (!(glm::length(north) > 1e-3f)) r.fail(ptr + "/north", "must not point along \"up\"");
@@ -521,6 +531,56 @@ Light readSun(const JsonReader& r, const Json& j, const std::string& ptr, const 
   return light;
 }
 
+// The sun a CIE clear sky is drawn about: the scene's one directional light (a "sun" or
+// "directional" entry), as it stands at time 0.
+Vec3 towardSunOf(const JsonReader& r, const std::vector<Light>& lights, SceneBuilder& builder) {
+  const Light* sun = nullptr;
+  for (const Light& light : lights) {
+    if (light.type != LightType::Directional) continue;
+    if (sun)
+      r.fail("/sky/type", "a cie-clear sky needs one sun: the scene has two directional lights");
+    sun = &light;
+  }
+  if (!sun)
+    r.fail("/sky/type",
+           "a cie-clear sky is drawn about the sun: the scene needs a \"sun\" or \"directional\" "
+           "light");
+  if (sun->animated())
+    builder.warn(r.path(),
+                 "/sky: a cie-clear sky stays about the sun as it stands at time 0; it "
+                 "does not follow the sun's path");
+  return -sun->direction;
+}
+
+// "sky": light from every direction above the scene's horizon (sky.h), a light of its own light
+// group ("sky" unless "group" says).
+Light readSky(const JsonReader& r, const Json& j, const Vec3& up, const std::vector<Light>& lights,
+              SceneBuilder& builder) {
+  const std::string ptr = "/sky";
+  r.requireObject(j, ptr);
+  if (!j.contains("type")) r.fail(ptr, "missing key \"type\" (uniform, cie-overcast or cie-clear)");
+  const std::string type = r.string(j["type"], ptr + "/type");
+  Light light;
+  light.type = LightType::Sky;
+  light.group = "sky";
+  light.sky.up = up;
+  const SkyModel models[] = {SkyModel::Uniform, SkyModel::CieOvercast, SkyModel::CieClear};
+  const auto model = std::find_if(std::begin(models), std::end(models),
+                                  [&](SkyModel m) { return type == skyModelName(m); });
+  if (model == std::end(models))
+    r.fail(ptr + "/type", fmt::format("unknown sky type {} (expected uniform, cie-overcast or "
+                                      "cie-clear)",
+                                      quotedToken(type)));
+  light.sky.model = *model;
+  const char* key = light.sky.model == SkyModel::Uniform ? "radiance" : "zenith_radiance";
+  r.checkKeys(j, ptr, {"type", key, "group"});
+  if (!j.contains(key)) r.fail(ptr, fmt::format("missing key \"{}\" for a {} sky", key, type));
+  light.intensity = r.color(j[key], ptr + "/" + key, key, 0.0, kMaxLight);
+  if (j.contains("group")) light.group = readGroupName(r, j["group"], ptr + "/group");
+  if (light.sky.model == SkyModel::CieClear) light.sky.towardSun = towardSunOf(r, lights, builder);
+  return light;
+}
+
 // "unit": the length unit of the scene's coordinates (after the geometry's transforms).
 LengthUnit readUnit(const JsonReader& r, const Json& j) {
   const std::string name = r.string(j, "/unit");
@@ -537,8 +597,8 @@ Scene loadSceneJson(const std::string& path) {
   const Json root = parseJson(readTextFile(path, "scene file"), path);
   const JsonReader r(path);
   r.checkKeys(root, "",
-              {"unit", "geometry", "materials", "lights", "camera", "dynamic_objects", "solver",
-               "sensors"});
+              {"unit", "up", "geometry", "materials", "lights", "sky", "camera",
+               "dynamic_objects", "solver", "sensors"});
   SceneBuilder builder(path);
   std::vector<MaterialAssignment> assignments;
   if (root.contains("geometry")) assignments = readGeometry(r, root["geometry"], builder);
@@ -549,6 +609,8 @@ Scene loadSceneJson(const std::string& path) {
   if (root.contains("materials")) readMaterials(r, root["materials"], assigned, scene);
   assignMaterials(r, assignments, scene);
   if (root.contains("dynamic_objects")) readDynamicObjects(r, root["dynamic_objects"], scene);
+  std::optional<Vec3> up;  // the scene's zenith, for the sun and the sky
+  if (root.contains("up")) up = readDirection(r, root["up"], "/up");
   if (root.contains("lights")) {
     const Json& lights = root["lights"];
     if (!lights.is_array())
@@ -557,10 +619,12 @@ Scene loadSceneJson(const std::string& path) {
       const std::string at = fmt::format("/lights/{}", i);
       const Json& light = lights[i];
       const bool sun = light.is_object() && light.value("type", Json()) == "sun";
-      scene.lights.push_back(sun ? readSun(r, light, at, scene.unit, builder)
+      scene.lights.push_back(sun ? readSun(r, light, at, scene.unit, up, builder)
                                  : readLight(r, light, at, scene.unit));
     }
   }
+  if (root.contains("sky"))
+    scene.lights.push_back(readSky(r, root["sky"], up.value_or(kDefaultUp), scene.lights, builder));
   if (root.contains("camera")) scene.camera = readCamera(r, root["camera"]);
   if (root.contains("solver")) scene.solver = readSolver(r, root["solver"]);
   Scene built = builder.build();
