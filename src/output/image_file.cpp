@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "output/image_formats.h"
+#include "scene/io/exr_reader.h"
 
 namespace rad {
 

@@ -2,7 +2,7 @@
 // The per-format image readers and writers behind writeImage/readImage (include/radiosity/image.h).
 // Writers write to `file` (a temporary chosen by writeFileAtomically) and name `displayName`, the
 // path the user asked for, in their errors. Readers throw InputError naming the file when it
-// is malformed or truncated.
+// is malformed or truncated (EXR's reader is the scene's: scene/io/exr_reader.h).
 
 #include <radiosity/image.h>
 
@@ -28,9 +28,6 @@ std::string encodeTonemappedPng(const Image& image, float exposureEV);
 /// a write failure.
 void writeExr(const std::filesystem::path& file, const Image& image, ExrPixelType type,
               const std::string& displayName);
-/// Reads the R, G, B channels (half, float or uint, converted to float) of an EXR file; a file
-/// with only a Y channel reads as grey. Alpha and other channels are ignored.
-Image readExr(const std::filesystem::path& file);
 
 /// Portable float map: "PF" colour, little-endian (scale -1), rows stored bottom to top.
 void writePfm(const std::filesystem::path& file, const Image& image,

@@ -67,6 +67,10 @@ void hashLights(Hasher& h, std::span<const Light> lights) {
     h.value(l.sky.model);
     h.value(l.sky.up);
     h.value(l.sky.towardSun);
+    h.value(l.sky.forward);
+    if (!l.sky.map) continue;
+    h.value(l.sky.map->width);
+    h.bytes(l.sky.map->pixels.data(), l.sky.map->pixels.size() * sizeof(Color));
   }
 }
 

@@ -1,11 +1,13 @@
 // The sky models: the CIE standard overcast sky (Moon and Spencer 1942, adopted by the CIE in
 // 1955) and the CIE clear sky (Kittler 1967, CIE 1973; ISO 15469:2004/CIE S 011 type 12), as
-// docs/references.md 5.3 and 5.4 give them.
+// docs/references.md 5.3 and 5.4 give them, and an equirectangular environment map (the
+// latitude-longitude map of Debevec's light probes).
 #include <radiosity/sky.h>
 
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 
 namespace rad {
 
@@ -16,9 +18,11 @@ const char* skyModelName(SkyModel model) {
     case SkyModel::CieOvercast:
       return "cie-overcast";
     case SkyModel::CieClear:
+      return "cie-clear";
+    case SkyModel::Environment:
       break;
   }
-  return "cie-clear";
+  return "environment";
 }
 
 namespace {
@@ -32,24 +36,38 @@ double clearSkyShape(double cosChi, double cosZenith) {
   return indicatrix * gradation;
 }
 
+// The texel of an equirectangular map (its middle column along `forward`, rows by polar angle
+// from `up`) the direction w falls in.
+Color mapTexel(const Image& map, const Vec3& w, const Vec3& up, const Vec3& forward) {
+  const Vec3 right = glm::cross(forward, up);
+  const double azimuth = std::atan2(double(glm::dot(w, right)), double(glm::dot(w, forward)));
+  const double polar = std::acos(std::clamp(double(glm::dot(w, up)), -1.0, 1.0));
+  const double u = 0.5 + azimuth / (2.0 * glm::pi<double>()), v = polar / glm::pi<double>();
+  const int x = std::clamp(int(u * map.width), 0, map.width - 1);
+  const int y = std::clamp(int(v * map.height), 0, map.height - 1);
+  return map.at(x, y);
+}
+
 }  // namespace
 
-float Sky::relativeRadiance(const Vec3& w) const {
+Color Sky::relativeRadiance(const Vec3& w) const {
   const float sinElevation = glm::dot(w, up);
-  if (!(sinElevation > 0.0f)) return 0.0f;
+  if (!(sinElevation > 0.0f)) return Color(0.0f);
   switch (model) {
     case SkyModel::Uniform:
-      return 1.0f;
+      return Color(1.0f);
     case SkyModel::CieOvercast:
-      return (1.0f + 2.0f * sinElevation) / 3.0f;
+      return Color((1.0f + 2.0f * sinElevation) / 3.0f);
     case SkyModel::CieClear: {
       // Over its value at the zenith, where chi is the sun's zenith angle.
       const double sunCosZenith = glm::dot(towardSun, up);
       const double zenith = clearSkyShape(sunCosZenith, 1.0);
-      return float(clearSkyShape(glm::dot(w, towardSun), sinElevation) / zenith);
+      return Color(float(clearSkyShape(glm::dot(w, towardSun), sinElevation) / zenith));
     }
+    case SkyModel::Environment:
+      return map ? mapTexel(*map, w, up, forward) : Color(0.0f);
   }
-  return 0.0f;
+  return Color(0.0f);
 }
 
 }  // namespace rad

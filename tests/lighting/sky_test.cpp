@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <numbers>
 
 #include "light_test_scenes.h"
@@ -40,17 +41,17 @@ VoxelRadiositySettings smallVoxelSettings() {
 TEST(Sky, ModelsGiveTheirRelativeRadiance) {
   Sky overcast;
   overcast.model = SkyModel::CieOvercast;
-  EXPECT_FLOAT_EQ(overcast.relativeRadiance(Vec3(0, 1, 0)), 1.0f);
-  EXPECT_NEAR(overcast.relativeRadiance(glm::normalize(Vec3(1, 1, 0))),
+  EXPECT_FLOAT_EQ(overcast.relativeRadiance(Vec3(0, 1, 0)).g, 1.0f);
+  EXPECT_NEAR(overcast.relativeRadiance(glm::normalize(Vec3(1, 1, 0))).g,
               (1.0 + 2.0 * std::sqrt(0.5)) / 3.0, 1e-6);
-  EXPECT_NEAR(overcast.relativeRadiance(glm::normalize(Vec3(1, 1e-6f, 0))), 1.0 / 3.0, 1e-5);
-  EXPECT_EQ(overcast.relativeRadiance(Vec3(0, -1, 0)), 0.0f);
+  EXPECT_NEAR(overcast.relativeRadiance(glm::normalize(Vec3(1, 1e-6f, 0))).g, 1.0 / 3.0, 1e-5);
+  EXPECT_EQ(overcast.relativeRadiance(Vec3(0, -1, 0)).g, 0.0f);
   overcast.up = Vec3(0, 0, 1);
-  EXPECT_FLOAT_EQ(overcast.relativeRadiance(Vec3(0, 0, 1)), 1.0f);
-  EXPECT_EQ(overcast.relativeRadiance(Vec3(0, 1, 0)), 0.0f);  // the horizon of a z-up scene
+  EXPECT_FLOAT_EQ(overcast.relativeRadiance(Vec3(0, 0, 1)).g, 1.0f);
+  EXPECT_EQ(overcast.relativeRadiance(Vec3(0, 1, 0)).g, 0.0f);  // the horizon of a z-up scene
   const Sky uniform;
-  EXPECT_EQ(uniform.relativeRadiance(glm::normalize(Vec3(1, 0.01f, 0))), 1.0f);
-  EXPECT_EQ(uniform.relativeRadiance(glm::normalize(Vec3(1, -0.01f, 0))), 0.0f);
+  EXPECT_EQ(uniform.relativeRadiance(glm::normalize(Vec3(1, 0.01f, 0))).g, 1.0f);
+  EXPECT_EQ(uniform.relativeRadiance(glm::normalize(Vec3(1, -0.01f, 0))).g, 0.0f);
 }
 
 // The CIE clear sky (5.4) about a sun at 45 degrees: 1 at the zenith; at the sun, where chi = 0
@@ -62,14 +63,50 @@ TEST(Sky, TheClearSkyIsBrightestAboutTheSun) {
   Sky clear;
   clear.model = SkyModel::CieClear;
   clear.towardSun = glm::normalize(Vec3(1, 1, 0));
-  EXPECT_FLOAT_EQ(clear.relativeRadiance(Vec3(0, 1, 0)), 1.0f);
-  const double atSun = (0.91 + 10.0 + 0.45) * (1.0 - std::exp(-0.32 / std::sqrt(0.5))) /
-                       ((0.91 + 10.0 * std::exp(-3.0 * kPi / 4.0) + 0.45 * 0.5) *
-                        (1.0 - std::exp(-0.32)));
-  EXPECT_NEAR(clear.relativeRadiance(clear.towardSun), atSun, 2e-3 * atSun);
+  EXPECT_FLOAT_EQ(clear.relativeRadiance(Vec3(0, 1, 0)).g, 1.0f);
+  const double atSun =
+      (0.91 + 10.0 + 0.45) * (1.0 - std::exp(-0.32 / std::sqrt(0.5))) /
+      ((0.91 + 10.0 * std::exp(-3.0 * kPi / 4.0) + 0.45 * 0.5) * (1.0 - std::exp(-0.32)));
+  EXPECT_NEAR(clear.relativeRadiance(clear.towardSun).g, atSun, 2e-3 * atSun);
   EXPECT_NEAR(atSun, 7.2495, 1e-4);
-  EXPECT_LT(clear.relativeRadiance(glm::normalize(Vec3(-1, 1, 0))), 1.0f);  // away from the sun
-  EXPECT_EQ(clear.relativeRadiance(Vec3(0, -1, 0)), 0.0f);
+  EXPECT_LT(clear.relativeRadiance(glm::normalize(Vec3(-1, 1, 0))).g, 1.0f);  // away from the sun
+  EXPECT_EQ(clear.relativeRadiance(Vec3(0, -1, 0)).g, 0.0f);
+}
+
+// An environment map of 64 x 32 texels: its middle column looks along forward (-z), those to the
+// right along forward x up (+x); rows go by polar angle, the lower half unused. A map whose rows
+// hold the overcast sky's shape at their middle polar angle lights an open floor with the sum
+// over the upper rows of value x pi (sin^2 theta1 - sin^2 theta0), the band's integral of cos
+// (5.3's 7 pi / 9 less the rows' discretization).
+TEST(Sky, AnEnvironmentMapLightsByItsTexels) {
+  Image map(64, 32);
+  for (int x = 0; x < 64; ++x) map.at(x, 7) = Color(x < 32 ? 2.0f : 0.5f);
+  Sky sky;
+  sky.model = SkyModel::Environment;
+  sky.map = std::make_shared<const Image>(map);
+  // Row 7 spans polar angles 39.4 to 45 degrees: elevation 50 is 40 from the zenith.
+  const float c = std::cos(glm::radians(50.0f)), sn = std::sin(glm::radians(50.0f));
+  EXPECT_EQ(sky.relativeRadiance(Vec3(-c, sn, 0)).g, 2.0f);  // left of forward: -x
+  EXPECT_EQ(sky.relativeRadiance(Vec3(c, sn, 0)).g, 0.5f);
+  sky.forward = Vec3(0, 0, 1);  // turned half a turn
+  EXPECT_EQ(sky.relativeRadiance(Vec3(-c, sn, 0)).g, 0.5f);
+  EXPECT_EQ(sky.relativeRadiance(Vec3(0, -1, 0)).g, 0.0f);  // below the horizon
+
+  double expected = 0.0;
+  for (int y = 0; y < 16; ++y) {
+    const double theta0 = kPi * y / 32.0, theta1 = kPi * (y + 1) / 32.0;
+    const float value = float((1.0 + 2.0 * std::cos(0.5 * (theta0 + theta1))) / 3.0);
+    for (int x = 0; x < 64; ++x) map.at(x, y) = Color(value);
+    expected += value * kPi * (std::pow(std::sin(theta1), 2) - std::pow(std::sin(theta0), 2));
+  }
+  EXPECT_NEAR(expected, 7.0 * kPi / 9.0, 0.002 * expected);
+  Light light = skyOf(SkyModel::Environment, Color(1.0f));
+  light.sky.map = std::make_shared<const Image>(map);
+  const Scene scene = test::floorUnderLight(2.0f, light);
+  const PatchRadiosity patch(scene, test::uncachedPatchSettings(100));
+  EXPECT_NEAR(test::objectNamed(patch, "floor").meanIrradiance.g, expected, 0.01 * expected);
+  const std::map<std::string, ObjectRadiometry> traced = test::tracedObjectMeans(scene, 400, 16, 1);
+  EXPECT_NEAR(traced.at("floor").meanIrradiance.g, expected, 0.01 * expected);
 }
 
 // Camera rays that leave the scene see the sky in both renderers: looking straight up past a
@@ -185,7 +222,8 @@ TEST(Sky, ARoofOpeningLightsTheFloorByItsConfigurationFactor) {
   EXPECT_NEAR(test::objectNamed(voxel, "floor").meanIrradiance.g, floorMean, 0.03 * floorMean);
   EXPECT_NEAR(voxel.irradiance(atCentre).g, centre, 0.03 * centre);
 
-  const std::map<std::string, ObjectRadiometry> traced = test::tracedObjectMeans(scene, 4000, 256, 1);
+  const std::map<std::string, ObjectRadiometry> traced =
+      test::tracedObjectMeans(scene, 4000, 256, 1);
   EXPECT_NEAR(traced.at("floor").meanIrradiance.g, floorMean, 0.01 * floorMean);
 }
 

@@ -3,6 +3,7 @@
 // its key.
 #include <gtest/gtest.h>
 #include <radiosity/error.h>
+#include <radiosity/image.h>
 #include <radiosity/scene_loader.h>
 
 #include <string>
@@ -42,8 +43,8 @@ TEST(SceneFileSky, SkiesAreLightsOfTheirOwnGroupOnTheScenesUp) {
   EXPECT_EQ(overcast.lights.at(0).group, "daylight");
 
   // A clear sky stands about the scene's sun: toward it is against the way its light travels.
-  const Scene clear =
-      loadWith(std::string(", ") + kSun + R"(, "sky": {"type": "cie-clear", "zenith_radiance": [1, 1, 1]})");
+  const Scene clear = loadWith(std::string(", ") + kSun +
+                               R"(, "sky": {"type": "cie-clear", "zenith_radiance": [1, 1, 1]})");
   ASSERT_EQ(clear.lights.size(), 2u);
   const Vec3 toward = clear.lights[1].sky.towardSun;
   EXPECT_NEAR(toward.y, std::sqrt(0.5f), 1e-6f);
@@ -65,6 +66,34 @@ TEST(SceneFileSky, ASunsUpIsTheScenes) {
   }
 }
 
+// An environment map is read from its EXR, turned about up: 90 degrees turns its middle column
+// from -z to -x (right-handed about +y).
+TEST(SceneFileSky, AnEnvironmentIsReadFromItsMapAndTurned) {
+  const auto dir = test::scratchDir("sky_map");  // beside the scene's own, which loadWith empties
+  Image map(8, 4);
+  map.at(0, 0) = Color(1.0f, 2.0f, 3.0f);
+  writeImage((dir / "sky.exr").string(), map, {0.0f, ExrPixelType::Float});
+  const Scene s = loadWith(R"(, "sky": {"type": "environment", "file": ")" +
+                           (dir / "sky.exr").string() + R"(", "rotation_deg": 90, "scale": 2})");
+  const Light& sky = s.lights.at(0);
+  EXPECT_EQ(sky.sky.model, SkyModel::Environment);
+  ASSERT_TRUE(sky.sky.map);
+  EXPECT_EQ(sky.sky.map->at(0, 0), Color(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(sky.intensity, Color(2.0f));
+  EXPECT_NEAR(sky.sky.forward.x, -1.0f, 1e-6f);
+  EXPECT_NEAR(sky.sky.forward.z, 0.0f, 1e-6f);
+
+  map.at(1, 1) = Color(-1.0f);
+  writeImage((dir / "negative.exr").string(), map, {0.0f, ExrPixelType::Float});
+  try {
+    loadWith(R"(, "sky": {"type": "environment", "file": ")" + (dir / "negative.exr").string() +
+             R"("})");
+    ADD_FAILURE() << "a negative radiance loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/sky/file"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SceneFileSky, BadSkiesAreErrorsNamingTheKey) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
       {R"("sky": {"type": "cloudy", "radiance": [1, 1, 1]})",
@@ -81,6 +110,11 @@ TEST(SceneFileSky, BadSkiesAreErrorsNamingTheKey) {
        {"/sky/type", "needs a \"sun\""}},
       {R"("up": [0, 0, 0], "sky": {"type": "uniform", "radiance": [1, 1, 1]})",
        {"/up", "zero length"}},
+      {R"("sky": {"type": "environment"})", {"/sky", "missing key \"file\""}},
+      {R"("sky": {"type": "environment", "file": "sky.png"})", {"/sky/file", ".exr"}},
+      {R"("sky": {"type": "environment", "file": "none.exr"})", {"none.exr"}},
+      {R"("sky": {"type": "environment", "file": "a.exr", "radiance": [1, 1, 1]})",
+       {"/sky/radiance", "unknown key"}},
   };
   for (const auto& [rest, expected] : cases) {
     try {

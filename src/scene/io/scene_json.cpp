@@ -20,6 +20,7 @@
 #include <set>
 
 #include "core/json_nesting.h"
+#include "scene/io/exr_reader.h"
 #include "scene/io/gltf_loader.h"
 #include "scene/io/json_reader.h"
 #include "scene/io/obj_loader.h"
@@ -552,31 +553,69 @@ Vec3 towardSunOf(const JsonReader& r, const std::vector<Light>& lights, SceneBui
   return -sun->direction;
 }
 
+// An environment sky's map (an equirectangular EXR of radiance in W/(sr unit^2), every texel
+// finite and >= 0), turned by "rotation_deg" about up (right-handed) from the middle column
+// looking along -z (+y where up is along z), times "scale" (1).
+void readEnvironment(const JsonReader& r, const Json& j, Light& light) {
+  const std::string ptr = "/sky";
+  r.checkKeys(j, ptr, {"type", "file", "rotation_deg", "scale", "group"});
+  if (!j.contains("file")) r.fail(ptr, "missing key \"file\" for an environment sky");
+  const std::string file =
+      resolvePath(parentDirectory(r.path()), r.string(j["file"], ptr + "/file"));
+  if (lowerExtension(file) != ".exr")
+    r.fail(ptr + "/file", "an environment map is an equirectangular .exr file");
+  Image map = readExr(file);
+  for (const Color& c : map.pixels)
+    if (!(minComponent(c) >= 0.0f && maxComponent(c) < kMaxLight))
+      r.fail(ptr + "/file", fmt::format("{} holds a radiance outside [0, {:g})", file, kMaxLight));
+  light.sky.map = std::make_shared<const Image>(std::move(map));
+  const Vec3 up = light.sky.up;
+  const Vec3 reference = std::abs(up.z) < 0.9f ? Vec3(0, 0, -1) : Vec3(0, 1, 0);
+  Vec3 forward = glm::normalize(reference - glm::dot(reference, up) * up);
+  if (j.contains("rotation_deg")) {
+    const float turn = glm::radians(float(r.number(j["rotation_deg"], ptr + "/rotation_deg")));
+    forward = std::cos(turn) * forward + std::sin(turn) * glm::cross(up, forward);
+  }
+  light.sky.forward = forward;
+  double scale = 1.0;
+  if (j.contains("scale")) {
+    scale = r.number(j["scale"], ptr + "/scale");
+    if (!(scale >= 0.0)) r.fail(ptr + "/scale", fmt::format("scale {} must be >= 0", scale));
+  }
+  light.intensity = radiometricOf(r, ptr + "/scale", Color(float(scale)), 1.0);
+}
+
 // "sky": light from every direction above the scene's horizon (sky.h), a light of its own light
 // group ("sky" unless "group" says).
 Light readSky(const JsonReader& r, const Json& j, const Vec3& up, const std::vector<Light>& lights,
               SceneBuilder& builder) {
   const std::string ptr = "/sky";
   r.requireObject(j, ptr);
-  if (!j.contains("type")) r.fail(ptr, "missing key \"type\" (uniform, cie-overcast or cie-clear)");
+  if (!j.contains("type"))
+    r.fail(ptr, "missing key \"type\" (uniform, cie-overcast, cie-clear or environment)");
   const std::string type = r.string(j["type"], ptr + "/type");
   Light light;
   light.type = LightType::Sky;
   light.group = "sky";
   light.sky.up = up;
-  const SkyModel models[] = {SkyModel::Uniform, SkyModel::CieOvercast, SkyModel::CieClear};
+  const SkyModel models[] = {SkyModel::Uniform, SkyModel::CieOvercast, SkyModel::CieClear,
+                             SkyModel::Environment};
   const auto model = std::find_if(std::begin(models), std::end(models),
                                   [&](SkyModel m) { return type == skyModelName(m); });
   if (model == std::end(models))
-    r.fail(ptr + "/type", fmt::format("unknown sky type {} (expected uniform, cie-overcast or "
-                                      "cie-clear)",
+    r.fail(ptr + "/type", fmt::format("unknown sky type {} (expected uniform, cie-overcast, "
+                                      "cie-clear or environment)",
                                       quotedToken(type)));
   light.sky.model = *model;
+  if (j.contains("group")) light.group = readGroupName(r, j["group"], ptr + "/group");
+  if (light.sky.model == SkyModel::Environment) {
+    readEnvironment(r, j, light);
+    return light;
+  }
   const char* key = light.sky.model == SkyModel::Uniform ? "radiance" : "zenith_radiance";
   r.checkKeys(j, ptr, {"type", key, "group"});
   if (!j.contains(key)) r.fail(ptr, fmt::format("missing key \"{}\" for a {} sky", key, type));
   light.intensity = r.color(j[key], ptr + "/" + key, key, 0.0, kMaxLight);
-  if (j.contains("group")) light.group = readGroupName(r, j["group"], ptr + "/group");
   if (light.sky.model == SkyModel::CieClear) light.sky.towardSun = towardSunOf(r, lights, builder);
   return light;
 }
