@@ -181,11 +181,12 @@ VoxelRadiosity::VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model,
   const bool emittingSurfaces = std::any_of(scene.materials.begin(), scene.materials.end(),
                                             [](const Material& m) { return m.emits(); });
   if (!settings.directFirstShot && !impl_->lights.empty() && !emittingSurfaces)
-    throw InputError("voxel settings",
-                     fmt::format("without the first shot (--no-first-shot) the scene's {} "
-                                 "point/spot/IES light(s), all its light, reach no voxel: the "
-                                 "solution would be black",
-                                 impl_->lights.size()));
+    throw InputError(
+        "voxel settings",
+        fmt::format("without the first shot (--no-first-shot) the scene's {} "
+                    "light(s) (point, spot, IES, sun, sky), all its light, reach no voxel: the "
+                    "solution would be black",
+                    impl_->lights.size()));
   const VoxelSolverSettings solver = solverSettings(settings);
   impl_->mix = LightGroupMix(scene, impl_->lights, settings.lightGroups);
   if (impl_->mix.apart())
@@ -198,7 +199,7 @@ VoxelRadiosity::VoxelRadiosity(std::shared_ptr<const VoxelModel::State> model,
   const VoxelSolution& solution = impl_->solution;
   if (!settings.directFirstShot && !impl_->lights.empty())
     s.warnings.push_back(
-        fmt::format("{} point/spot/IES light(s) ignored: only the first shot "
+        fmt::format("{} light(s) (point, spot, IES, sun, sky) ignored: only the first shot "
                     "(--first-shot) lights voxels from lights",
                     impl_->lights.size()));
   if (scene.hasCoverage())
