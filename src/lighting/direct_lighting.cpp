@@ -105,7 +105,7 @@ Color DirectLighting::skyOver(const Light& sky, std::span<const Vec3> points,
   uint64_t bits[3] = {};
   std::memcpy(bits, key, sizeof key);
   Rng rng(splitMix64(bits[0] ^ splitMix64(bits[1])), splitMix64(bits[2]));
-  const int q = int(points.size()), count = q * skySamples_;
+  const int q = int(points.size()), count = q * std::max(1, skySamples_ / q);
   const std::vector<int> owner = randomPermutation(count, rng);
   Vec3d sum(0.0);
   for (int s = 0; s < count; ++s) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <radiosity/patch_radiosity.h>
 #include <radiosity/path_tracer.h>
+#include <radiosity/sensors.h>
 #include <radiosity/surface_radiance.h>
 #include <radiosity/voxel_radiosity.h>
 
@@ -225,6 +226,30 @@ TEST(Sky, ARoofOpeningLightsTheFloorByItsConfigurationFactor) {
   const std::map<std::string, ObjectRadiometry> traced =
       test::tracedObjectMeans(scene, 4000, 256, 1);
   EXPECT_NEAR(traced.at("floor").meanIrradiance.g, floorMean, 0.01 * floorMean);
+}
+
+// Sensors (sensors.h) read the sky at their points through DirectLighting: under the roof
+// opening of the test above, pi L F at each point (1(d)). The rays (4,096 a point) leave 1.2% rms
+// at the centre (measured here: -1.3%; 0.5 off the axis +0.3%, 1 unit up -0.9%), more where the
+// opening is a smaller share of the hemisphere (F = 0.025 at (1.5, 0, -1): +6.3%).
+TEST(Sky, SensorsReadTheSkyThroughTheOpening) {
+  const float l = 2.0f;
+  const Scene scene = roofOpeningBox(skyOf(SkyModel::Uniform, Color(l)));
+  const PatchRadiosity patch(scene, test::uncachedPatchSettings(400));
+  const std::vector<SensorPoint> points = {{Vec3(0.0f), Vec3(0, 1, 0)},
+                                           {Vec3(0.5f, 0.0f, 0.5f), Vec3(0, 1, 0)},
+                                           {Vec3(1.5f, 0.0f, -1.0f), Vec3(0, 1, 0)},
+                                           {Vec3(0.0f, 1.0f, 0.0f), Vec3(0, 1, 0)}};
+  const std::vector<Color> e =
+      sensorIrradiance(scene, RayCaster(scene), patch, points, SensorSettings{});
+  const double tolerance[] = {0.02, 0.02, 0.1, 0.02};
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Vec3& p = points[i].position;
+    const double expected =
+        kPi * l * test::pointToParallelRectangleF(p.x, p.z, -0.5, 0.5, -0.5, 0.5, 2.0 - p.y);
+    EXPECT_NEAR(e[i].g, expected, tolerance[i] * expected)
+        << "at " << p.x << ", " << p.y << ", " << p.z;
+  }
 }
 
 }  // namespace

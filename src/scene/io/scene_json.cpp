@@ -636,8 +636,8 @@ Scene loadSceneJson(const std::string& path) {
   const Json root = parseJson(readTextFile(path, "scene file"), path);
   const JsonReader r(path);
   r.checkKeys(root, "",
-              {"unit", "up", "geometry", "materials", "lights", "sky", "camera",
-               "dynamic_objects", "solver", "sensors"});
+              {"unit", "up", "geometry", "materials", "lights", "sky", "camera", "dynamic_objects",
+               "solver", "sensors"});
   SceneBuilder builder(path);
   std::vector<MaterialAssignment> assignments;
   if (root.contains("geometry")) assignments = readGeometry(r, root["geometry"], builder);
