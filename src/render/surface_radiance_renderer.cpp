@@ -99,7 +99,8 @@ Image renderSurfaceRadiance(const Scene& scene, const RayCaster& caster, const C
           const Ray ray = pinhole.ray(x, y, pixelSample(s, settings.samplesPerPixel, rng));
           const Hit hit = caster.intersect(ray);
           if (!hit.valid()) {
-            sum += shade.escaped(ray.direction);
+            // The sky where a picture of radiance looks out; no surface, no irradiance.
+            if (!settings.irradiance) sum += shade.escaped(ray.direction);
             continue;
           }
           const SurfaceHit at{ray.origin + hit.distance * ray.direction, hit.geometricNormal,

@@ -52,5 +52,24 @@ TEST(IrradiancePicture, TheFloorUnderAPointLightShowsIOverHSquared) {
   EXPECT_THROW(renderSurfaceRadiance(scene, lookingDown(), patch, settings), InputError);
 }
 
+// Looking up from the floor into a uniform sky: a picture of radiance shows the sky's L, one of
+// the irradiance shows nothing there (no surface receives it).
+TEST(IrradiancePicture, TheSkyIsNoSurface) {
+  Light sky;
+  sky.type = LightType::Sky;
+  sky.sky.model = SkyModel::Uniform;
+  sky.intensity = Color(0.5f);
+  const Scene scene = test::floorUnderLight(3.0f, sky);
+  Camera up = lookingDown();
+  up.eye = Vec3(0.0f, 1.0f, 0.0f);
+  up.target = Vec3(0.0f, 5.0f, 0.0f);
+  const PatchRadiosity patch(scene, test::uncachedPatchSettings(100));
+  SurfaceRenderSettings settings;
+  settings.samplesPerPixel = 1;
+  EXPECT_NEAR(renderSurfaceRadiance(scene, up, patch, settings).at(16, 16).g, 0.5f, 1e-6f);
+  settings.irradiance = true;
+  EXPECT_EQ(renderSurfaceRadiance(scene, up, patch, settings).at(16, 16).g, 0.0f);
+}
+
 }  // namespace
 }  // namespace rad
