@@ -201,34 +201,28 @@ ViewerServer::ViewerServer(const std::filesystem::path& webRoot)
       response.set_content(session.objectsCsv(), "text/csv");
     });
   });
-  http.Get("/api/dynamic", [this](const httplib::Request& request, httplib::Response& response) {
-    // ?t=SECONDS (0 when absent): the dynamic objects there, lit by probes.
-    withSession(response, [&](ViewerSession& session) {
-      try {
-        response.set_content(session.objectsAt(secondsParam(request)).dump(), "application/json");
-      } catch (const InputError& e) {
-        badRequest(response, e.what());
-      }
+  // A GET the session answers with JSON from the request's parameters; a bad one is a 400.
+  const auto getJson = [&](const char* path, auto answer) {
+    http.Get(path, [this, answer](const httplib::Request& request, httplib::Response& response) {
+      withSession(response, [&](ViewerSession& session) {
+        try {
+          response.set_content(answer(session, request).dump(), "application/json");
+        } catch (const InputError& e) {
+          badRequest(response, e.what());
+        }
+      });
     });
+  };
+  // ?t=SECONDS (0 when absent): the dynamic objects there, lit by probes, and the sensors read
+  // with the objects there.
+  getJson("/api/dynamic", [](const ViewerSession& session, const httplib::Request& request) {
+    return session.objectsAt(secondsParam(request));
   });
-  http.Get("/api/sensors", [this](const httplib::Request& request, httplib::Response& response) {
-    withSession(response, [&](ViewerSession& session) {
-      try {
-        response.set_content(session.sensorSets(secondsParam(request)).dump(), "application/json");
-      } catch (const InputError& e) {
-        badRequest(response, e.what());
-      }
-    });
+  getJson("/api/sensors", [](const ViewerSession& session, const httplib::Request& request) {
+    return session.sensorSets(secondsParam(request));
   });
-  http.Get("/api/sensor", [this](const httplib::Request& request, httplib::Response& response) {
-    withSession(response, [&](ViewerSession& session) {
-      try {
-        response.set_content(session.sensorAt(sensorParam(request), secondsParam(request)).dump(),
-                             "application/json");
-      } catch (const InputError& e) {
-        badRequest(response, e.what());
-      }
-    });
+  getJson("/api/sensor", [](const ViewerSession& session, const httplib::Request& request) {
+    return session.sensorAt(sensorParam(request), secondsParam(request));
   });
   http.Post("/api/lights", [this](const httplib::Request& request, httplib::Response& response) {
     withSession(response, [&](ViewerSession& session) {
