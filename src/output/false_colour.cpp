@@ -80,17 +80,22 @@ int fontScale(int height) {
   return std::max(1, int(std::lround(double(height) / 180.0)));
 }
 
-// The legend's labels: the value at each step, bottom to top.
-std::vector<std::string> legendLabels(double top, double step) {
-  std::vector<std::string> labels;
-  for (double v = 0.0; v <= top * (1.0 + 1e-9); v += step) labels.push_back(fmt::format("{:g}", v));
-  return labels;
+// The legend's steps, bottom to top, and their labels.
+struct LegendStep {
+  double value;
+  std::string label;
+};
+std::vector<LegendStep> legendSteps(double top, double step) {
+  std::vector<LegendStep> steps;
+  for (double v = 0.0; v <= top * (1.0 + 1e-9); v += step)
+    steps.push_back({v, fmt::format("{:g}", v)});
+  return steps;
 }
 
 // The legend strip's width: a bar, its ticks and the widest label or the unit.
-int legendWidth(int height, const std::vector<std::string>& labels, const std::string& unit) {
+int legendWidth(int height, const std::vector<LegendStep>& steps, const std::string& unit) {
   int widest = 0;
-  for (std::string text : labels) widest = std::max(widest, stb_easy_font_width(text.data()));
+  for (LegendStep s : steps) widest = std::max(widest, stb_easy_font_width(s.label.data()));
   std::string copy = unit;
   widest = std::max(widest, stb_easy_font_width(copy.data()));
   return fontScale(height) * (6 + 8 + 3 + 4 + widest + 4);
@@ -98,7 +103,7 @@ int legendWidth(int height, const std::vector<std::string>& labels, const std::s
 
 // The legend in the strip [x0, width): a bar from 0 (bottom) to `top`, a tick and a value at
 // each step, the unit above.
-void drawLegend(Image& image, int x0, double top, const std::vector<std::string>& labels,
+void drawLegend(Image& image, int x0, double top, const std::vector<LegendStep>& steps,
                 const std::string& unit) {
   const int scale = fontScale(image.height);
   const int barTop = 12 * scale + 8, barBottom = image.height - 8 * scale;
@@ -109,12 +114,11 @@ void drawLegend(Image& image, int x0, double top, const std::vector<std::string>
       image.at(x, y) =
           linearOf(rampColour(double(barBottom - y) / double(std::max(1, barBottom - barTop))));
   drawText(image, barLeft, 4, scale, unit, white);
-  for (size_t k = 0; k < labels.size(); ++k) {
-    const double v = std::stod(labels[k]);
-    const int y = barBottom - int(std::lround(v / top * double(barBottom - barTop)));
+  for (const LegendStep& s : steps) {
+    const int y = barBottom - int(std::lround(s.value / top * double(barBottom - barTop)));
     for (int x = barRight; x < barRight + 3 * scale && x < image.width; ++x)
       image.at(x, std::clamp(y, 0, image.height - 1)) = white;
-    drawText(image, barRight + 4 * scale, y - 3 * scale, scale, labels[k], white);
+    drawText(image, barRight + 4 * scale, y - 3 * scale, scale, s.label, white);
   }
 }
 
@@ -156,8 +160,8 @@ Image falseColourPicture(const Image& irradiance, const FalseColourScale& scale)
     values[i] = std::max(0.0, double(luminance(irradiance.pixels[i])) * scale.perIrradiance);
   const double top = scale.max > 0.0 ? scale.max : topOf(values);
   const double step = falseColourStep(top);
-  const std::vector<std::string> labels = legendLabels(top, step);
-  Image out(w + legendWidth(h, labels, scale.unit), h);
+  const std::vector<LegendStep> steps = legendSteps(top, step);
+  Image out(w + legendWidth(h, steps, scale.unit), h);
   const std::vector<double> around = smoothed(values, w, h);
   const auto band = [&](int x, int y) {
     return int(std::floor(around[size_t(y) * size_t(w) + size_t(x)] / step));
@@ -170,7 +174,7 @@ Image falseColourPicture(const Image& irradiance, const FalseColourScale& scale)
       out.at(x, y) =
           edge ? line : linearOf(rampColour(values[size_t(y) * size_t(w) + size_t(x)] / top));
     }
-  drawLegend(out, w, top, labels, scale.unit);
+  drawLegend(out, w, top, steps, scale.unit);
   return out;
 }
 

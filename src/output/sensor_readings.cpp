@@ -28,7 +28,9 @@ std::vector<SensorPoint> sensorPoints(std::span<const SensorSet> sets) {
 std::vector<SensorReading> sensorReadings(std::span<const SensorSet> sets,
                                           std::span<const Color> irradiance,
                                           const LengthUnit& unit) {
-  if (irradiance.size() != sensorPoints(sets).size())
+  size_t count = 0;
+  for (const SensorSet& set : sets) count += set.points.size();
+  if (irradiance.size() != count)
     throw std::invalid_argument("sensorReadings: one irradiance a point");
   std::vector<SensorReading> readings;
   size_t next = 0;
